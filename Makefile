@@ -1,0 +1,55 @@
+# softshadow: the two set-up commands (make demo, make test) and the rest of the workflow.
+# SPDX-License-Identifier: GPL-3.0-or-later
+SHELL := /bin/bash
+BUILD ?= build
+ASAN_BUILD ?= build-asan
+JOBS ?= $(shell nproc)
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+VERSION := $(shell sed -n 's/^project(softshadow VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
+
+# Every Debian package the build, tests, demo, benchmark and add-on need.
+DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-tools \
+  libopenexr-dev libglm-dev libembree-dev libegl-dev libegl1-mesa-dev libosmesa6-dev \
+  libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
+  blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev
+
+.PHONY: deps build demo test test-native test-asan test-blender bench addon clean
+
+deps:
+	@missing=$$(for p in $(DEB_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing Debian packages:" $$missing; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+
+build: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release > /dev/null
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	bash examples/run_demo.sh $(BUILD)
+
+test: build
+	$(MAKE) --no-print-directory test-native test-blender test-asan
+
+test-native:
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+test-blender:
+	bash tests/blender/run.sh $(BUILD)
+
+# The native tests once more under AddressSanitizer + UndefinedBehaviorSanitizer.
+test-asan: deps
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSS_SANITIZE=ON -DSS_BUILD_BENCH=OFF > /dev/null
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
+	  SS_TEST_QUICK=1 ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	bash bench/run.sh $(BUILD)
+
+addon: build
+	bash blender_addon/package.sh $(BUILD) $(VERSION)
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) out dist

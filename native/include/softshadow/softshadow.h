@@ -1,0 +1,148 @@
+/* The C API of softshadow: the only door for the Blender add-on, the CLI and outside tools.
+ *
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * Conventions
+ * - Every function returns an ss_status (or a plain value that cannot fail). On failure the
+ *   message is in ss_last_error(), which is thread-local and valid until the next call on the
+ *   same thread. No function lets a C++ exception escape.
+ * - Matrices are float[16] in column-major order (OpenGL / GLM layout): m[col*4 + row].
+ *   A Blender mathutils.Matrix M becomes [M[r][c] for c in range(4) for r in range(4)].
+ * - Cameras look down their local -Z axis; the projection maps to OpenGL clip space.
+ * - Images are float32, width x height, row 0 = the TOP row of the picture.
+ * - Method names (contract): "shadow_map", "pcss", "dbuffer", "sweep", "penumbra_map",
+ *   "occlusion_textures", "reference", or "auto".
+ */
+#ifndef SOFTSHADOW_H
+#define SOFTSHADOW_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32)
+#define SS_API __declspec(dllexport)
+#else
+#define SS_API __attribute__((visibility("default")))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum ss_status {
+    SS_OK = 0,
+    SS_ERROR_INVALID_ARGUMENT = 1, /* a null pointer, an unknown name, a bad option */
+    SS_ERROR_INVALID_SCENE = 2,    /* NaN geometry, index out of range, zero-size light ... */
+    SS_ERROR_IO = 3,               /* missing file, malformed file, unwritable output */
+    SS_ERROR_GL = 4,               /* no GL backend, shader or framebuffer failure */
+    SS_ERROR_UNSUPPORTED = 5,      /* a method that cannot handle this light or scene */
+    SS_ERROR_CANCELLED = 6,        /* the progress callback asked to stop */
+    SS_ERROR_INTERNAL = 7
+} ss_status;
+
+typedef enum ss_backend {
+    SS_BACKEND_AUTO = 0,  /* EGL surfaceless first, then OSMesa */
+    SS_BACKEND_EGL = 1,
+    SS_BACKEND_OSMESA = 2
+} ss_backend;
+
+typedef enum ss_light_type {
+    SS_LIGHT_DISK = 0,      /* area light, size = diameter */
+    SS_LIGHT_ELLIPSE = 1,   /* area light, size x size_y diameters */
+    SS_LIGHT_SQUARE = 2,    /* area light, size x size */
+    SS_LIGHT_RECTANGLE = 3, /* area light, size x size_y */
+    SS_LIGHT_POINT = 4,     /* sphere of radius `radius` */
+    SS_LIGHT_SPOT = 5,      /* sphere of radius `radius`, cone spot_size (full angle, rad) */
+    SS_LIGHT_SUN = 6        /* directional, angular diameter `angle` (rad) */
+} ss_light_type;
+
+/* Mesh flags. */
+#define SS_MESH_CAST 1u    /* the mesh casts shadows */
+#define SS_MESH_RECEIVE 2u /* the mesh receives shadows (pixels on it are in the mask) */
+#define SS_MESH_THIN 4u    /* a thin occluder (occlusion_textures' leak fix) */
+
+typedef struct ss_light_desc {
+    const char* name;          /* unique within the scene; UTF-8 */
+    ss_light_type type;
+    float light_to_world[16];  /* Blender's matrix_world: the light emits along local -Z */
+    float size;                /* area: size (diameter for disk/ellipse) */
+    float size_y;              /* area ellipse/rectangle: second size */
+    float radius;              /* point/spot: shadow_soft_size */
+    float angle;               /* sun: angular diameter in radians */
+    float spot_size;           /* spot: full cone angle in radians */
+    float spot_blend;          /* spot: 0..1 */
+    int32_t cast_shadows;      /* 0: the light gets no pass */
+} ss_light_desc;
+
+typedef struct ss_camera_desc {
+    float world_to_camera[16];  /* view matrix */
+    float projection[16];       /* camera -> OpenGL clip space, pixel aspect and shift baked in */
+    int32_t width, height;      /* final pixel resolution (render percentage applied) */
+    float pixel_aspect;         /* informational: already part of `projection` */
+} ss_camera_desc;
+
+/* Called from the rendering thread. Return non-zero to cancel. fraction in [0,1]. */
+typedef int (*ss_progress_fn)(void* user, float fraction, const char* stage);
+
+typedef struct ss_render_options {
+    int32_t samples;         /* light samples (reference, sweep, pcss...); 0 = method default */
+    uint32_t seed;           /* deterministic sampling */
+    int32_t extra_layers;    /* 1: umbra/penumbra/mask and method debug layers; 0: V only */
+    ss_progress_fn progress; /* may be NULL */
+    void* progress_user;
+    const char* settings;    /* optional "key=value;key=value" method settings, may be NULL */
+} ss_render_options;
+
+typedef struct ss_context ss_context; /* a GL context on a render thread owned by the library */
+typedef struct ss_scene ss_scene;
+typedef struct ss_result ss_result;   /* the layers of one (light, method) render */
+
+SS_API const char* ss_version(void);
+SS_API const char* ss_last_error(void);
+SS_API void ss_render_options_default(ss_render_options* options);
+
+/* GL context. `info_json` describes backend, renderer, GL version and limits. */
+SS_API ss_status ss_context_create(ss_backend backend, ss_context** out);
+SS_API void ss_context_destroy(ss_context* context);
+SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size);
+/* Joins every render thread the library started. Call from the host before it exits. */
+SS_API void ss_shutdown(void);
+
+/* Scenes. */
+SS_API ss_status ss_scene_create(ss_scene** out);
+SS_API void ss_scene_destroy(ss_scene* scene);
+SS_API ss_status ss_scene_load(const char* path, ss_scene** out);
+SS_API ss_status ss_scene_save(const ss_scene* scene, const char* path);
+SS_API ss_status ss_scene_add_mesh(ss_scene* scene, const char* name, const float* xyz,
+                                   uint32_t vertex_count, const uint32_t* triangles,
+                                   uint32_t triangle_count, uint32_t flags, int32_t* out_index);
+SS_API ss_status ss_scene_add_light(ss_scene* scene, const ss_light_desc* light, int32_t* out_index);
+SS_API ss_status ss_scene_set_camera(ss_scene* scene, const ss_camera_desc* camera);
+SS_API ss_status ss_scene_set_view_layer(ss_scene* scene, const char* name);
+SS_API int32_t ss_scene_light_count(const ss_scene* scene);
+SS_API const char* ss_scene_light_name(const ss_scene* scene, int32_t index);
+SS_API int32_t ss_scene_mesh_count(const ss_scene* scene);
+/* The mesh report (open/non-manifold edges, orientation, degenerate faces) as JSON. */
+SS_API ss_status ss_scene_mesh_report(const ss_scene* scene, int32_t mesh, char* buffer,
+                                      size_t buffer_size);
+
+/* Render one light with one method. `method` may be "auto"; ss_result_method tells which ran. */
+SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t light_index,
+                           const char* method, const ss_render_options* options, ss_result** out);
+SS_API void ss_result_destroy(ss_result* result);
+SS_API const char* ss_result_method(const ss_result* result);
+SS_API const char* ss_result_light(const ss_result* result);
+SS_API int32_t ss_result_layer_count(const ss_result* result);
+/* Layer names: "V" (visibility), "mask", "umbra", "penumbra", and method debug layers. */
+SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const char** name,
+                                 const float** pixels, int32_t* width, int32_t* height);
+
+/* Writes results as one multilayer EXR (atomically): channel
+ * "<view_layer>.<light>_<method>[_<layer>].V" per layer. */
+SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
+                              const ss_result* const* results, int32_t result_count);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SOFTSHADOW_H */

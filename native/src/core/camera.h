@@ -1,0 +1,36 @@
+// What the scene camera is, and where a pixel's centre looks (the pixel-alignment contract).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <glm/glm.hpp>
+
+namespace ss {
+
+struct Ray {
+    glm::vec3 origin;
+    glm::vec3 direction;  // unit
+};
+
+struct Camera {
+    glm::mat4 worldToCamera{1.0f};
+    glm::mat4 projection{1.0f};  // OpenGL clip space; pixel aspect and shift baked in
+    int width = 0, height = 0;
+    float pixelAspect = 1.0f;
+
+    bool isOrthographic() const { return projection[3][3] != 0.0f; }
+    glm::mat4 worldToClip() const { return projection * worldToCamera; }
+    // Pixel (x, y) counts from the top-left; its centre is at (x + 0.5, y + 0.5).
+    // NDC: x_ndc = 2 (x + 0.5) / width - 1, y_ndc = 1 - 2 (y + 0.5) / height.
+    Ray pixelRay(float px, float py) const;
+    // Where a world point lands, in pixel coordinates (x right, y down), continuous.
+    glm::vec2 worldToPixel(const glm::vec3& world) const;
+    glm::vec3 position() const;
+    // Throws ss::Error for non-finite or singular matrices and non-positive resolutions.
+    void validate() const;
+};
+
+// Builders for hand-written scenes and tests (a Blender-like perspective camera).
+Camera makeLookAtCamera(const glm::vec3& from, const glm::vec3& to, const glm::vec3& up,
+                        float verticalFovRadians, int width, int height, float nearClip,
+                        float farClip);
+
+}  // namespace ss

@@ -1,0 +1,63 @@
+// What a world-space triangle mesh is, and how its edges connect its faces (built once, shared).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace ss {
+
+// One undirected edge (v0 < v1) and every face that uses it, in face order.
+struct Edge {
+    uint32_t v0 = 0, v1 = 0;
+    std::vector<uint32_t> faces;
+    // For each entry of `faces`: true when that face walks the edge v0 -> v1.
+    std::vector<bool> forward;
+
+    bool isOpen() const { return faces.size() == 1; }
+    bool isManifold() const { return faces.size() == 2; }
+    // Two faces walking the edge in the same direction disagree on which side is outside.
+    bool isConsistent() const { return faces.size() != 2 || forward[0] != forward[1]; }
+};
+
+// Edge adjacency of a mesh. Every method that needs silhouettes reads it from here.
+struct EdgeAdjacency {
+    std::vector<Edge> edges;
+    std::vector<glm::uvec3> faceEdges;  // per face: its edges (v0v1, v1v2, v2v0) as indices
+};
+
+// What is wrong with a mesh, found once when it enters the scene; methods decide what to do.
+struct MeshReport {
+    size_t openEdges = 0;
+    size_t nonManifoldEdges = 0;       // 3 or more faces
+    size_t inconsistentEdges = 0;      // two faces with opposite orientation conventions
+    size_t degenerateFaces = 0;        // repeated vertex or zero area
+    bool closedManifold() const {
+        return openEdges == 0 && nonManifoldEdges == 0 && inconsistentEdges == 0;
+    }
+    std::string toJson(const std::string& meshName) const;
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::uvec3> triangles;
+    uint32_t flags = 0;  // SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN
+
+    EdgeAdjacency adjacency;  // filled by finalize()
+    MeshReport report;        // filled by finalize()
+    std::vector<glm::vec3> faceNormals;  // unit, zero for degenerate faces
+
+    bool casts() const;
+    bool receives() const;
+
+    // Validates (throws ss::Error on NaN/Inf coordinates or out-of-range indices) and builds
+    // adjacency, face normals and the report.
+    void finalize();
+};
+
+EdgeAdjacency buildEdgeAdjacency(const std::vector<glm::uvec3>& triangles);
+
+}  // namespace ss

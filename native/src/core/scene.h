@@ -1,0 +1,52 @@
+// What a scene is: world-space meshes, lights and the camera, validated as they enter.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/light.h"
+#include "core/mesh.h"
+
+namespace ss {
+
+struct Bounds {
+    glm::vec3 lo{1e30f}, hi{-1e30f};
+    void extend(const glm::vec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    bool empty() const { return lo.x > hi.x; }
+    glm::vec3 center() const { return 0.5f * (lo + hi); }
+    float diagonal() const { return empty() ? 0.0f : glm::length(hi - lo); }
+};
+
+class Scene {
+public:
+    // Each adder validates its input (throws ss::Error) and bumps the revision.
+    int addMesh(Mesh mesh);
+    int addLight(Light light);
+    void setCamera(const Camera& camera);
+    void setViewLayer(const std::string& name);
+
+    const std::vector<Mesh>& meshes() const { return meshes_; }
+    const std::vector<Light>& lights() const { return lights_; }
+    const Camera& camera() const;  // throws when the scene has no camera
+    bool hasCamera() const { return camera_.has_value(); }
+    const std::string& viewLayer() const { return viewLayer_; }
+    int findLight(const std::string& name) const;  // -1 when absent
+    Bounds bounds() const;                         // of all meshes
+    // Changes whenever the scene changes: caches key on (scene id, revision).
+    uint64_t revision() const { return revision_; }
+    uint64_t id() const { return id_; }
+
+private:
+    std::vector<Mesh> meshes_;
+    std::vector<Light> lights_;
+    std::optional<Camera> camera_;
+    std::string viewLayer_ = "ViewLayer";
+    uint64_t revision_ = 0;
+    uint64_t id_ = nextId();
+    static uint64_t nextId();
+};
+
+}  // namespace ss

@@ -1,0 +1,59 @@
+// Which methods exist (the contract names) and how "auto" picks one.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <functional>
+
+#include "core/error.h"
+#include "methods/method.h"
+
+namespace ss {
+
+// One factory per method, defined in that method's own file. A method not built yet has none.
+std::unique_ptr<Method> makeShadowMapMethod();
+std::unique_ptr<Method> makeReferenceMethod();
+
+namespace {
+struct Entry {
+    const char* name;
+    std::function<std::unique_ptr<Method>()> make;  // null: not available in this build
+};
+const std::vector<Entry>& entries() {
+    static const std::vector<Entry> table = {
+        {"shadow_map", makeShadowMapMethod},
+        {"pcss", nullptr},
+        {"dbuffer", nullptr},
+        {"sweep", nullptr},
+        {"penumbra_map", nullptr},
+        {"occlusion_textures", nullptr},
+        {"reference", makeReferenceMethod},
+    };
+    return table;
+}
+}  // namespace
+
+const std::vector<std::string>& methodNames() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> n;
+        for (const Entry& e : entries()) n.push_back(e.name);
+        return n;
+    }();
+    return names;
+}
+
+std::unique_ptr<Method> createMethod(const std::string& name) {
+    for (const Entry& e : entries())
+        if (name == e.name) {
+            if (!e.make) fail(SS_ERROR_UNSUPPORTED, "method '" + name + "' is not available in this build yet");
+            return e.make();
+        }
+    std::string known;
+    for (const Entry& e : entries()) known += std::string(known.empty() ? "" : ", ") + e.name;
+    fail(SS_ERROR_INVALID_ARGUMENT, "unknown method '" + name + "' (known: " + known + ", auto)");
+}
+
+std::string chooseAutoMethod(const Scene& scene, int lightIndex) {
+    // Until the soft methods land, the only real-time method is the hard shadow map.
+    (void)scene, (void)lightIndex;
+    return "shadow_map";
+}
+
+}  // namespace ss

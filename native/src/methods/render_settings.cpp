@@ -1,0 +1,57 @@
+// How method settings are parsed from "key=value;..." and read with defaults.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cstdlib>
+
+#include "core/error.h"
+#include "methods/method.h"
+
+namespace ss {
+
+std::map<std::string, std::string> parseSettings(const std::string& text) {
+    std::map<std::string, std::string> out;
+    size_t start = 0;
+    while (start <= text.size()) {
+        size_t end = text.find(';', start);
+        if (end == std::string::npos) end = text.size();
+        std::string item = text.substr(start, end - start);
+        if (!item.empty()) {
+            size_t eq = item.find('=');
+            if (eq == std::string::npos || eq == 0)
+                fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + item + "' is not key=value");
+            out[item.substr(0, eq)] = item.substr(eq + 1);
+        }
+        start = end + 1;
+    }
+    return out;
+}
+
+float RenderSettings::number(const std::string& key, float fallback) const {
+    auto it = options.find(key);
+    if (it == options.end()) return fallback;
+    char* end = nullptr;
+    float v = std::strtof(it->second.c_str(), &end);
+    if (end == it->second.c_str() || *end != '\0')
+        fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + it->second + "' is not a number");
+    return v;
+}
+
+bool RenderSettings::flag(const std::string& key, bool fallback) const {
+    auto it = options.find(key);
+    if (it == options.end()) return fallback;
+    const std::string& v = it->second;
+    if (v == "1" || v == "true" || v == "on" || v == "yes") return true;
+    if (v == "0" || v == "false" || v == "off" || v == "no") return false;
+    fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + v + "' is not on/off");
+}
+
+std::string RenderSettings::text(const std::string& key, const std::string& fallback) const {
+    auto it = options.find(key);
+    return it == options.end() ? fallback : it->second;
+}
+
+void RenderSettings::report(float fraction, const char* stage) const {
+    if (progress && !progress(fraction, stage))
+        fail(SS_ERROR_CANCELLED, std::string("cancelled during ") + stage);
+}
+
+}  // namespace ss
