@@ -118,6 +118,8 @@ SS_API ss_status ss_scene_add_mesh(ss_scene* scene, const char* name, const floa
                                    uint32_t triangle_count, uint32_t flags, int32_t* out_index);
 SS_API ss_status ss_scene_add_light(ss_scene* scene, const ss_light_desc* light, int32_t* out_index);
 SS_API ss_status ss_scene_set_camera(ss_scene* scene, const ss_camera_desc* camera);
+/* The scene camera (SS_ERROR_INVALID_SCENE when it has none); e.g. to change the resolution. */
+SS_API ss_status ss_scene_get_camera(const ss_scene* scene, ss_camera_desc* out);
 SS_API ss_status ss_scene_set_view_layer(ss_scene* scene, const char* name);
 SS_API int32_t ss_scene_light_count(const ss_scene* scene);
 SS_API const char* ss_scene_light_name(const ss_scene* scene, int32_t index);

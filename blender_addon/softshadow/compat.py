@@ -1,0 +1,101 @@
+# Which Blender API shape is in front of us: the few 3.x / 4.x / 5.x differences, in one place.
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Version differences, written against duck-typed objects so they test without Blender.
+
+- 5.0 moved the compositor tree from `scene.node_tree` (with `scene.use_nodes`) to a node
+  group assigned to `scene.compositing_node_group`.
+- 4.0 removed `bgl`: the preview draws with the `gpu` module only (never import bgl).
+- Point/spot/area radius is `shadow_soft_size` in 3.x and 4.x (`radius` in the UI).
+- 3.0+ objects carry `visible_shadow` / `visible_camera`; older files had `cycles_visibility`.
+- Materials lost `shadow_method` in 4.2 (EEVEE Next); objects gained `visible_shadow` use there.
+"""
+
+
+def version_tuple(app):
+    """(major, minor, patch) of a bpy.app-like object."""
+    return tuple(getattr(app, "version", (0, 0, 0)))[:3]
+
+
+def compositor_tree(scene, create=False, bpy_data=None):
+    """The scene's compositor node tree, or None. With create=True it is made when missing."""
+    if hasattr(scene, "compositing_node_group"):  # 5.0+
+        tree = scene.compositing_node_group
+        if tree is None and create:
+            if bpy_data is None:
+                return None
+            tree = bpy_data.node_groups.new("Compositor", "CompositorNodeTree")
+            scene.compositing_node_group = tree
+        return tree
+    if create and hasattr(scene, "use_nodes") and not scene.use_nodes:
+        scene.use_nodes = True
+    return getattr(scene, "node_tree", None)
+
+
+def has_bgl(app):
+    return version_tuple(app) < (4, 0, 0)
+
+
+def light_radius(light):
+    """The sphere radius of a point/spot light (and the soft size of legacy area lights)."""
+    for name in ("shadow_soft_size", "radius"):
+        value = getattr(light, name, None)
+        if value is not None:
+            return float(value)
+    return 0.0
+
+
+def object_casts_shadow(obj):
+    """The object's own shadow visibility (Cycles ray visibility; 3.0+ and the older shape)."""
+    value = getattr(obj, "visible_shadow", None)
+    if value is not None:
+        return bool(value)
+    legacy = getattr(obj, "cycles_visibility", None)
+    if legacy is not None and getattr(legacy, "shadow", None) is not None:
+        return bool(legacy.shadow)
+    return True
+
+
+def object_camera_visible(obj):
+    value = getattr(obj, "visible_camera", None)
+    if value is not None:
+        return bool(value)
+    legacy = getattr(obj, "cycles_visibility", None)
+    if legacy is not None and getattr(legacy, "camera", None) is not None:
+        return bool(legacy.camera)
+    return True
+
+
+def materials_cast_shadow(materials):
+    """False only when every material says EEVEE `shadow_method == 'NONE'` (3.x-4.1)."""
+    methods = [getattr(m, "shadow_method", None) for m in materials if m is not None]
+    methods = [m for m in methods if m is not None]
+    if not methods:
+        return True
+    return any(m != "NONE" for m in methods)
+
+
+def light_use_shadow(light):
+    return bool(getattr(light, "use_shadow", True))
+
+
+def extension_or_legacy_package(package_name):
+    """The add-on's module name as preferences know it ('bl_ext.<repo>.softshadow' in 4.2+)."""
+    return package_name
+
+
+def group_sockets(group, in_out):
+    """The names of a node group's inputs or outputs (4.0+ interface or 3.x inputs/outputs)."""
+    interface = getattr(group, "interface", None)
+    if interface is not None and hasattr(interface, "items_tree"):
+        return [item.name for item in interface.items_tree
+                if getattr(item, "item_type", "SOCKET") == "SOCKET" and item.in_out == in_out]
+    return [s.name for s in (group.inputs if in_out == "INPUT" else group.outputs)]
+
+
+def add_group_socket(group, in_out, socket_type, name):
+    """Adds an input/output socket to a node group (4.0+ interface or 3.x inputs/outputs)."""
+    interface = getattr(group, "interface", None)
+    if interface is not None and hasattr(interface, "new_socket"):
+        return interface.new_socket(name, in_out=in_out, socket_type=socket_type)
+    sockets = group.inputs if in_out == "INPUT" else group.outputs
+    return sockets.new(socket_type, name)

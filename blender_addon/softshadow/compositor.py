@@ -1,0 +1,167 @@
+# How the passes reach the compositor: one Image node on the EXR sequence and a darken group.
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Nodes are found by name, so setting up or refreshing again never piles up nodes."""
+import os
+
+import bpy
+
+from . import compat
+
+IMAGE_NAME = "SoftShadow Passes"
+IMAGE_NODE = "SoftShadow Passes"
+GROUP_NAME = "SoftShadow Darken"
+GROUP_NODE = "SoftShadow Darken"
+
+
+def _tree(scene, create=True):
+    return compat.compositor_tree(scene, create=create, bpy_data=bpy.data)
+
+
+def passes_image(exr_path):
+    """The image datablock reading the EXR sequence that `exr_path` is one frame of."""
+    image = bpy.data.images.get(IMAGE_NAME)
+    if image is None:
+        image = bpy.data.images.load(exr_path, check_existing=False)
+        image.name = IMAGE_NAME
+    elif bpy.path.abspath(image.filepath) != os.path.abspath(exr_path):
+        image.filepath = exr_path
+    if image.source != "SEQUENCE":
+        image.source = "SEQUENCE"
+    return image
+
+
+def _set_sequence(owner, scene):
+    # The file number equals the scene frame: start 1, offset 0, long enough for any frame.
+    owner.frame_start = 1
+    owner.frame_offset = 0
+    owner.frame_duration = max(scene.frame_end, 1) + 1
+    owner.use_auto_refresh = True
+
+
+def image_node(scene, image=None):
+    """The one Image node for the passes (created when missing)."""
+    tree = _tree(scene)
+    node = tree.nodes.get(IMAGE_NODE)
+    if node is None or node.bl_idname != "CompositorNodeImage":
+        if node is not None:
+            tree.nodes.remove(node)
+        node = tree.nodes.new("CompositorNodeImage")
+        node.name = IMAGE_NODE
+        node.label = "Soft Shadow Passes"
+        node.location = (-300, -300)
+    if image is not None and node.image != image:
+        node.image = image
+    _set_sequence(node, scene)
+    return node
+
+
+def darken_group():
+    """Image x mix(1, visibility, strength): the pass darkens a render layer."""
+    group = bpy.data.node_groups.get(GROUP_NAME)
+    if group is not None and group.bl_idname == "CompositorNodeTree":
+        return group
+    group = bpy.data.node_groups.new(GROUP_NAME, "CompositorNodeTree")
+    compat.add_group_socket(group, "INPUT", "NodeSocketColor", "Image")
+    visibility = compat.add_group_socket(group, "INPUT", "NodeSocketFloat", "Visibility")
+    strength = compat.add_group_socket(group, "INPUT", "NodeSocketFloat", "Strength")
+    compat.add_group_socket(group, "OUTPUT", "NodeSocketColor", "Image")
+    for socket, value in ((visibility, 1.0), (strength, 1.0)):
+        socket.default_value = value
+        socket.min_value, socket.max_value = 0.0, 1.0
+    nodes, links = group.nodes, group.links
+    inputs = nodes.new("NodeGroupInput")
+    inputs.location = (-400, 0)
+    outputs = nodes.new("NodeGroupOutput")
+    outputs.location = (400, 0)
+    factor = nodes.new("CompositorNodeMixRGB")
+    factor.name = "Shadow Factor"
+    factor.blend_type = "MIX"
+    factor.inputs[1].default_value = (1.0, 1.0, 1.0, 1.0)
+    factor.location = (-100, -150)
+    multiply = nodes.new("CompositorNodeMixRGB")
+    multiply.name = "Darken"
+    multiply.blend_type = "MULTIPLY"
+    multiply.inputs[0].default_value = 1.0
+    multiply.location = (150, 0)
+    links.new(inputs.outputs["Strength"], factor.inputs[0])
+    links.new(inputs.outputs["Visibility"], factor.inputs[2])
+    links.new(inputs.outputs["Image"], multiply.inputs[1])
+    links.new(factor.outputs[0], multiply.inputs[2])
+    links.new(multiply.outputs[0], outputs.inputs["Image"])
+    return group
+
+
+def _find(tree, bl_idname):
+    return next((n for n in tree.nodes if n.bl_idname == bl_idname), None)
+
+
+def pass_sockets(node):
+    """The Image node's pass outputs (multilayer passes), excluding the plain Image/Alpha."""
+    return [s.name for s in node.outputs if s.enabled and s.name not in ("Image", "Alpha")]
+
+
+def _relink(tree, group_node, node, pass_name):
+    names = pass_sockets(node)
+    if not names:
+        return None
+    chosen = pass_name if pass_name in names else names[0]
+    target = group_node.inputs["Visibility"]
+    current = target.links[0].from_socket if target.is_linked else None
+    if current is None or current.node != node or current.name != chosen:
+        for link in list(target.links):
+            tree.links.remove(link)
+        tree.links.new(node.outputs[chosen], target)
+    return chosen
+
+
+def setup(scene, exr_path=None):
+    """Render Layers -> darken group (by the chosen pass) -> Composite, plus the Image node."""
+    tree = _tree(scene)
+    image = passes_image(exr_path) if exr_path and os.path.exists(exr_path) else bpy.data.images.get(IMAGE_NAME)
+    node = image_node(scene, image)
+    layers = _find(tree, "CompositorNodeRLayers")
+    if layers is None:
+        layers = tree.nodes.new("CompositorNodeRLayers")
+        layers.location = (-300, 100)
+    composite = _find(tree, "CompositorNodeComposite")
+    if composite is None:
+        composite = tree.nodes.new("CompositorNodeComposite")
+        composite.location = (400, 100)
+    group_node = tree.nodes.get(GROUP_NODE)
+    if group_node is None:
+        group_node = tree.nodes.new("CompositorNodeGroup")
+        group_node.name = GROUP_NODE
+        group_node.label = "Soft Shadow Darken"
+        group_node.location = (100, 100)
+    if group_node.node_tree is None:
+        group_node.node_tree = darken_group()
+    group_node.inputs["Strength"].default_value = scene.softshadow.strength
+    if not group_node.inputs["Image"].is_linked:
+        tree.links.new(layers.outputs["Image"], group_node.inputs["Image"])
+    for link in list(composite.inputs["Image"].links):
+        if link.from_node != group_node:
+            tree.links.remove(link)
+    if not composite.inputs["Image"].is_linked:
+        tree.links.new(group_node.outputs["Image"], composite.inputs["Image"])
+    _relink(tree, group_node, node, scene.softshadow.compositor_pass)
+    return node
+
+
+def refresh(scene, exr_path):
+    """After a frame's EXR was written: point the image at it, reload, update the sockets."""
+    tree = _tree(scene, create=False)
+    image = passes_image(exr_path)
+    image.reload()
+    image.size[:]  # touching the buffer makes Blender read the passes (DESIGN.md)
+    if tree is None:
+        return None
+    node = tree.nodes.get(IMAGE_NODE)
+    if node is None:
+        return None
+    if node.image != image:
+        node.image = image
+    _set_sequence(node, scene)
+    group_node = tree.nodes.get(GROUP_NODE)
+    if group_node is not None and "Visibility" in group_node.inputs:
+        _relink(tree, group_node, node, scene.softshadow.compositor_pass)
+    return node

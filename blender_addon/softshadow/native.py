@@ -1,0 +1,450 @@
+# How the add-on talks to libsoftshadow: the one ctypes binding (handles, errors, one context).
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The only module that uses ctypes.
+
+Every C function's argtypes/restype is declared once, at load. A status other than SS_OK is
+turned into SoftShadowError carrying ss_last_error() before any output is used. A missing or
+broken library never raises at import: `status()` says why and where we looked.
+"""
+import atexit
+import ctypes
+import json
+import os
+import threading
+
+import numpy as np
+
+SS_OK = 0
+STATUS_NAMES = {
+    0: "ok", 1: "invalid argument", 2: "invalid scene", 3: "i/o error", 4: "GL error",
+    5: "unsupported", 6: "cancelled", 7: "internal error",
+}
+SS_ERROR_CANCELLED = 6
+
+BACKENDS = {"AUTO": 0, "EGL": 1, "OSMESA": 2}
+LIGHT_TYPES = {"DISK": 0, "ELLIPSE": 1, "SQUARE": 2, "RECTANGLE": 3, "POINT": 4, "SPOT": 5, "SUN": 6}
+
+MESH_CAST = 1
+MESH_RECEIVE = 2
+MESH_THIN = 4
+
+LIBRARY_NAME = "libsoftshadow.so"
+
+
+class SoftShadowError(RuntimeError):
+    """A failed library call: `status` is the ss_status, the message is ss_last_error()."""
+
+    def __init__(self, status, message):
+        super().__init__(message)
+        self.status = status
+
+    @property
+    def cancelled(self):
+        return self.status == SS_ERROR_CANCELLED
+
+
+class LibraryUnavailable(RuntimeError):
+    """The library could not be loaded; the message says why and where we looked."""
+
+
+class _LightDesc(ctypes.Structure):
+    _fields_ = [
+        ("name", ctypes.c_char_p),
+        ("type", ctypes.c_int),
+        ("light_to_world", ctypes.c_float * 16),
+        ("size", ctypes.c_float),
+        ("size_y", ctypes.c_float),
+        ("radius", ctypes.c_float),
+        ("angle", ctypes.c_float),
+        ("spot_size", ctypes.c_float),
+        ("spot_blend", ctypes.c_float),
+        ("cast_shadows", ctypes.c_int32),
+    ]
+
+
+class _CameraDesc(ctypes.Structure):
+    _fields_ = [
+        ("world_to_camera", ctypes.c_float * 16),
+        ("projection", ctypes.c_float * 16),
+        ("width", ctypes.c_int32),
+        ("height", ctypes.c_int32),
+        ("pixel_aspect", ctypes.c_float),
+    ]
+
+
+_PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_float, ctypes.c_char_p)
+
+
+class _RenderOptions(ctypes.Structure):
+    _fields_ = [
+        ("samples", ctypes.c_int32),
+        ("seed", ctypes.c_uint32),
+        ("extra_layers", ctypes.c_int32),
+        ("progress", _PROGRESS_FN),
+        ("progress_user", ctypes.c_void_p),
+        ("settings", ctypes.c_char_p),
+    ]
+
+
+_vp = ctypes.c_void_p
+_st = ctypes.c_int
+_SIGNATURES = {
+    "ss_version": (ctypes.c_char_p, []),
+    "ss_last_error": (ctypes.c_char_p, []),
+    "ss_render_options_default": (None, [ctypes.POINTER(_RenderOptions)]),
+    "ss_context_create": (_st, [ctypes.c_int, ctypes.POINTER(_vp)]),
+    "ss_context_destroy": (None, [_vp]),
+    "ss_context_info": (_st, [_vp, ctypes.c_char_p, ctypes.c_size_t]),
+    "ss_shutdown": (None, []),
+    "ss_scene_create": (_st, [ctypes.POINTER(_vp)]),
+    "ss_scene_destroy": (None, [_vp]),
+    "ss_scene_load": (_st, [ctypes.c_char_p, ctypes.POINTER(_vp)]),
+    "ss_scene_save": (_st, [_vp, ctypes.c_char_p]),
+    "ss_scene_add_mesh": (_st, [_vp, ctypes.c_char_p, ctypes.POINTER(ctypes.c_float), ctypes.c_uint32,
+                                ctypes.POINTER(ctypes.c_uint32), ctypes.c_uint32, ctypes.c_uint32,
+                                ctypes.POINTER(ctypes.c_int32)]),
+    "ss_scene_add_light": (_st, [_vp, ctypes.POINTER(_LightDesc), ctypes.POINTER(ctypes.c_int32)]),
+    "ss_scene_set_camera": (_st, [_vp, ctypes.POINTER(_CameraDesc)]),
+    "ss_scene_set_view_layer": (_st, [_vp, ctypes.c_char_p]),
+    "ss_scene_light_count": (ctypes.c_int32, [_vp]),
+    "ss_scene_light_name": (ctypes.c_char_p, [_vp, ctypes.c_int32]),
+    "ss_scene_mesh_count": (ctypes.c_int32, [_vp]),
+    "ss_scene_mesh_report": (_st, [_vp, ctypes.c_int32, ctypes.c_char_p, ctypes.c_size_t]),
+    "ss_render": (_st, [_vp, _vp, ctypes.c_int32, ctypes.c_char_p, ctypes.POINTER(_RenderOptions),
+                        ctypes.POINTER(_vp)]),
+    "ss_result_destroy": (None, [_vp]),
+    "ss_result_method": (ctypes.c_char_p, [_vp]),
+    "ss_result_light": (ctypes.c_char_p, [_vp]),
+    "ss_result_layer_count": (ctypes.c_int32, [_vp]),
+    "ss_result_layer": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_char_p),
+                              ctypes.POINTER(ctypes.POINTER(ctypes.c_float)),
+                              ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_int32)]),
+    "ss_write_exr": (_st, [ctypes.c_char_p, ctypes.c_char_p, ctypes.POINTER(_vp), ctypes.c_int32]),
+}
+
+
+def candidate_paths():
+    """Where the library is looked for, in order: $SOFTSHADOW_LIB, then lib/ next to the package."""
+    paths = []
+    env = os.environ.get("SOFTSHADOW_LIB")
+    if env:
+        paths.append(os.path.join(env, LIBRARY_NAME) if os.path.isdir(env) else env)
+    paths.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib", LIBRARY_NAME))
+    return paths
+
+
+_lock = threading.RLock()
+_lib = None
+_load_error = None
+_looked = []
+_context = None
+_context_error = None
+_context_info = None
+_shut_down = False
+
+
+def _bind(cdll):
+    for name, (restype, argtypes) in _SIGNATURES.items():
+        fn = getattr(cdll, name)  # AttributeError names the missing symbol
+        fn.restype = restype
+        fn.argtypes = argtypes
+    return cdll
+
+
+def _load():
+    """Loads the library once. Returns it, or None with _load_error set."""
+    global _lib, _load_error, _looked
+    with _lock:
+        if _lib is not None or _load_error is not None:
+            return _lib
+        _looked = candidate_paths()
+        reasons = []
+        for path in _looked:
+            if not os.path.exists(path):
+                reasons.append("%s: not found" % path)
+                continue
+            try:
+                _lib = _bind(ctypes.CDLL(path))
+                atexit.register(shutdown)
+                return _lib
+            except (OSError, AttributeError) as exc:
+                reasons.append("%s: %s" % (path, exc))
+        _load_error = "libsoftshadow could not be loaded (" + "; ".join(reasons) + ")"
+        return None
+
+
+def available():
+    return _load() is not None
+
+
+def lib():
+    """The bound library, or LibraryUnavailable with the reason."""
+    loaded = _load()
+    if loaded is None:
+        raise LibraryUnavailable(_load_error)
+    if _shut_down:
+        raise LibraryUnavailable("libsoftshadow was shut down (the add-on was unregistered)")
+    return loaded
+
+
+def _check(status):
+    if status != SS_OK:
+        raw = _lib.ss_last_error()
+        message = raw.decode("utf-8", "replace") if raw else STATUS_NAMES.get(status, "error")
+        raise SoftShadowError(status, message)
+
+
+def _text(value):
+    return value.encode("utf-8") if isinstance(value, str) else value
+
+
+def version():
+    return lib().ss_version().decode()
+
+
+def context():
+    """The one long-lived GL context (its render thread belongs to the library)."""
+    global _context, _context_error, _context_info
+    with _lock:
+        if _context is not None:
+            return _context
+        library = lib()
+        backend = BACKENDS.get(os.environ.get("SOFTSHADOW_BACKEND", "AUTO").upper(), 0)
+        handle = ctypes.c_void_p()
+        try:
+            _check(library.ss_context_create(backend, ctypes.byref(handle)))
+        except SoftShadowError as exc:
+            _context_error = str(exc)
+            raise
+        _context = handle
+        buffer = ctypes.create_string_buffer(8192)
+        try:
+            _check(library.ss_context_info(handle, buffer, len(buffer)))
+            _context_info = json.loads(buffer.value.decode("utf-8", "replace") or "{}")
+        except (SoftShadowError, ValueError) as exc:
+            _context_info = {"error": str(exc)}
+        return _context
+
+
+def status():
+    """A dict for the preferences panel: loaded, version, backend/renderer or the reason."""
+    info = {"loaded": False, "looked": list(candidate_paths()), "version": "", "backend": "",
+            "renderer": "", "error": ""}
+    if _load() is None:
+        info["error"] = _load_error or "not loaded"
+        info["looked"] = list(_looked) or info["looked"]
+        return info
+    info["loaded"] = True
+    info["path"] = getattr(_lib, "_name", "")
+    try:
+        info["version"] = version()
+        context()
+        details = _context_info or {}
+        info["backend"] = str(details.get("backend", ""))
+        info["renderer"] = str(details.get("renderer", ""))
+        info["gl_version"] = str(details.get("gl_version", details.get("version", "")))
+        info["details"] = details
+    except (SoftShadowError, LibraryUnavailable) as exc:
+        info["error"] = "GL context: %s" % exc
+    return info
+
+
+def shutdown():
+    """Destroys our context and joins the library's render threads (unregister and atexit)."""
+    global _context, _context_info, _shut_down
+    with _lock:
+        if _lib is None or _shut_down:
+            return
+        if _context is not None:
+            _lib.ss_context_destroy(_context)
+            _context = None
+            _context_info = None
+        _lib.ss_shutdown()
+        _shut_down = True
+
+
+def reset_after_shutdown():
+    """Allows use again after an unregister/register cycle (the library stays loaded)."""
+    global _shut_down, _context_error
+    with _lock:
+        _shut_down = False
+        _context_error = None
+
+
+def _matrix16(values):
+    array = np.asarray(values, dtype=np.float32).reshape(-1)
+    if array.size != 16:
+        raise ValueError("a matrix needs 16 values, got %d" % array.size)
+    return (ctypes.c_float * 16)(*array.tolist())
+
+
+class Scene:
+    """An ss_scene: meshes, lights and a camera in world space."""
+
+    def __init__(self, handle=None):
+        library = lib()
+        if handle is None:
+            handle = ctypes.c_void_p()
+            _check(library.ss_scene_create(ctypes.byref(handle)))
+        self._handle = handle
+
+    @classmethod
+    def load(cls, path):
+        handle = ctypes.c_void_p()
+        _check(lib().ss_scene_load(_text(os.fspath(path)), ctypes.byref(handle)))
+        return cls(handle)
+
+    def close(self):
+        if self._handle is not None and _lib is not None:
+            _lib.ss_scene_destroy(self._handle)
+        self._handle = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    @property
+    def handle(self):
+        if self._handle is None:
+            raise ValueError("the scene was closed")
+        return self._handle
+
+    def add_mesh(self, name, vertices, triangles, flags):
+        """vertices: (N, 3) world-space float; triangles: (M, 3) indices. Returns the index."""
+        xyz = np.ascontiguousarray(vertices, dtype=np.float32).reshape(-1, 3)
+        tris = np.ascontiguousarray(triangles, dtype=np.uint32).reshape(-1, 3)
+        index = ctypes.c_int32(-1)
+        _check(lib().ss_scene_add_mesh(
+            self.handle, _text(name), xyz.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), len(xyz),
+            tris.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32)), len(tris), int(flags),
+            ctypes.byref(index)))
+        return index.value
+
+    def add_light(self, light):
+        """light: a dict as made by scene_export.light_values. Returns the index."""
+        desc = _LightDesc()
+        desc.name = _text(light["name"])
+        desc.type = LIGHT_TYPES[light["type"]]
+        desc.light_to_world = _matrix16(light["light_to_world"])
+        for key in ("size", "size_y", "radius", "angle", "spot_size", "spot_blend"):
+            setattr(desc, key, float(light.get(key, 0.0)))
+        desc.cast_shadows = 1 if light.get("cast_shadows", True) else 0
+        index = ctypes.c_int32(-1)
+        _check(lib().ss_scene_add_light(self.handle, ctypes.byref(desc), ctypes.byref(index)))
+        return index.value
+
+    def set_camera(self, camera):
+        """camera: a dict with column-major world_to_camera, projection, width, height."""
+        desc = _CameraDesc()
+        desc.world_to_camera = _matrix16(camera["world_to_camera"])
+        desc.projection = _matrix16(camera["projection"])
+        desc.width = int(camera["width"])
+        desc.height = int(camera["height"])
+        desc.pixel_aspect = float(camera.get("pixel_aspect", 1.0))
+        _check(lib().ss_scene_set_camera(self.handle, ctypes.byref(desc)))
+
+    def set_view_layer(self, name):
+        _check(lib().ss_scene_set_view_layer(self.handle, _text(name)))
+
+    def save(self, path):
+        _check(lib().ss_scene_save(self.handle, _text(os.fspath(path))))
+
+    def light_names(self):
+        library = lib()
+        return [library.ss_scene_light_name(self.handle, i).decode("utf-8", "replace")
+                for i in range(library.ss_scene_light_count(self.handle))]
+
+    def mesh_count(self):
+        return lib().ss_scene_mesh_count(self.handle)
+
+    def render(self, light_index, method="auto", samples=0, seed=1, extra_layers=False,
+               settings=None, progress=None):
+        """Renders one light with one method on the shared context. Returns a Result.
+
+        progress(fraction, stage) -> True to cancel; it is called from the library's thread.
+        """
+        library = lib()
+        ctx = context()
+        options = _RenderOptions()
+        library.ss_render_options_default(ctypes.byref(options))
+        options.samples = int(samples)
+        options.seed = int(seed)
+        options.extra_layers = 1 if extra_layers else 0
+        callback = None
+        if progress is not None:
+            def _call(_user, fraction, stage):
+                try:
+                    return 1 if progress(float(fraction), (stage or b"").decode("utf-8", "replace")) else 0
+                except Exception:
+                    return 0
+            callback = _PROGRESS_FN(_call)
+            options.progress = callback
+        settings_bytes = _text(settings) if settings else None
+        options.settings = settings_bytes
+        out = ctypes.c_void_p()
+        _check(library.ss_render(ctx, self.handle, int(light_index), _text(method),
+                                 ctypes.byref(options), ctypes.byref(out)))
+        del callback  # kept alive until ss_render returned
+        return Result(out)
+
+
+class Result:
+    """The layers of one (light, method) render."""
+
+    def __init__(self, handle):
+        self._handle = handle
+
+    def close(self):
+        if self._handle is not None and _lib is not None:
+            _lib.ss_result_destroy(self._handle)
+        self._handle = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    @property
+    def handle(self):
+        if self._handle is None:
+            raise ValueError("the result was closed")
+        return self._handle
+
+    @property
+    def method(self):
+        return lib().ss_result_method(self.handle).decode()
+
+    @property
+    def light(self):
+        return lib().ss_result_light(self.handle).decode("utf-8", "replace")
+
+    def layers(self):
+        """{layer name: float32 (height, width) copy, row 0 = top}."""
+        library = lib()
+        out = {}
+        for i in range(library.ss_result_layer_count(self.handle)):
+            name = ctypes.c_char_p()
+            pixels = ctypes.POINTER(ctypes.c_float)()
+            width = ctypes.c_int32()
+            height = ctypes.c_int32()
+            _check(library.ss_result_layer(self.handle, i, ctypes.byref(name), ctypes.byref(pixels),
+                                           ctypes.byref(width), ctypes.byref(height)))
+            count = width.value * height.value
+            flat = np.ctypeslib.as_array(pixels, shape=(count,)) if count else np.zeros(0, np.float32)
+            out[name.value.decode()] = flat.reshape(height.value, width.value).copy()
+        return out
+
+
+def write_exr(path, view_layer, results):
+    """Writes results as one multilayer EXR (atomically, by the library)."""
+    handles = (ctypes.c_void_p * max(1, len(results)))(*[r.handle for r in results])
+    _check(lib().ss_write_exr(_text(os.fspath(path)), _text(view_layer), handles, len(results)))

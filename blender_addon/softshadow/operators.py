@@ -1,0 +1,172 @@
+# What the user can run: passes for this frame, the compositor set-up, the scene file for the CLI.
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Every operator body is wrapped: failures become self.report messages, never tracebacks."""
+import bpy
+
+from . import api, compositor, native
+
+
+def _library_ready(op):
+    if native.available():
+        return True
+    op.report({"ERROR"}, "Soft Shadow: %s" % native.status()["error"])
+    return False
+
+
+def _report_problems(op, problems):
+    for problem in problems:
+        op.report({"WARNING"}, "Soft Shadow: %s" % problem)
+
+
+class SOFTSHADOW_OT_render_passes(bpy.types.Operator):
+    """Compute the soft-shadow passes for the current frame and write them as a multilayer EXR"""
+    bl_idname = "softshadow.render_passes"
+    bl_label = "Render Soft Shadow Passes"
+    bl_options = {"REGISTER"}
+
+    def execute(self, context):
+        if not _library_ready(self):
+            return {"CANCELLED"}
+        scene = context.scene
+        wm = context.window_manager
+        wm.progress_begin(0, 100)
+        try:
+            # No progress callback: it would run on the library's thread, where the window
+            # manager must not be touched.
+            path, problems, chosen = api.render_frame(scene, context.evaluated_depsgraph_get())
+        except (native.SoftShadowError, native.LibraryUnavailable) as exc:
+            self.report({"ERROR"}, "Soft Shadow: %s" % exc)
+            return {"CANCELLED"}
+        except Exception as exc:
+            self.report({"ERROR"}, "Soft Shadow internal error: %s: %s" % (type(exc).__name__, exc))
+            return {"CANCELLED"}
+        finally:
+            wm.progress_end()
+        _report_problems(self, problems)
+        scene.softshadow.last_report = "; ".join(problems)
+        if not path:
+            self.report({"ERROR"}, "Soft Shadow: no pass was produced")
+            return {"CANCELLED"}
+        methods = ", ".join("%s: %s" % item for item in chosen.items())
+        self.report({"INFO"}, "Soft Shadow: wrote %s (%s)" % (bpy.path.basename(path), methods))
+        return {"FINISHED"}
+
+
+class SOFTSHADOW_OT_setup_compositor(bpy.types.Operator):
+    """Add the passes Image node and a group that darkens the render layer by a pass"""
+    bl_idname = "softshadow.setup_compositor"
+    bl_label = "Set Up Soft Shadow Compositing"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        scene = context.scene
+        try:
+            path = api.frame_exr_path(scene)
+            node = compositor.setup(scene, path)
+        except Exception as exc:
+            self.report({"ERROR"}, "Soft Shadow: compositor set-up failed: %s" % exc)
+            return {"CANCELLED"}
+        if not compositor.pass_sockets(node):
+            self.report({"INFO"}, "Soft Shadow: nodes added; passes appear after the first render")
+        return {"FINISHED"}
+
+
+class SOFTSHADOW_OT_export_scene(bpy.types.Operator):
+    """Save the scene as a softshadow scene file for the command line tool"""
+    bl_idname = "softshadow.export_scene"
+    bl_label = "Export Soft Shadow Scene"
+    bl_options = {"REGISTER"}
+
+    filepath: bpy.props.StringProperty(subtype="FILE_PATH")
+    filter_glob: bpy.props.StringProperty(default="*.json;*.ssc", options={"HIDDEN"})
+
+    def invoke(self, context, event):
+        if not self.filepath:
+            self.filepath = bpy.path.ensure_ext(bpy.path.display_name_from_filepath(
+                bpy.data.filepath) or "scene", ".json")
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        if not _library_ready(self):
+            return {"CANCELLED"}
+        try:
+            problems = api.export_scene_file(context.scene, bpy.path.abspath(self.filepath),
+                                             context.evaluated_depsgraph_get())
+        except (native.SoftShadowError, native.LibraryUnavailable, OSError) as exc:
+            self.report({"ERROR"}, "Soft Shadow: export failed: %s" % exc)
+            return {"CANCELLED"}
+        except Exception as exc:
+            self.report({"ERROR"}, "Soft Shadow internal error: %s: %s" % (type(exc).__name__, exc))
+            return {"CANCELLED"}
+        _report_problems(self, problems)
+        self.report({"INFO"}, "Soft Shadow: exported %s" % self.filepath)
+        return {"FINISHED"}
+
+
+class SOFTSHADOW_OT_render_animation_passes(bpy.types.Operator):
+    """Compute and write the passes for every frame of the scene's frame range (Esc cancels)"""
+    bl_idname = "softshadow.render_animation_passes"
+    bl_label = "Render Soft Shadow Passes for All Frames"
+    bl_options = {"REGISTER"}
+
+    _timer = None
+    _frame = 0
+    _problems = None
+
+    def invoke(self, context, event):
+        if not _library_ready(self):
+            return {"CANCELLED"}
+        scene = context.scene
+        self._frame = scene.frame_start
+        self._original = scene.frame_current
+        self._problems = []
+        self._written = 0
+        wm = context.window_manager
+        wm.progress_begin(scene.frame_start, scene.frame_end + 1)
+        self._timer = wm.event_timer_add(0.01, window=context.window)
+        wm.modal_handler_add(self)
+        return {"RUNNING_MODAL"}
+
+    def _finish(self, context, cancelled):
+        wm = context.window_manager
+        wm.event_timer_remove(self._timer)
+        wm.progress_end()
+        context.scene.frame_set(self._original)
+        _report_problems(self, self._problems[:20])
+        self.report({"INFO"}, "Soft Shadow: wrote %d frame(s)%s" % (
+            self._written, " (cancelled)" if cancelled else ""))
+        return {"CANCELLED"} if cancelled else {"FINISHED"}
+
+    def modal(self, context, event):
+        if event.type == "ESC":
+            return self._finish(context, True)
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        scene = context.scene
+        if self._frame > scene.frame_end:
+            return self._finish(context, False)
+        try:
+            scene.frame_set(self._frame)
+            path, problems, _ = api.render_frame(scene, context.evaluated_depsgraph_get())
+            self._written += 1 if path else 0
+            self._problems.extend("frame %d: %s" % (self._frame, p) for p in problems)
+        except Exception as exc:
+            self._problems.append("frame %d: %s" % (self._frame, exc))
+        context.window_manager.progress_update(self._frame)
+        self._frame += 1
+        return {"RUNNING_MODAL"}
+
+
+CLASSES = (SOFTSHADOW_OT_render_passes, SOFTSHADOW_OT_setup_compositor, SOFTSHADOW_OT_export_scene,
+           SOFTSHADOW_OT_render_animation_passes)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+
+
+def unregister():
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

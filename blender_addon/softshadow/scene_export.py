@@ -1,0 +1,287 @@
+# How a Blender scene becomes plain arrays for the library: meshes, lights, camera, problems.
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Two halves. The top half is pure numpy (no bpy): names, matrices, checks; it is unit-tested
+without Blender. The bottom half walks an evaluated depsgraph; it only touches the objects it
+is given, so this module never imports bpy itself.
+"""
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import compat
+
+AREA_SHAPES = ("DISK", "ELLIPSE", "SQUARE", "RECTANGLE")
+GEOMETRY_TYPES = ("MESH", "CURVE", "SURFACE", "FONT", "META")
+
+# ---------------------------------------------------------------- pure numpy half
+
+
+@dataclass
+class ExportedScene:
+    meshes: list = field(default_factory=list)    # dicts: name, vertices, triangles, flags
+    lights: list = field(default_factory=list)    # dicts: see light_values()
+    camera: dict = None                           # dict: see camera_values(); None = no camera
+    view_layer: str = "ViewLayer"
+    problems: list = field(default_factory=list)  # messages for the user's report
+    skipped: list = field(default_factory=list)   # names of objects left out on purpose
+
+
+def safe_name(name):
+    """A light name as it appears in a pass name: dots and spaces become '_' (DESIGN.md)."""
+    return "".join("_" if c in ". " else c for c in name)
+
+
+def pass_name(light_name, method, layer=None):
+    """The EXR pass name of one (light, method[, extra layer]) result."""
+    base = "%s_%s" % (safe_name(light_name), method)
+    return base if layer in (None, "", "V") else "%s_%s" % (base, layer)
+
+
+def column_major(matrix):
+    """A 4x4 row-indexed matrix (mathutils or nested lists) -> 16 floats, m[col*4 + row]."""
+    rows = np.asarray([list(r) for r in matrix], dtype=np.float64).reshape(4, 4)
+    return rows.T.reshape(-1).astype(np.float32)
+
+
+def normalized_rigid(matrix):
+    """A camera matrix with its scale removed (Blender renders from a normalised camera)."""
+    m = np.asarray([list(r) for r in matrix], dtype=np.float64).reshape(4, 4).copy()
+    for c in range(3):
+        length = np.linalg.norm(m[:3, c])
+        if length > 0:
+            m[:3, c] /= length
+    return m
+
+
+def transform_points(matrix, points):
+    """(N, 3) local points -> world through a 4x4 row-indexed matrix (affine)."""
+    m = np.asarray([list(r) for r in matrix], dtype=np.float64).reshape(4, 4)
+    p = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    return (p @ m[:3, :3].T + m[:3, 3]).astype(np.float32)
+
+
+def render_size(resolution_x, resolution_y, percentage):
+    """Blender's final pixel size: integer arithmetic as in BKE_render_resolution."""
+    return (int(resolution_x) * int(percentage)) // 100, (int(resolution_y) * int(percentage)) // 100
+
+
+def mesh_problem(name, vertices, triangles):
+    """Why a mesh cannot be sent (a message), or None when it can."""
+    vertices = np.asarray(vertices)
+    triangles = np.asarray(triangles)
+    if triangles.size == 0:
+        return "object '%s' has no faces: it casts no shadow and was skipped" % name
+    if not np.all(np.isfinite(vertices)):
+        bad = int(np.count_nonzero(~np.isfinite(vertices).all(axis=-1)))
+        return "object '%s' has %d vertices that are not finite numbers (NaN/inf): skipped" % (name, bad)
+    if triangles.max() >= len(vertices.reshape(-1, 3)):
+        return "object '%s' has a face index out of range: skipped" % name
+    return None
+
+
+def light_values(name, kind, shape, matrix, size=0.0, size_y=0.0, radius=0.0, angle=0.0,
+                 spot_size=0.0, spot_blend=0.0, use_shadow=True):
+    """A light as the library's ss_light_desc wants it. kind: Blender's light.type."""
+    if kind == "AREA":
+        light_type = shape if shape in AREA_SHAPES else "SQUARE"
+    elif kind in ("POINT", "SPOT", "SUN"):
+        light_type = kind
+    else:
+        raise ValueError("light '%s' has an unknown type %r" % (name, kind))
+    return {
+        "name": name, "type": light_type, "light_to_world": column_major(matrix),
+        "size": float(size), "size_y": float(size_y if light_type in ("ELLIPSE", "RECTANGLE") else size),
+        "radius": float(radius), "angle": float(angle), "spot_size": float(spot_size),
+        "spot_blend": float(spot_blend), "cast_shadows": bool(use_shadow),
+    }
+
+
+def light_problem(light):
+    """Why a light cannot get a pass (a message), or None. The library checks again."""
+    numbers = [light[k] for k in ("size", "size_y", "radius", "angle", "spot_size", "spot_blend")]
+    if not all(math.isfinite(v) for v in numbers) or not np.all(np.isfinite(light["light_to_world"])):
+        return "light '%s' has values that are not finite numbers: no pass" % light["name"]
+    if light["type"] in AREA_SHAPES and (light["size"] <= 0 or light["size_y"] <= 0):
+        return "light '%s' has zero size: no pass" % light["name"]
+    return None
+
+
+def camera_values(world_to_camera_rows, projection_rows, width, height, pixel_aspect=1.0):
+    return {
+        "world_to_camera": column_major(world_to_camera_rows),
+        "projection": column_major(projection_rows),
+        "width": int(width), "height": int(height), "pixel_aspect": float(pixel_aspect),
+    }
+
+
+def unique_name(name, used):
+    """name, or name.001, name.002 ... so every light and mesh name is unique."""
+    candidate, n = name, 0
+    while candidate in used:
+        n += 1
+        candidate = "%s.%03d" % (name, n)
+    used.add(candidate)
+    return candidate
+
+
+# ---------------------------------------------------------------- depsgraph half
+
+
+def _render_visible_collections(view_layer):
+    """Collections whose objects render: not excluded, not hidden for render, nor a parent."""
+    visible = set()
+
+    def walk(layer_collection, parent_visible):
+        coll = layer_collection.collection
+        ok = parent_visible and not layer_collection.exclude and not coll.hide_render
+        if ok:
+            visible.add(coll.name)
+        for child in layer_collection.children:
+            walk(child, ok)
+
+    walk(view_layer.layer_collection, True)
+    return visible
+
+
+def _object_visible(obj, mode, view_layer, render_collections):
+    original = obj.original
+    if mode == "RENDER":
+        if original.hide_render:
+            return False
+        return any(c.name in render_collections for c in original.users_collection)
+    try:
+        return original.visible_get(view_layer=view_layer)
+    except (TypeError, RuntimeError):
+        return original.visible_get()
+
+
+def _local_mesh_arrays(obj):
+    """(vertices (N,3) float32 local, triangles (M,3) uint32) of an evaluated object."""
+    mesh = obj.to_mesh()
+    try:
+        if mesh is None:
+            return np.zeros((0, 3), np.float32), np.zeros((0, 3), np.uint32)
+        mesh.calc_loop_triangles()
+        vertices = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
+        mesh.vertices.foreach_get("co", vertices)
+        triangles = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
+        mesh.loop_triangles.foreach_get("vertices", triangles)
+        return vertices.reshape(-1, 3), triangles.reshape(-1, 3).astype(np.uint32)
+    finally:
+        obj.to_mesh_clear()
+
+
+def _mesh_flags(obj):
+    from . import native
+    materials = [slot.material for slot in getattr(obj, "material_slots", [])]
+    cast = compat.object_casts_shadow(obj.original) and compat.materials_cast_shadow(materials)
+    receive = compat.object_camera_visible(obj.original)
+    return (native.MESH_CAST if cast else 0) | (native.MESH_RECEIVE if receive else 0)
+
+
+def _light_from_object(name, obj, matrix):
+    data = obj.data
+    return light_values(
+        name, data.type, getattr(data, "shape", "SQUARE"), matrix,
+        size=getattr(data, "size", 0.0), size_y=getattr(data, "size_y", 0.0),
+        radius=compat.light_radius(data) if data.type in ("POINT", "SPOT") else 0.0,
+        angle=getattr(data, "angle", 0.0) if data.type == "SUN" else 0.0,
+        spot_size=getattr(data, "spot_size", 0.0) if data.type == "SPOT" else 0.0,
+        spot_blend=getattr(data, "spot_blend", 0.0) if data.type == "SPOT" else 0.0,
+        use_shadow=compat.light_use_shadow(data))
+
+
+def _light_settings(obj):
+    props = getattr(obj.original.data, "softshadow", None)
+    if props is None:
+        return {"enabled": True, "method": "auto", "samples": 0, "settings": ""}
+    return {"enabled": bool(props.enabled), "method": props.method, "samples": int(props.samples),
+            "settings": props.settings}
+
+
+def scene_camera(scene, depsgraph, width=None, height=None):
+    """The scene camera at the render resolution (percentage and pixel aspect applied)."""
+    camera = scene.camera
+    if camera is None:
+        return None
+    render = scene.render
+    if width is None:
+        width, height = render_size(render.resolution_x, render.resolution_y, render.resolution_percentage)
+    evaluated = camera.evaluated_get(depsgraph)
+    projection = evaluated.calc_matrix_camera(depsgraph, x=width, y=height,
+                                              scale_x=render.pixel_aspect_x,
+                                              scale_y=render.pixel_aspect_y)
+    view = np.linalg.inv(normalized_rigid(evaluated.matrix_world))
+    return camera_values(view, projection, width, height,
+                         render.pixel_aspect_y / render.pixel_aspect_x if render.pixel_aspect_x else 1.0)
+
+
+def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None):
+    """An evaluated depsgraph -> ExportedScene. mode: 'RENDER' (hide_render, collections'
+    render switches) or 'VIEWPORT' (what the viewport shows). camera overrides the scene camera
+    (the viewport preview passes its own view)."""
+    view_layer = view_layer or depsgraph.view_layer
+    out = ExportedScene(view_layer=view_layer.name)
+    render_collections = _render_visible_collections(view_layer) if mode == "RENDER" else set()
+    used_mesh_names, used_light_names = set(), set()
+    local_cache = {}
+
+    for inst in depsgraph.object_instances:
+        obj = inst.object
+        if obj is None:
+            continue
+        if inst.is_instance:
+            parent = inst.parent
+            if parent is not None and not _object_visible(parent, mode, view_layer, render_collections):
+                continue
+            if mode == "RENDER" and obj.original.hide_render:
+                continue
+        else:
+            if not _object_visible(obj, mode, view_layer, render_collections):
+                out.skipped.append(obj.name)
+                continue
+            if obj.is_instancer:
+                show = obj.original.show_instancer_for_render if mode == "RENDER" else inst.show_self
+                if not show:
+                    continue
+        base_name = obj.name if not inst.is_instance else "%s/%s" % (inst.parent.name, obj.name)
+        matrix = inst.matrix_world.copy()
+
+        if obj.type == "LIGHT":
+            try:
+                light = _light_from_object(unique_name(base_name, used_light_names), obj, matrix)
+            except ValueError as exc:
+                out.problems.append(str(exc))
+                continue
+            light["options"] = _light_settings(obj)
+            out.lights.append(light)
+            continue
+        if obj.type not in GEOMETRY_TYPES:
+            continue
+
+        key = (obj.type, obj.data.as_pointer() if obj.data is not None else obj.as_pointer())
+        if key not in local_cache or inst.is_instance is False:
+            try:
+                local_cache[key] = _local_mesh_arrays(obj)
+            except RuntimeError as exc:
+                out.problems.append("object '%s': %s" % (base_name, exc))
+                continue
+        vertices, triangles = local_cache[key]
+        name = unique_name(base_name, used_mesh_names)
+        world = transform_points(matrix, vertices)
+        problem = mesh_problem(name, world, triangles)
+        if problem:
+            out.problems.append(problem)
+            continue
+        flags = _mesh_flags(obj)
+        if flags == 0:
+            continue
+        out.meshes.append({"name": name, "vertices": world, "triangles": triangles, "flags": flags})
+
+    if camera is None:
+        camera = scene_camera(scene, depsgraph)
+        if camera is None:
+            out.problems.append("scene '%s' has no camera: no soft-shadow passes" % scene.name)
+    out.camera = camera
+    return out

@@ -1,0 +1,130 @@
+# Where the settings show: light and output properties, and the add-on's preferences status.
+# SPDX-License-Identifier: GPL-3.0-or-later
+import bpy
+
+from . import handlers, native
+
+
+class SoftShadowPreferences(bpy.types.AddonPreferences):
+    bl_idname = __package__
+
+    def draw(self, context):
+        draw_status(self.layout)
+
+
+def draw_status(layout):
+    """Library version, GL backend and renderer, or why the library could not load."""
+    info = native.status()
+    box = layout.box()
+    if info["loaded"] and not info["error"]:
+        box.label(text="Library: softshadow %s" % info["version"], icon="CHECKMARK")
+        box.label(text="GL backend: %s" % (info["backend"] or "unknown"))
+        box.label(text="Renderer: %s" % (info["renderer"] or "unknown"))
+        if info.get("path"):
+            box.label(text="Loaded from: %s" % info["path"])
+        return
+    box.label(text="Soft Shadow is not available", icon="ERROR")
+    for line in _wrap(info["error"], 90):
+        box.label(text=line)
+    box.label(text="Looked in:")
+    for path in info["looked"]:
+        box.label(text="  " + path)
+    box.label(text="Set SOFTSHADOW_LIB to the library's path, or reinstall the add-on zip.")
+
+
+def _wrap(text, width):
+    words, lines, line = text.split(), [], ""
+    for word in words:
+        if line and len(line) + 1 + len(word) > width:
+            lines.append(line)
+            line = word
+        else:
+            line = (line + " " + word).strip()
+    return lines + ([line] if line else [])
+
+
+class SOFTSHADOW_PT_light(bpy.types.Panel):
+    bl_label = "Soft Shadow"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "data"
+    COMPAT_ENGINES = {"CYCLES", "BLENDER_EEVEE", "BLENDER_WORKBENCH", "BLENDER_EEVEE_NEXT"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.light is not None and hasattr(context.light, "softshadow")
+
+    def draw_header(self, context):
+        self.layout.prop(context.light.softshadow, "enabled", text="")
+
+    def draw(self, context):
+        light = context.light
+        props = light.softshadow
+        layout = self.layout
+        layout.use_property_split = True
+        layout.active = props.enabled and light.use_shadow
+        if not light.use_shadow:
+            layout.label(text="Shadows are off for this light: no pass", icon="INFO")
+        layout.prop(props, "method")
+        layout.prop(props, "samples")
+        layout.prop(props, "settings")
+        chosen = handlers.last_report.get("chosen", {})
+        obj = context.object
+        if obj is not None and obj.name in chosen:
+            layout.label(text="Last render used: %s" % chosen[obj.name])
+
+
+class SOFTSHADOW_PT_output(bpy.types.Panel):
+    bl_label = "Soft Shadow Passes"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "output"
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene is not None and hasattr(context.scene, "softshadow")
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.softshadow, "enabled", text="")
+
+    def draw(self, context):
+        props = context.scene.softshadow
+        layout = self.layout
+        if not native.available():
+            draw_status(layout)
+            return
+        layout.use_property_split = True
+        col = layout.column()
+        col.active = props.enabled
+        col.prop(props, "output_dir")
+        col.prop(props, "extra_layers")
+        col.prop(props, "compositor_pass")
+        col.prop(props, "strength")
+        row = layout.row(align=True)
+        row.operator("softshadow.render_passes", icon="RENDER_STILL", text="Render Passes")
+        row.operator("softshadow.render_animation_passes", icon="RENDER_ANIMATION", text="All Frames")
+        row = layout.row(align=True)
+        row.operator("softshadow.setup_compositor", icon="NODETREE", text="Set Up Compositor")
+        row.operator("softshadow.export_scene", icon="EXPORT", text="Export Scene")
+        layout.prop(props, "preview")
+        sub = layout.row()
+        sub.active = props.preview
+        sub.prop(props, "preview_scale")
+        report = handlers.last_report
+        if report.get("frame") is not None:
+            layout.label(text="Frame %d: %s" % (report["frame"], bpy.path.basename(report["path"]) or "nothing written"))
+            for problem in report["problems"][:5]:
+                layout.label(text=problem, icon="ERROR")
+
+
+CLASSES = (SoftShadowPreferences, SOFTSHADOW_PT_light, SOFTSHADOW_PT_output)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+
+
+def unregister():
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

@@ -1,0 +1,37 @@
+// How the C API creates, describes and shuts down GL contexts (the library's render threads).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "capi/capi_internal.h"
+
+using namespace ss::capi;
+
+extern "C" {
+
+SS_API ss_status ss_context_create(ss_backend backend, ss_context** out) {
+    return guarded([&] {
+        require(out, "ss_context_create", "out");
+        *out = nullptr;
+        if (backend != SS_BACKEND_AUTO && backend != SS_BACKEND_EGL && backend != SS_BACKEND_OSMESA)
+            ss::fail(SS_ERROR_INVALID_ARGUMENT,
+                     "ss_context_create: unknown backend " + std::to_string(int(backend)));
+        *out = new ss_context(backend);
+    });
+}
+
+SS_API void ss_context_destroy(ss_context* context) {
+    guarded([&] { delete context; });
+}
+
+SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size) {
+    return guarded([&] {
+        require(context, "ss_context_info", "context");
+        // info() starts GL lazily, which changes the renderer but not what the caller sees.
+        std::string info = const_cast<ss_context*>(context)->renderer.info();
+        copyOut(info, buffer, buffer_size, "ss_context_info");
+    });
+}
+
+SS_API void ss_shutdown(void) {
+    guarded([] { ss::shutdownRenderThreads(); });
+}
+
+}  // extern "C"

@@ -1,0 +1,90 @@
+// How the C API renders one (light, method) and hands out the resulting layers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "capi/capi_internal.h"
+#include "methods/method.h"
+
+using namespace ss::capi;
+
+namespace {
+
+ss::RenderSettings toSettings(const ss_render_options& o) {
+    if (o.samples < 0)
+        ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_render: samples must not be negative (got " +
+                                                std::to_string(o.samples) + ")");
+    ss::RenderSettings s;
+    s.samples = o.samples;
+    s.seed = o.seed;
+    s.extraLayers = o.extra_layers != 0;
+    if (o.settings) s.options = ss::parseSettings(o.settings);
+    if (o.progress) {
+        ss_progress_fn fn = o.progress;
+        void* user = o.progress_user;
+        s.progress = [fn, user](float fraction, const char* stage) {
+            return fn(user, fraction, stage ? stage : "") == 0;
+        };
+    }
+    return s;
+}
+
+}  // namespace
+
+extern "C" {
+
+SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t light_index,
+                           const char* method, const ss_render_options* options, ss_result** out) {
+    return guarded([&] {
+        require(out, "ss_render", "out");
+        *out = nullptr;
+        require(context, "ss_render", "context");
+        require(scene, "ss_render", "scene");
+        require(method, "ss_render", "method");
+        const auto& lights = scene->scene.lights();
+        if (light_index < 0 || size_t(light_index) >= lights.size())
+            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_render: light index " + std::to_string(light_index) +
+                                                    " is out of range (the scene has " +
+                                                    std::to_string(lights.size()) + " lights)");
+        ss_render_options defaults;
+        ss_render_options_default(&defaults);
+        ss::RenderSettings settings = toSettings(options ? *options : defaults);
+        auto result = std::make_unique<ss_result>();
+        result->light = lights[size_t(light_index)].name;
+        result->layers = context->renderer.render(scene->scene, light_index, method, settings, &result->method);
+        if (result->method.empty()) result->method = method;
+        *out = result.release();
+    });
+}
+
+SS_API void ss_result_destroy(ss_result* result) {
+    guarded([&] { delete result; });
+}
+
+SS_API const char* ss_result_method(const ss_result* result) {
+    return result ? result->method.c_str() : nullptr;
+}
+
+SS_API const char* ss_result_light(const ss_result* result) {
+    return result ? result->light.c_str() : nullptr;
+}
+
+SS_API int32_t ss_result_layer_count(const ss_result* result) {
+    return result ? int32_t(result->layers.items.size()) : 0;
+}
+
+SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const char** name,
+                                 const float** pixels, int32_t* width, int32_t* height) {
+    return guarded([&] {
+        require(result, "ss_result_layer", "result");
+        const auto& items = result->layers.items;
+        if (index < 0 || size_t(index) >= items.size())
+            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_result_layer: layer index " + std::to_string(index) +
+                                                    " is out of range (the result has " +
+                                                    std::to_string(items.size()) + " layers)");
+        const auto& [layerName, image] = items[size_t(index)];
+        if (name) *name = layerName.c_str();
+        if (pixels) *pixels = image.pixels.data();
+        if (width) *width = image.width;
+        if (height) *height = image.height;
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,258 @@
+// How umbra quads, penumbra quads, penumbra fans and silhouette faces are built from silhouettes.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "geometry/volumes.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ss {
+
+void ShadowVolumes::append(const ShadowVolumes& o) {
+    umbra.insert(umbra.end(), o.umbra.begin(), o.umbra.end());
+    penumbra.insert(penumbra.end(), o.penumbra.begin(), o.penumbra.end());
+    umbraQuads += o.umbraQuads;
+    penumbraQuads += o.penumbraQuads;
+    fanTriangles += o.fanTriangles;
+    silhouetteFaces += o.silhouetteFaces;
+    trimmedCorners += o.trimmedCorners;
+    insideDiskEdges += o.insideDiskEdges;
+}
+
+EdgeExtrusion edgeExtrusion(const glm::vec3& v1, const glm::vec3& v2, const glm::vec3& inward,
+                            const Disk& disk) {
+    EdgeExtrusion x;
+    const glm::vec3& c = disk.centre;
+    const glm::vec3& n = disk.normal;
+    float r = disk.radius;
+    glm::vec3 e = v2 - v1;
+    if (!(r > 0.0f)) {  // a point light: both planes pass through the centre
+        x.pUmbra = x.pPenumbra = c;
+        return x;
+    }
+    glm::vec3 t1, t2;
+    float en = glm::dot(e, n);
+    glm::vec3 a(0.0f);
+    float dist = 0.0f;
+    bool useFrame = std::abs(en) <= 1e-6f * glm::length(e);
+    if (!useFrame) {
+        a = v1 + (glm::dot(c - v1, n) / en) * e;
+        dist = glm::length(a - c);
+        // Far beyond the disk the tangent points tend to those of the parallel case, and `a`
+        // itself loses its float precision: switch over.
+        if (dist > 1e4f * r) useFrame = true;
+        if (dist <= r) {  // the line pierces the disk: no tangent plane exists
+            x.insideDisk = true;
+            useFrame = true;
+        }
+    }
+    if (useFrame) {
+        // Parallel case: the tangent planes touch the disk at the ends of its diameter that is
+        // perpendicular to the edge (same construction for the inside-disk fallback).
+        glm::vec3 m = glm::cross(n, e);
+        float ml = glm::length(m);
+        if (!(ml > 0.0f)) {  // the edge is along the disk normal: any diameter will do
+            m = glm::cross(n, std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+            ml = glm::length(m);
+        }
+        m /= ml;
+        t1 = c + r * m;
+        t2 = c - r * m;
+        x.parallel = !x.insideDisk;
+    } else {
+        glm::vec3 w = a - c;
+        float d2 = dist * dist;
+        glm::vec3 along = c + (r * r / d2) * w;
+        glm::vec3 across = (r / d2) * std::sqrt(std::max(d2 - r * r, 0.0f)) * glm::cross(n, w);
+        t1 = along + across;
+        t2 = along - across;
+    }
+    // Same side of the plane through the edge and t1 for the disk centre and the occluder: t1 is
+    // the umbra extrusion point.
+    glm::vec3 plane = glm::cross(e, t1 - v1);
+    float sc = glm::dot(plane, c - v1);
+    float sb = glm::dot(plane, inward);
+    if (sc * sb > 0.0f) {
+        x.pUmbra = t1;
+        x.pPenumbra = t2;
+    } else {
+        x.pUmbra = t2;
+        x.pPenumbra = t1;
+    }
+    return x;
+}
+
+namespace {
+
+uint32_t thirdVertex(const glm::uvec3& t, uint32_t a, uint32_t b) {
+    for (int k = 0; k < 3; ++k)
+        if (t[k] != a && t[k] != b) return t[k];
+    return t[0];
+}
+
+// Direction from the edge into the occluder: the in-face directions of its face(s),
+// perpendicular to the edge. For an open edge, just its face.
+glm::vec3 inwardOf(const Mesh& mesh, const SilhouetteEdge& s) {
+    glm::vec3 a = mesh.positions[s.a], b = mesh.positions[s.b];
+    glm::vec3 e = glm::normalize(b - a);
+    glm::vec3 mid = 0.5f * (a + b);
+    glm::vec3 sum(0.0f);
+    for (uint32_t f : {s.face, s.otherFace}) {
+        if (f == kNoFace) continue;
+        glm::vec3 d = mesh.positions[thirdVertex(mesh.triangles[f], s.a, s.b)] - mid;
+        d -= glm::dot(d, e) * e;
+        float l = glm::length(d);
+        if (l > 0.0f) sum += d / l;
+    }
+    return sum;
+}
+
+glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
+    float l = glm::length(v);
+    return l > 0.0f && std::isfinite(l) ? v / l : fallback;
+}
+
+struct Quad {
+    uint32_t a, b;
+    glm::vec3 p;             // extrusion point
+    glm::vec3 dirA, dirB;    // far-end directions at a and b (trimmed or own)
+};
+
+void pushTriangle(std::vector<VolumeVertex>& out, const glm::vec3& p0, const glm::vec3& p1,
+                  const glm::vec3& p2, const glm::vec3& ea, const glm::vec3& eb, const glm::vec3& ext) {
+    for (const glm::vec3& p : {p0, p1, p2}) out.push_back(VolumeVertex{p, ea, eb, ext});
+}
+
+// Component of d perpendicular to the unit vector e.
+glm::vec3 perp(const glm::vec3& d, const glm::vec3& e) { return d - glm::dot(d, e) * e; }
+
+// Builds quads for one silhouette (umbra or penumbra), with their own extrusion directions.
+std::vector<Quad> buildQuads(const Mesh& mesh, const std::vector<SilhouetteEdge>& edges,
+                             const Disk& disk, bool umbra, size_t* insideDisk) {
+    std::vector<Quad> quads;
+    quads.reserve(edges.size());
+    for (const SilhouetteEdge& s : edges) {
+        glm::vec3 a = mesh.positions[s.a], b = mesh.positions[s.b];
+        EdgeExtrusion x = edgeExtrusion(a, b, inwardOf(mesh, s), disk);
+        if (x.insideDisk) ++*insideDisk;
+        Quad q;
+        q.a = s.a;
+        q.b = s.b;
+        q.p = umbra ? x.pUmbra : x.pPenumbra;
+        glm::vec3 away = safeNormalize(0.5f * (a + b) - disk.centre, disk.normal);
+        q.dirA = safeNormalize(a - q.p, away);
+        q.dirB = safeNormalize(b - q.p, away);
+        quads.push_back(q);
+    }
+    return quads;
+}
+
+// Cuts two umbra quads meeting at a vertex along the line where their planes intersect, so
+// neither reaches past the other (the paper's trimming). Returns false when that line does not
+// lie inside both quads' wedges (then each keeps its own direction).
+bool trimCorner(const Mesh& mesh, Quad& in, Quad& out, uint32_t v) {
+    glm::vec3 pv = mesh.positions[v];
+    glm::vec3 eIn = glm::normalize(mesh.positions[in.a] - pv);   // along the incoming edge
+    glm::vec3 eOut = glm::normalize(mesh.positions[out.b] - pv);  // along the outgoing edge
+    glm::vec3 dIn = in.dirB, dOut = out.dirA;
+    glm::vec3 n1 = glm::cross(eIn, dIn), n2 = glm::cross(eOut, dOut);
+    glm::vec3 line = glm::cross(n1, n2);
+    float l = glm::length(line);
+    if (!(l > 1e-6f * glm::length(n1) * glm::length(n2))) return false;  // coplanar: nothing to trim
+    line /= l;
+    if (glm::dot(line, dIn + dOut) < 0.0f) line = -line;
+    // Inside each wedge: on the same side of the quad's edge as its own extrusion direction.
+    if (glm::dot(perp(line, eIn), perp(dIn, eIn)) <= 0.0f) return false;
+    if (glm::dot(perp(line, eOut), perp(dOut, eOut)) <= 0.0f) return false;
+    in.dirB = line;
+    out.dirA = line;
+    return true;
+}
+
+// Angle of a rim point around the disk centre in the frame (u, w).
+float rimAngle(const glm::vec3& p, const Disk& disk, const glm::vec3& u, const glm::vec3& w) {
+    glm::vec3 d = p - disk.centre;
+    return std::atan2(glm::dot(d, w), glm::dot(d, u));
+}
+
+}  // namespace
+
+ShadowVolumes extrudeVolumes(const Mesh& mesh, const DiskSilhouette& sil, const Disk& disk,
+                             float length, float fanStepRadians) {
+    ShadowVolumes vol;
+
+    // Umbra: quads, trimmed where two meet at a simple silhouette vertex.
+    std::vector<Quad> uq = buildQuads(mesh, sil.umbraEdges, disk, true, &vol.insideDiskEdges);
+    for (const SilhouetteVertex& sv : sil.umbraVertices) {
+        if (sv.edges.size() != 2) continue;
+        uint32_t i0 = sv.edges[0], i1 = sv.edges[1];
+        Quad *in = nullptr, *out = nullptr;
+        if (uq[i0].b == sv.vertex && uq[i1].a == sv.vertex) in = &uq[i0], out = &uq[i1];
+        else if (uq[i1].b == sv.vertex && uq[i0].a == sv.vertex) in = &uq[i1], out = &uq[i0];
+        if (in && trimCorner(mesh, *in, *out, sv.vertex)) ++vol.trimmedCorners;
+    }
+    for (const Quad& q : uq) {
+        glm::vec3 a = mesh.positions[q.a], b = mesh.positions[q.b];
+        glm::vec3 af = a + length * q.dirA, bf = b + length * q.dirB;
+        pushTriangle(vol.umbra, a, b, bf, a, b, q.p);
+        pushTriangle(vol.umbra, a, bf, af, a, b, q.p);
+        ++vol.umbraQuads;
+    }
+    // Silhouette faces of both kinds close the gap between the two silhouettes (§3.3). Their
+    // "edge" for eq. 2 is their vertex farthest from the light plane: the umbra side of the face.
+    for (const auto* list : {&sil.silhouetteFacesCentreBack, &sil.silhouetteFacesCentreFront})
+        for (uint32_t f : *list) {
+            const glm::uvec3& t = mesh.triangles[f];
+            glm::vec3 p0 = mesh.positions[t[0]], p1 = mesh.positions[t[1]], p2 = mesh.positions[t[2]];
+            glm::vec3 far = p0;
+            for (const glm::vec3& p : {p1, p2})
+                if (glm::dot(p - disk.centre, disk.normal) > glm::dot(far - disk.centre, disk.normal))
+                    far = p;
+            pushTriangle(vol.umbra, p0, p1, p2, far, far, disk.centre);
+            ++vol.silhouetteFaces;
+        }
+
+    // Penumbra: quads with their own directions, closed at each simple vertex by a fan of
+    // triangles whose directions run along the disk rim from one quad's p_p to the next one's.
+    std::vector<Quad> pq = buildQuads(mesh, sil.penumbraEdges, disk, false, &vol.insideDiskEdges);
+    for (const Quad& q : pq) {
+        glm::vec3 a = mesh.positions[q.a], b = mesh.positions[q.b];
+        glm::vec3 af = a + length * q.dirA, bf = b + length * q.dirB;
+        pushTriangle(vol.penumbra, a, b, bf, a, b, q.p);
+        pushTriangle(vol.penumbra, a, bf, af, a, b, q.p);
+        ++vol.penumbraQuads;
+    }
+    glm::vec3 u = glm::normalize(glm::cross(disk.normal, std::abs(disk.normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+    glm::vec3 w = glm::cross(disk.normal, u);
+    for (const SilhouetteVertex& sv : sil.penumbraVertices) {
+        if (sv.edges.size() != 2 || !(disk.radius > 0.0f)) continue;
+        uint32_t i0 = sv.edges[0], i1 = sv.edges[1];
+        const Quad *in = nullptr, *out = nullptr;
+        if (pq[i0].b == sv.vertex && pq[i1].a == sv.vertex) in = &pq[i0], out = &pq[i1];
+        else if (pq[i1].b == sv.vertex && pq[i0].a == sv.vertex) in = &pq[i1], out = &pq[i0];
+        if (!in) continue;
+        float t0 = rimAngle(in->p, disk, u, w), t1 = rimAngle(out->p, disk, u, w);
+        float span = t1 - t0;
+        while (span > float(M_PI)) span -= 2.0f * float(M_PI);
+        while (span < -float(M_PI)) span += 2.0f * float(M_PI);
+        int steps = std::max(1, int(std::ceil(std::abs(span) / fanStepRadians)));
+        if (std::abs(span) < 1e-6f) continue;
+        glm::vec3 pv = mesh.positions[sv.vertex];
+        glm::vec3 prev = pv + length * in->dirB;
+        for (int k = 1; k <= steps; ++k) {
+            glm::vec3 next;
+            if (k == steps) {
+                next = pv + length * out->dirA;  // exactly the next quad's far vertex
+            } else {
+                float ang = t0 + span * float(k) / float(steps);
+                glm::vec3 rim = disk.centre + disk.radius * (std::cos(ang) * u + std::sin(ang) * w);
+                next = pv + length * safeNormalize(pv - rim, in->dirB);
+            }
+            pushTriangle(vol.penumbra, pv, prev, next, pv, pv, disk.centre);
+            ++vol.fanTriangles;
+            prev = next;
+        }
+    }
+    return vol;
+}
+
+}  // namespace ss

@@ -1,0 +1,126 @@
+// How float render targets are attached, checked, cleared and read back (rows flipped to top-first).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "gl/framebuffer.h"
+
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/error.h"
+
+namespace ss::gl {
+
+Framebuffer::Framebuffer(int width, int height, const std::vector<GLenum>& colorFormats,
+                         GLenum depthFormat, GLenum filter)
+    : width_(width), height_(height) {
+    const Functions& gl = api();
+    GLuint id = 0;
+    gl.CreateFramebuffers(1, &id);
+    fbo_ = FramebufferHandle(id);
+    for (size_t i = 0; i < colorFormats.size(); ++i) {
+        colors_.emplace_back(width, height, colorFormats[i], filter);
+        attachColor(int(i), colors_.back().id());
+    }
+    if (depthFormat) {
+        depth_ = Texture(width, height, depthFormat, GL_NEAREST);
+        attachDepth(depth_.id());
+    }
+}
+
+void Framebuffer::attachColor(int index, GLuint texture) {
+    const Functions& gl = api();
+    gl.NamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0 + index, texture, 0);
+    if (attached_.size() <= size_t(index)) attached_.resize(size_t(index) + 1, 0);
+    attached_[size_t(index)] = texture;
+    std::vector<GLenum> buffers;
+    for (size_t i = 0; i < attached_.size(); ++i)
+        buffers.push_back(attached_[i] ? GLenum(GL_COLOR_ATTACHMENT0 + i) : GLenum(GL_NONE));
+    gl.NamedFramebufferDrawBuffers(fbo_.id(), GLsizei(buffers.size()), buffers.data());
+}
+
+void Framebuffer::attachDepth(GLuint texture) {
+    api().NamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, texture, 0);
+}
+
+void Framebuffer::checkComplete() const {
+    const Functions& gl = api();
+    GLenum status = gl.CheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        char buf[16];
+        snprintf(buf, sizeof buf, "0x%04x", unsigned(status));
+        fail(SS_ERROR_GL, std::string("framebuffer is incomplete (status ") + buf + ")");
+    }
+}
+
+void Framebuffer::bind() const {
+    const Functions& gl = api();
+    if (attached_.empty()) gl.NamedFramebufferDrawBuffer(fbo_.id(), GL_NONE);
+    checkComplete();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    gl.Viewport(0, 0, width_, height_);
+}
+
+void Framebuffer::clearColor(int index, const glm::vec4& v) const {
+    api().ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, index, glm::value_ptr(v));
+}
+
+void Framebuffer::clearDepth(float depth) const {
+    // Depth writes must be on for the clear to happen.
+    const Functions& gl = api();
+    gl.DepthMask(GL_TRUE);
+    gl.ClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &depth);
+}
+
+std::vector<glm::vec4> Framebuffer::readRgba(int index) const {
+    const Functions& gl = api();
+    std::vector<glm::vec4> glRows(size_t(width_) * height_);
+    gl.NamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0 + index);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadnPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, GLsizei(glRows.size() * sizeof(glm::vec4)),
+                   glRows.data());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.check("reading back a colour attachment");
+    std::vector<glm::vec4> out(glRows.size());
+    for (int y = 0; y < height_; ++y)
+        std::copy_n(&glRows[size_t(height_ - 1 - y) * width_], width_, &out[size_t(y) * width_]);
+    return out;
+}
+
+Image flipRowsToImage(const float* glRows, int width, int height, int stride, int channel) {
+    Image img(width, height);
+    for (int y = 0; y < height; ++y) {
+        const float* row = glRows + size_t(height - 1 - y) * width * stride;
+        for (int x = 0; x < width; ++x) img.at(x, y) = row[size_t(x) * stride + channel];
+    }
+    return img;
+}
+
+Image Framebuffer::readChannel(int index, int channel) const {
+    const Functions& gl = api();
+    std::vector<float> glRows(size_t(width_) * height_);
+    static const GLenum formats[] = {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA};
+    if (channel < 0 || channel > 3) fail(SS_ERROR_INTERNAL, "channel must be 0..3");
+    gl.NamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0 + index);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadnPixels(0, 0, width_, height_, formats[channel], GL_FLOAT,
+                   GLsizei(glRows.size() * sizeof(float)), glRows.data());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.check("reading back a colour channel");
+    return flipRowsToImage(glRows.data(), width_, height_, 1, 0);
+}
+
+Image Framebuffer::readDepth() const {
+    const Functions& gl = api();
+    std::vector<float> glRows(size_t(width_) * height_);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadnPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT,
+                   GLsizei(glRows.size() * sizeof(float)), glRows.data());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.check("reading back depth");
+    return flipRowsToImage(glRows.data(), width_, height_, 1, 0);
+}
+
+}  // namespace ss::gl

@@ -1,0 +1,54 @@
+// How pass and channel names are built from, and split back into, light, method and layer.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/pass_names.h"
+
+#include "methods/method.h"
+
+namespace ss {
+
+std::string sanitizePassToken(const std::string& text) {
+    std::string out = text;
+    for (char& c : out)
+        if (c == '.' || c == ' ') c = '_';
+    return out;
+}
+
+std::string passName(const std::string& light, const std::string& method, const std::string& layer) {
+    std::string name = sanitizePassToken(light) + "_" + sanitizePassToken(method);
+    if (layer != "V") name += "_" + sanitizePassToken(layer);
+    return name;
+}
+
+std::string channelName(const std::string& viewLayer, const std::string& pass) {
+    return viewLayer + "." + pass + ".V";
+}
+
+bool splitPassName(const std::string& pass, PassParts* out) {
+    size_t bestPos = std::string::npos;
+    std::string bestMethod;
+    for (const std::string& m : methodNames()) {
+        std::string token = "_" + m;
+        // Right-most occurrence that ends the name or is followed by "_<layer>".
+        for (size_t pos = pass.rfind(token); pos != std::string::npos && pos > 0;
+             pos = pos == 0 ? std::string::npos : pass.rfind(token, pos - 1)) {
+            size_t end = pos + token.size();
+            if (end == pass.size() || (pass[end] == '_' && end + 1 < pass.size())) {
+                // Prefer the right-most match; at equal position the longer method name.
+                if (bestPos == std::string::npos || pos > bestPos ||
+                    (pos == bestPos && m.size() > bestMethod.size())) {
+                    bestPos = pos;
+                    bestMethod = m;
+                }
+                break;
+            }
+        }
+    }
+    if (bestPos == std::string::npos) return false;
+    out->light = pass.substr(0, bestPos);
+    out->method = bestMethod;
+    size_t end = bestPos + 1 + bestMethod.size();
+    out->layer = end == pass.size() ? "V" : pass.substr(end + 1);
+    return true;
+}
+
+}  // namespace ss

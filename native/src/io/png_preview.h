@@ -1,0 +1,13 @@
+// How a pass becomes an 8-bit grayscale PNG preview (V in [0,1] -> 0..255) for demos and docs.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <string>
+
+#include "core/image.h"
+
+namespace ss {
+
+// Writes atomically; throws ss::Error(SS_ERROR_IO) naming the path when it cannot.
+void writePngPreview(const std::string& path, const Image& image);
+
+}  // namespace ss

@@ -1,0 +1,353 @@
+// How a scene file is parsed into a Scene: camera, lights, meshes (inline, external, primitive).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/scene_file.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "io/json_node.h"
+#include "io/primitives.h"
+#include "softshadow/softshadow.h"
+
+namespace ss {
+
+static_assert(std::endian::native == std::endian::little, "external mesh files are little-endian");
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readText(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) fail(SS_ERROR_IO, "scene file '" + path + "' does not exist");
+    if (fs::is_directory(path, ec)) fail(SS_ERROR_IO, "scene file '" + path + "' is a directory");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(SS_ERROR_IO, "cannot open scene file '" + path + "': " + std::strerror(errno));
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+template <class T>
+std::vector<T> readRaw(const JsonNode& node, const std::string& baseDir) {
+    std::string name = node.string();
+    fs::path p = fs::path(name).is_absolute() ? fs::path(name) : fs::path(baseDir) / name;
+    std::ifstream in(p, std::ios::binary);
+    if (!in) node.fail("cannot open '" + p.string() + "': " + std::strerror(errno));
+    std::ostringstream s;
+    s << in.rdbuf();
+    std::string bytes = s.str();
+    if (bytes.size() % (3 * sizeof(T)) != 0)
+        node.fail("'" + p.string() + "' has " + std::to_string(bytes.size()) +
+                  " bytes, not a whole number of 3 x " + std::to_string(sizeof(T)) + "-byte values");
+    std::vector<T> out(bytes.size() / sizeof(T));
+    std::memcpy(out.data(), bytes.data(), bytes.size());
+    return out;
+}
+
+Camera readCamera(const JsonNode& n) {
+    Camera c;
+    if (n.has("world_to_camera")) {
+        n.expectKeys({"world_to_camera", "projection", "width", "height", "pixel_aspect", "comment"});
+        c.worldToCamera = n.at("world_to_camera").mat4();
+        c.projection = n.at("projection").mat4();
+        c.width = int(n.at("width").integer(1, 32768));
+        c.height = int(n.at("height").integer(1, 32768));
+        c.pixelAspect = n.real("pixel_aspect", 1.0f);
+        return c;
+    }
+    n.expectKeys({"look_from", "look_at", "up", "fov_y_degrees", "near", "far", "width", "height",
+                  "pixel_aspect", "comment"});
+    glm::vec3 from = n.at("look_from").vec3(), to = n.at("look_at").vec3();
+    glm::vec3 up = n.has("up") ? n.at("up").vec3() : glm::vec3(0, 0, 1);
+    float fov = n.real("fov_y_degrees", 39.6f);  // Blender's default 50 mm lens on a 36 mm sensor
+    if (!(fov > 0.0f && fov < 180.0f)) n.at("fov_y_degrees").fail("must be in (0, 180) degrees");
+    float nearClip = n.real("near", 0.1f), farClip = n.real("far", 1000.0f);
+    if (!(nearClip > 0.0f && farClip > nearClip)) n.fail("needs 0 < near < far");
+    if (glm::length(to - from) <= 0.0f) n.fail("look_from and look_at are the same point");
+    if (glm::length(glm::cross(glm::normalize(to - from), up)) < 1e-6f)
+        n.fail("up is parallel to the viewing direction");
+    int w = int(n.at("width").integer(1, 32768)), h = int(n.at("height").integer(1, 32768));
+    float pixelAspect = n.real("pixel_aspect", 1.0f);
+    if (!(pixelAspect > 0.0f)) n.at("pixel_aspect").fail("must be greater than zero");
+    c = makeLookAtCamera(from, to, up, glm::radians(fov), w, h, nearClip, farClip);
+    // Pixels pixelAspect times wider than tall show a wider picture at the same height.
+    c.projection = glm::perspective(glm::radians(fov), float(w) * pixelAspect / float(h), nearClip, farClip);
+    c.pixelAspect = pixelAspect;
+    return c;
+}
+
+// A frame whose local -Z is `direction` and whose local +Y leans towards `up`.
+glm::mat4 frameFromDirection(const JsonNode& n, const glm::vec3& position, glm::vec3 direction,
+                             const glm::vec3* upHint) {
+    if (!(glm::length(direction) > 0.0f)) n.at("direction").fail("must not be zero");
+    glm::vec3 z = -glm::normalize(direction);
+    glm::vec3 up = upHint ? *upHint : glm::vec3(0, 0, 1);
+    if (glm::length(glm::cross(up, z)) < 1e-6f) {
+        if (upHint) n.at("up").fail("is parallel to direction");
+        up = glm::vec3(0, 1, 0);
+    }
+    glm::vec3 x = glm::normalize(glm::cross(up, z));
+    glm::vec3 y = glm::cross(z, x);
+    glm::mat4 m(1.0f);
+    m[0] = glm::vec4(x, 0);
+    m[1] = glm::vec4(y, 0);
+    m[2] = glm::vec4(z, 0);
+    m[3] = glm::vec4(position, 1);
+    return m;
+}
+
+Light readLight(const JsonNode& n) {
+    n.expectKeys({"name", "type", "matrix", "position", "direction", "up", "size", "size_y", "radius",
+                  "angle", "spot_size", "spot_blend", "cast_shadows", "comment"});
+    Light l;
+    l.name = n.at("name").string();
+    std::string type = n.at("type").string();
+    if (!parseLightType(type, &l.type))
+        n.at("type").fail("unknown light type '" + type +
+                          "' (expected disk, ellipse, square, rectangle, point, spot or sun)");
+    if (n.has("matrix")) {
+        if (n.has("position") || n.has("direction")) n.fail("give either matrix or position/direction, not both");
+        l.lightToWorld = n.at("matrix").mat4();
+    } else {
+        glm::vec3 pos = n.has("position") ? n.at("position").vec3() : glm::vec3(0.0f);
+        if (l.type != LightType::Sun && !n.has("position")) n.at("position");  // throws "is missing"
+        glm::vec3 dir = n.at("direction").vec3();
+        glm::vec3 up;
+        if (n.has("up")) up = n.at("up").vec3();
+        l.lightToWorld = frameFromDirection(n, pos, dir, n.has("up") ? &up : nullptr);
+    }
+    // Blender's defaults for what a file leaves out.
+    l.size = n.real("size", 1.0f);
+    l.sizeY = n.real("size_y", l.size);
+    l.radius = n.real("radius", 0.25f);
+    l.angle = n.real("angle", 0.00918043f);  // 0.526 degrees
+    l.spotSize = n.real("spot_size", 0.785398f);  // 45 degrees
+    l.spotBlend = n.real("spot_blend", 0.15f);
+    l.castShadows = n.boolean("cast_shadows", true);
+    return l;
+}
+
+glm::mat4 readTransform(const JsonNode& n) {
+    if (n.has("transform")) {
+        if (n.has("translate") || n.has("rotate_deg") || n.has("scale"))
+            n.fail("give either transform or translate/rotate_deg/scale, not both");
+        return n.at("transform").mat4();
+    }
+    glm::mat4 m(1.0f);
+    if (n.has("translate")) m = glm::translate(m, n.at("translate").vec3());
+    if (n.has("rotate_deg")) {
+        // Blender's XYZ Euler: X first, then Y, then Z, about the world axes.
+        glm::vec3 r = glm::radians(n.at("rotate_deg").vec3());
+        m = glm::rotate(m, r.z, glm::vec3(0, 0, 1));
+        m = glm::rotate(m, r.y, glm::vec3(0, 1, 0));
+        m = glm::rotate(m, r.x, glm::vec3(1, 0, 0));
+    }
+    if (n.has("scale")) {
+        JsonNode s = n.at("scale");
+        glm::vec3 k = s.value().is_array() ? s.vec3() : glm::vec3(s.real());
+        if (k.x == 0.0f || k.y == 0.0f || k.z == 0.0f) s.fail("a scale of zero flattens the mesh");
+        m = glm::scale(m, k);
+    }
+    return m;
+}
+
+int positiveCount(const JsonNode& n, const char* key, int fallback, int lo) {
+    return int(n.integer(key, fallback, lo, 4096));
+}
+
+float positiveSize(const JsonNode& n, const char* key, float fallback) {
+    float v = n.real(key, fallback);
+    if (!(v > 0.0f)) n.at(key).fail("must be greater than zero");
+    return v;
+}
+
+TriangleSoup readPrimitive(const JsonNode& n) {
+    std::string type = n.at("type").string();
+    if (type == "plane") {
+        n.expectKeys({"type", "size", "size_x", "size_y", "subdivisions"});
+        float size = positiveSize(n, "size", 2.0f);
+        return makePlane(positiveSize(n, "size_x", size), positiveSize(n, "size_y", size),
+                         positiveCount(n, "subdivisions", 1, 1));
+    }
+    if (type == "box") {
+        n.expectKeys({"type", "size", "subdivisions"});
+        glm::vec3 size(2.0f);
+        if (n.has("size")) {
+            JsonNode s = n.at("size");
+            size = s.value().is_array() ? s.vec3() : glm::vec3(s.real());
+            if (!(size.x > 0 && size.y > 0 && size.z > 0)) s.fail("must be greater than zero");
+        }
+        return makeBox(size, positiveCount(n, "subdivisions", 1, 1));
+    }
+    if (type == "uv_sphere") {
+        n.expectKeys({"type", "radius", "segments", "rings"});
+        return makeUvSphere(positiveSize(n, "radius", 1.0f), positiveCount(n, "segments", 32, 3),
+                            positiveCount(n, "rings", 16, 2));
+    }
+    if (type == "disk") {
+        n.expectKeys({"type", "radius", "segments"});
+        return makeDisk(positiveSize(n, "radius", 1.0f), positiveCount(n, "segments", 32, 3));
+    }
+    if (type == "torus") {
+        n.expectKeys({"type", "major_radius", "minor_radius", "major_segments", "minor_segments"});
+        float major = positiveSize(n, "major_radius", 1.0f), minor = positiveSize(n, "minor_radius", 0.25f);
+        if (!(minor < major)) n.fail("minor_radius must be smaller than major_radius");
+        return makeTorus(major, minor, positiveCount(n, "major_segments", 48, 3),
+                         positiveCount(n, "minor_segments", 12, 3));
+    }
+    if (type == "cylinder") {
+        n.expectKeys({"type", "radius", "depth", "segments"});
+        return makeCylinder(positiveSize(n, "radius", 1.0f), positiveSize(n, "depth", 2.0f),
+                            positiveCount(n, "segments", 32, 3));
+    }
+    n.at("type").fail("unknown primitive '" + type + "' (expected plane, box, uv_sphere, disk, torus or cylinder)");
+}
+
+TriangleSoup readGeometry(const JsonNode& n, const std::string& baseDir) {
+    int kinds = int(n.has("positions") || n.has("triangles")) +
+                int(n.has("positions_file") || n.has("triangles_file")) + int(n.has("primitive"));
+    if (kinds != 1)
+        n.fail("needs exactly one geometry: positions+triangles, positions_file+triangles_file, or primitive");
+    TriangleSoup soup;
+    std::vector<float> xyz;
+    std::vector<uint32_t> idx;
+    if (n.has("primitive")) {
+        soup = readPrimitive(n.at("primitive"));
+    } else if (n.has("positions_file") || n.has("triangles_file")) {
+        xyz = readRaw<float>(n.at("positions_file"), baseDir);
+        idx = readRaw<uint32_t>(n.at("triangles_file"), baseDir);
+        for (size_t i = 0; i < xyz.size(); ++i)
+            if (!std::isfinite(xyz[i]))
+                n.at("positions_file").fail("value " + std::to_string(i) + " (vertex " +
+                                            std::to_string(i / 3) + ") is not finite");
+    } else {
+        JsonNode p = n.at("positions"), t = n.at("triangles");
+        xyz = p.reals();
+        if (xyz.size() % 3) p.fail("has " + std::to_string(xyz.size()) + " numbers, not a multiple of 3");
+        size_t count = t.size();
+        if (count % 3) t.fail("has " + std::to_string(count) + " indices, not a multiple of 3");
+        idx.resize(count);
+        for (size_t i = 0; i < count; ++i) {
+            const nlohmann::json& e = t.value()[i];
+            if (e.is_number_unsigned()) {
+                uint64_t v = e.get<uint64_t>();
+                if (v <= 0xffffffffu) {
+                    idx[i] = uint32_t(v);
+                    continue;
+                }
+            }
+            idx[i] = uint32_t(t.at(i).integer(0, 0xfffffffe));
+        }
+        // Name the JSON element of the first bad index (Mesh::finalize would name the triangle).
+        size_t vertices = xyz.size() / 3;
+        for (size_t i = 0; i < idx.size(); ++i)
+            if (idx[i] >= vertices) {
+                std::ostringstream m;
+                m << "vertex index " << idx[i] << " is out of range (the mesh has " << vertices
+                  << " vertices)";
+                t.at(i).fail(m.str(), SS_ERROR_INVALID_SCENE);
+            }
+    }
+    if (!n.has("primitive")) {
+        soup.positions.resize(xyz.size() / 3);
+        std::memcpy(soup.positions.data(), xyz.data(), soup.positions.size() * sizeof(glm::vec3));
+        soup.triangles.resize(idx.size() / 3);
+        std::memcpy(soup.triangles.data(), idx.data(), soup.triangles.size() * sizeof(glm::uvec3));
+    }
+    if (n.has("transform") || n.has("translate") || n.has("rotate_deg") || n.has("scale"))
+        transformSoup(soup, readTransform(n));
+    return soup;
+}
+
+Mesh readMesh(const JsonNode& n, const std::string& baseDir) {
+    n.expectKeys({"name", "cast", "receive", "thin", "positions", "triangles", "positions_file",
+                  "triangles_file", "primitive", "transform", "translate", "rotate_deg", "scale",
+                  "comment"});
+    Mesh m;
+    m.name = n.at("name").string();
+    m.flags = (n.boolean("cast", true) ? SS_MESH_CAST : 0u) |
+              (n.boolean("receive", true) ? SS_MESH_RECEIVE : 0u) |
+              (n.boolean("thin", false) ? SS_MESH_THIN : 0u);
+    TriangleSoup soup = readGeometry(n, baseDir);
+    m.positions = std::move(soup.positions);
+    m.triangles = std::move(soup.triangles);
+    return m;
+}
+
+// Adds to the scene, putting the JSON path in front of what the scene model rejects.
+template <class F>
+void addWithPath(const JsonNode& n, F&& add) {
+    try {
+        add();
+    } catch (const Error& e) {
+        throw Error(e.status(), n.message(e.what()));
+    }
+}
+
+}  // namespace
+
+Scene parseSceneText(const std::string& text, const std::string& baseDir, const std::string& shownName) {
+    std::string where = "scene '" + shownName + "'";
+    nlohmann::json root;
+    try {
+        root = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        std::string what = e.what();
+        size_t cut = what.find("] ");
+        fail(SS_ERROR_IO, where + ": malformed JSON: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
+    }
+    JsonNode r(root, where, "");
+    r.expectKeys({"format", "version", "view_layer", "camera", "lights", "meshes", "metadata", "comment"});
+    std::string format = r.at("format").string();
+    if (format != "softshadow-scene")
+        r.at("format").fail("expected \"softshadow-scene\", got \"" + format + "\"");
+    int64_t version = r.at("version").integer(1, 1000000);
+    if (version > kSceneFormatVersion)
+        r.at("version").fail("version " + std::to_string(version) + " is newer than this softshadow reads (" +
+                             std::to_string(kSceneFormatVersion) + ")");
+
+    Scene scene;
+    if (r.has("view_layer")) {
+        JsonNode v = r.at("view_layer");
+        std::string name = v.string();
+        addWithPath(v, [&] { scene.setViewLayer(name); });
+    }
+    if (r.has("camera")) {
+        JsonNode c = r.at("camera");
+        Camera cam = readCamera(c);
+        addWithPath(c, [&] { scene.setCamera(cam); });
+    }
+    if (r.has("lights")) {
+        JsonNode lights = r.at("lights");
+        for (size_t i = 0; i < lights.size(); ++i) {
+            JsonNode l = lights.at(i);
+            Light light = readLight(l);
+            addWithPath(l, [&] { scene.addLight(std::move(light)); });
+        }
+    }
+    if (r.has("meshes")) {
+        JsonNode meshes = r.at("meshes");
+        for (size_t i = 0; i < meshes.size(); ++i) {
+            JsonNode m = meshes.at(i);
+            Mesh mesh = readMesh(m, baseDir);
+            addWithPath(m, [&] { scene.addMesh(std::move(mesh)); });
+        }
+    }
+    return scene;
+}
+
+Scene loadSceneFile(const std::string& path) {
+    std::string text = readText(path);
+    std::string base = fs::path(path).parent_path().string();
+    return parseSceneText(text, base.empty() ? "." : base, path);
+}
+
+}  // namespace ss

@@ -1,0 +1,27 @@
+// How a scene is read from and written to the softshadow scene file (JSON, docs/scene-format.md),
+// the format the Blender add-on exports and the CLI reads.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "core/scene.h"
+
+namespace ss {
+
+inline constexpr int kSceneFormatVersion = 1;
+
+// Throws ss::Error naming the file, the JSON path (e.g. meshes[2].positions[7]) and the
+// problem: SS_ERROR_IO for a missing/malformed file or a wrong value, SS_ERROR_INVALID_SCENE for
+// what the scene model rejects (index out of range, zero-size light...).
+Scene loadSceneFile(const std::string& path);
+
+// The same from text; `baseDir` resolves external mesh files, `shownName` is used in messages.
+Scene parseSceneText(const std::string& text, const std::string& baseDir, const std::string& shownName);
+
+// Writes the scene (lights and camera as matrices) atomically. Meshes with more than
+// `inlineVertexLimit` vertices go to raw little-endian files next to it
+// ("<stem>.<mesh index>.positions.f32" / ".triangles.u32"), the others inline.
+void saveSceneFile(const Scene& scene, const std::string& path, size_t inlineVertexLimit = 65536);
+
+}  // namespace ss

@@ -1,0 +1,151 @@
+// How occlusion_textures fits its kernel light, slicing camera and slice planes to a scene.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "methods/occlusion_textures_slicing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+
+namespace ss::occlusion {
+
+namespace {
+// A box with the area of the ellipse inscribed in it: pi a b = 4 (k a)(k b), k = sqrt(pi) / 2.
+constexpr float kEqualAreaBox = 0.88622692545f;
+constexpr float kMaxHalfAngle = 80.0f * float(M_PI) / 180.0f;
+
+// Two unit axes completing `normal` to a right-handed frame with axisX x axisY = -normal.
+void frameAround(const glm::vec3& normal, glm::vec3* x, glm::vec3* y) {
+    glm::vec3 z = -normal;
+    glm::vec3 helper = std::abs(z.z) < 0.9f ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+    *x = glm::normalize(glm::cross(helper, z));
+    *y = glm::cross(z, *x);
+}
+}  // namespace
+
+glm::vec3 KernelLight::toLocal(const glm::vec3& world) const {
+    glm::vec3 r = world - centre;
+    return {glm::dot(r, axisX), glm::dot(r, axisY), glm::dot(r, normal)};
+}
+
+KernelLight kernelLight(const Light& light, const Bounds& sceneBounds) {
+    KernelLight k;
+    float diagonal = std::max(sceneBounds.diagonal(), 1e-3f);
+    switch (light.type) {
+        case LightType::Square:
+        case LightType::Rectangle:
+        case LightType::Disk:
+        case LightType::Ellipse: {
+            k.centre = light.position();
+            k.normal = light.direction();
+            k.axisX = glm::normalize(light.halfAxisX());
+            k.axisY = glm::normalize(glm::cross(-k.normal, k.axisX));
+            float scale = light.type == LightType::Disk || light.type == LightType::Ellipse ? kEqualAreaBox : 1.0f;
+            k.halfX = scale * glm::length(light.halfAxisX());
+            k.halfY = scale * glm::length(light.halfAxisY());
+            break;
+        }
+        case LightType::Point:
+        case LightType::Spot: {
+            k.centre = light.position();
+            glm::vec3 toScene = sceneBounds.empty() ? glm::vec3(0.0f) : sceneBounds.center() - k.centre;
+            k.normal = light.type == LightType::Spot || glm::length(toScene) < 1e-6f ? light.direction()
+                                                                                  : glm::normalize(toScene);
+            frameAround(k.normal, &k.axisX, &k.axisY);
+            k.halfX = k.halfY = kEqualAreaBox * std::max(light.radius, 1e-5f * diagonal);
+            break;
+        }
+        case LightType::Sun: {
+            k.normal = light.direction();
+            float distance = 10.0f * diagonal;
+            k.centre = sceneBounds.center() - distance * k.normal;
+            frameAround(k.normal, &k.axisX, &k.axisY);
+            float half = distance * std::tan(0.5f * std::clamp(light.angle, 0.0f, 3.0f));
+            k.halfX = k.halfY = kEqualAreaBox * std::max(half, 1e-5f * diagonal);
+            break;
+        }
+    }
+    return k;
+}
+
+int SliceSetup::sliceOf(float z) const {
+    float t = (z - planes.front()) / (planes.back() - planes.front());
+    return std::clamp(int(std::floor(t * float(count()))), 0, count() - 1);
+}
+
+SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCount, int resolution) {
+    if (sliceCount < 1 || sliceCount > 16)
+        fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: slices = " + std::to_string(sliceCount) +
+                                            " is outside 1..16");
+    if (resolution < 16 || resolution > 4096)
+        fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: resolution = " + std::to_string(resolution) +
+                                            " is outside 16..4096");
+    const float inf = std::numeric_limits<float>::infinity();
+    float zAllMax = 0.0f, zCastMin = inf, zCastMax = 0.0f;
+    float d = inf;
+    for (const Mesh& mesh : scene.meshes()) {
+        if (!mesh.casts() && !mesh.receives()) continue;
+        for (const glm::vec3& p : mesh.positions) {
+            glm::vec3 q = light.toLocal(p);
+            if (q.z <= 0.0f) continue;
+            zAllMax = std::max(zAllMax, q.z);
+            if (mesh.casts()) zCastMin = std::min(zCastMin, q.z), zCastMax = std::max(zCastMax, q.z);
+            // Inside the frustum when |x| <= a (z + d) / d, i.e. d <= a z / (|x| - a).
+            if (std::abs(q.x) > light.halfX) d = std::min(d, light.halfX * q.z / (std::abs(q.x) - light.halfX));
+            if (std::abs(q.y) > light.halfY) d = std::min(d, light.halfY * q.z / (std::abs(q.y) - light.halfY));
+        }
+    }
+    if (!(zCastMax > 0.0f))
+        fail(SS_ERROR_UNSUPPORTED, "occlusion_textures: no casting geometry lies in front of the light");
+    float dMin = std::max(light.halfX, light.halfY) / std::tan(kMaxHalfAngle);
+    SliceSetup s;
+    s.light = light;
+    s.d = std::clamp(d, dMin, std::max(dMin, 4.0f * zAllMax));
+    // Vertices touching the light plane would make the first slice start at 0 depth; keep a
+    // thin gap so the slicing camera's near plane stays positive.
+    float z0 = std::max(zCastMin, 1e-4f * zCastMax);
+    float z1 = std::max(zCastMax, z0 * (1.0f + 1e-4f));
+    s.planes.resize(size_t(sliceCount) + 1);
+    for (int k = 0; k <= sliceCount; ++k) s.planes[size_t(k)] = z0 + (z1 - z0) * float(k) / float(sliceCount);
+    float aspect = light.halfY / light.halfX;
+    s.width = aspect <= 1.0f ? resolution : std::max(16, int(std::lround(resolution / aspect)));
+    s.height = aspect <= 1.0f ? std::max(16, int(std::lround(resolution * aspect))) : resolution;
+
+    glm::vec3 eye = light.centre - s.d * light.normal;
+    glm::mat4 cameraToWorld(glm::vec4(light.axisX, 0.0f), glm::vec4(light.axisY, 0.0f),
+                            glm::vec4(-light.normal, 0.0f), glm::vec4(eye, 1.0f));
+    float margin = 1e-3f * (z1 - z0);
+    float nearZ = s.d + std::max(z0 - margin, 0.5f * z0), farZ = s.d + z1 + margin;
+    float sx = light.halfX * nearZ / s.d, sy = light.halfY * nearZ / s.d;
+    s.worldToClip = glm::frustum(-sx, sx, -sy, sy, nearZ, farZ) * glm::inverse(cameraToWorld);
+    return s;
+}
+
+glm::vec2 sliceUv(const SliceSetup& s, const glm::vec3& local) {
+    glm::vec2 ndc = glm::vec2(local.x / s.light.halfX, local.y / s.light.halfY) * (s.d / (s.d + local.z));
+    return 0.5f * ndc + 0.5f;
+}
+
+SliceLookup lookupSlice(const SliceSetup& s, const glm::vec3& local, int k, Fade fade) {
+    SliceLookup out;
+    float top = s.planes[size_t(k)], bottom = s.planes[size_t(k) + 1], thickness = bottom - top;
+    float z = local.z;
+    if (fade == Fade::Paper)
+        out.weight = std::clamp((z - top) / thickness, 0.0f, 1.0f);
+    else
+        out.weight = std::clamp((z - bottom) / thickness, 0.0f, 1.0f);
+    if (out.weight <= 0.0f || z <= 0.0f) return SliceLookup{};
+    // The occluders of slice k lie on its lower plane; the light seen from the point covers
+    // a rectangle there, centred on the line from the light centre through the point.
+    float ratio = bottom / z;
+    out.uv = sliceUv(s, glm::vec3(local.x * ratio, local.y * ratio, bottom));
+    float halfNdc = std::abs(z - bottom) / z * s.d / (bottom + s.d);
+    out.kernelTexels = glm::vec2(halfNdc * float(s.width), halfNdc * float(s.height));
+    return out;
+}
+
+}  // namespace ss::occlusion

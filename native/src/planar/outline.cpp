@@ -1,0 +1,139 @@
+// How region boundaries are collected from the sweep's slabs and linked into closed chains.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "planar/outline.h"
+
+#include <algorithm>
+#include <map>
+
+namespace ss::planar {
+
+namespace {
+
+struct Pending {
+    bool open = false;
+    bool regionBelow = false;
+    RatX x0, x1;
+};
+
+IPoint roundPoint(const ISeg& s, const RatX& x) {
+    RatY y = yAt(s, x);
+    return IPoint{roundDiv(x.p, x.q), roundDiv(y.num, y.den)};
+}
+
+}  // namespace
+
+std::vector<DirectedEdge> regionBoundary(std::span<const SweepSegment> segments, const RegionFn& inside) {
+    std::vector<DirectedEdge> out;
+    std::vector<Pending> pending(segments.size());
+    auto flush = [&](int seg) {
+        Pending& p = pending[seg];
+        if (!p.open) return;
+        p.open = false;
+        IPoint a = roundPoint(segments[seg].seg, p.x0), b = roundPoint(segments[seg].seg, p.x1);
+        if (a == b) return;
+        // Region below a left-to-right piece means it lies on the piece's right.
+        out.push_back(p.regionBelow ? DirectedEdge{a, b, 1} : DirectedEdge{b, a, 1});
+    };
+    sweep(segments, [&](const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups) {
+        int w = 0;
+        for (const SlabGroup& g : groups) {
+            bool below = inside(w), above = inside(w + g.delta);
+            w += g.delta;
+            if (below == above) continue;
+            Pending& p = pending[g.seg];
+            if (p.open && p.regionBelow == below && compareX(p.x1, xl) == 0) {
+                p.x1 = xr;
+                continue;
+            }
+            flush(g.seg);
+            p = Pending{true, below, xl, xr};
+        }
+    });
+    for (size_t i = 0; i < segments.size(); ++i) flush(int(i));
+    return out;
+}
+
+std::vector<Chain> linkChains(std::span<const DirectedEdge> boundary) {
+    auto less = [](const IPoint& a, const IPoint& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; };
+    std::map<IPoint, int, decltype(less)> balance(less);
+    std::vector<std::pair<IPoint, IPoint>> edges;
+    for (const DirectedEdge& e : boundary)
+        for (int k = 0; k < std::abs(e.weight); ++k) {
+            IPoint a = e.weight > 0 ? e.a : e.b, b = e.weight > 0 ? e.b : e.a;
+            edges.emplace_back(a, b);
+            balance[a] += 1;
+            balance[b] -= 1;
+        }
+    // Vertical connectors: along each grid column, the running out-minus-in balance from the
+    // bottom says how many connectors run between consecutive unbalanced points, and which way.
+    std::vector<std::pair<IPoint, IPoint>> connectors;
+    IPoint prev{};
+    int running = 0;
+    bool havePrev = false;
+    for (const auto& [p, b] : balance) {
+        if (b == 0) continue;
+        if (havePrev && prev.x == p.x && running != 0)
+            for (int k = 0; k < std::abs(running); ++k)
+                connectors.push_back(running > 0 ? std::make_pair(p, prev) : std::make_pair(prev, p));
+        if (!havePrev || prev.x != p.x) running = 0;
+        running += b;
+        prev = p;
+        havePrev = true;
+    }
+    edges.insert(edges.end(), connectors.begin(), connectors.end());
+
+    std::map<IPoint, std::vector<int>, decltype(less)> outgoing(less);
+    for (size_t i = 0; i < edges.size(); ++i) outgoing[edges[i].first].push_back(int(i));
+    std::vector<bool> used(edges.size(), false);
+    std::vector<Chain> chains;
+    for (size_t start = 0; start < edges.size(); ++start) {
+        if (used[start]) continue;
+        Chain chain;
+        size_t e = start;
+        for (;;) {
+            used[e] = true;
+            chain.push_back(edges[e].first);
+            IPoint at = edges[e].second;
+            if (at == edges[start].first) break;
+            auto& outs = outgoing[at];
+            while (!outs.empty() && used[outs.back()]) outs.pop_back();
+            if (outs.empty()) break;  // cannot happen when every balance is zero
+            e = size_t(outs.back());
+            outs.pop_back();
+        }
+        // Drop vertices where the chain goes straight on.
+        Chain simple;
+        for (size_t i = 0; i < chain.size(); ++i) {
+            const IPoint& a = chain[(i + chain.size() - 1) % chain.size()];
+            const IPoint& b = chain[i];
+            const IPoint& c = chain[(i + 1) % chain.size()];
+            bool straight = orient(a, b, c) == 0 && (i128(b.x - a.x) * (c.x - b.x) + i128(b.y - a.y) * (c.y - b.y)) > 0;
+            if (!straight) simple.push_back(b);
+        }
+        if (simple.size() >= 3) chains.push_back(std::move(simple));
+    }
+    return chains;
+}
+
+i128 twiceSignedArea(const Chain& chain) {
+    i128 sum = 0;
+    for (size_t i = 0; i < chain.size(); ++i) {
+        const IPoint& a = chain[i];
+        const IPoint& b = chain[(i + 1) % chain.size()];
+        sum += i128(a.x) * b.y - i128(b.x) * a.y;
+    }
+    return sum;
+}
+
+double regionArea(std::span<const Chain> chains) {
+    i128 sum = 0;
+    for (const Chain& c : chains) sum += twiceSignedArea(c);
+    return -double(sum) / 2.0;
+}
+
+std::vector<DirectedEdge> hardOutline(std::span<const DirectedEdge> projected) {
+    std::vector<SweepSegment> segs = toSweepSegments(projected);
+    return regionBoundary(segs, [](int w) { return w >= 1; });
+}
+
+}  // namespace ss::planar

@@ -1,0 +1,31 @@
+// How a winding-number region is cut into trapezoids (vertical sides, top and bottom on
+// segments) and triangulated.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <span>
+#include <vector>
+
+#include "planar/outline.h"
+
+namespace ss::planar {
+
+// A trapezoid in grid coordinates; slabs with the same bottom and top segment are merged.
+struct Trapezoid {
+    double x0 = 0, x1 = 0;
+    double yBottom0 = 0, yBottom1 = 0;  // bottom side at x0 and x1
+    double yTop0 = 0, yTop1 = 0;        // top side at x0 and x1
+    int winding = 0;                    // inside
+    int windingBelow = 0;               // just below the bottom side
+    int windingAbove = 0;               // just above the top side
+    double area() const { return 0.5 * (x1 - x0) * ((yTop0 - yBottom0) + (yTop1 - yBottom1)); }
+};
+
+std::vector<Trapezoid> trapezoids(std::span<const SweepSegment> segments, const RegionFn& inside);
+
+// Two triangles per trapezoid (one when a side has zero length), counter-clockwise.
+struct Triangle2 {
+    double x[3], y[3];
+};
+void triangulate(const Trapezoid& t, std::vector<Triangle2>* out);
+
+}  // namespace ss::planar

@@ -1,0 +1,53 @@
+// How an ss::Scene is turned into Embree scenes: every mesh for camera rays, casters for shadows.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <cstdint>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "core/camera.h"
+#include "core/scene.h"
+
+namespace ss {
+
+// Where a camera ray met the scene. The point is rebuilt from barycentrics (not o + t d) so
+// its rounding error is bounded by the triangle's own coordinates.
+struct SurfaceHit {
+    bool hit = false;
+    uint32_t mesh = 0, triangle = 0;
+    glm::vec3 point{0.0f};
+    glm::vec3 pointError{0.0f};  // conservative absolute error bound of `point` per axis
+    glm::vec3 normal{0.0f};      // unit geometric normal, flipped to face the incoming ray
+};
+
+// Immutable once built, safe to query from many threads. Holds a reference to nothing in the
+// source Scene except what it copies, so the Scene may change afterwards (the cache key then
+// differs and a new TraceScene is built).
+class TraceScene {
+public:
+    explicit TraceScene(const Scene& scene);
+    ~TraceScene();
+    TraceScene(const TraceScene&) = delete;
+    TraceScene& operator=(const TraceScene&) = delete;
+
+    uint64_t sceneId() const { return sceneId_; }
+    uint64_t revision() const { return revision_; }
+    // Largest absolute coordinate of any vertex: the scale robust offsets are measured against.
+    float extent() const { return extent_; }
+
+    // Nearest surface of any mesh along the ray with t in [tNear, tFar].
+    SurfaceHit intersect(const Ray& ray, float tNear, float tFar) const;
+    // True when a casting mesh blocks the segment origin + t dir, t in (0, tFar); the triangle
+    // (skipMesh, skipTriangle) is ignored (a flat triangle never shadows its own points).
+    bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tFar, uint32_t skipMesh,
+                  uint32_t skipTriangle) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    uint64_t sceneId_ = 0, revision_ = 0;
+    float extent_ = 0.0f;
+};
+
+}  // namespace ss

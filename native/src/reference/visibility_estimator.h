@@ -1,0 +1,28 @@
+// How V at one surface point is estimated from light samples (the visibility contract).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include "reference/light_sampler.h"
+#include "reference/sample_sequence.h"
+#include "reference/trace_scene.h"
+
+namespace ss {
+
+struct PointVisibility {
+    float visibility = 1.0f;  // V in [0, 1]; 1 when the light does not reach the point
+    bool reached = false;     // E_L > 0: some sample above the horizon carries weight
+};
+
+// V = sum_s w_s vis_s / sum_s w_s over `samples` points of `sequence`, w_s = the sample's
+// weight times the cosine at the surface; samples at or below the horizon of `hit.normal`
+// count in neither sum. Shadow rays start at the point pushed off the surface by its error
+// bound (plus a sliver of the scene's extent) and ignore the triangle they start on. Without
+// castShadows no ray is traced (V = 1 wherever E_L > 0).
+PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& light,
+                                   const SurfaceHit& hit, const SampleSequence& sequence,
+                                   int samples, bool castShadows = true);
+
+// The distance a shadow ray's origin is moved along the normal: the projected rounding error
+// of the point, 4x for safety, plus 1e-6 of the scene extent for the traversal's own error.
+float shadowRayOffset(const SurfaceHit& hit, float sceneExtent);
+
+}  // namespace ss

@@ -1,0 +1,14 @@
+// How a casting triangle reaches the slicing camera: clip position and depth below the light.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#version 450 core
+layout(location = 0) in vec3 position;  // world space
+
+uniform mat4 worldToClip;   // the offset slicing camera (centre of projection d behind the light)
+uniform mat4 worldToLight;  // light-local: x, y in the light plane, z = depth below it
+
+out float lightDepth;
+
+void main() {
+    lightDepth = (worldToLight * vec4(position, 1.0)).z;
+    gl_Position = worldToClip * vec4(position, 1.0);
+}

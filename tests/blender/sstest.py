@@ -1,0 +1,177 @@
+# What every Blender test shares: loading the add-on, a small scene, pixel look-ups, a runner.
+# SPDX-License-Identifier: GPL-3.0-or-later
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import traceback
+
+ROOT = os.environ.get("SOFTSHADOW_ROOT") or os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+ADDON_PATH = os.environ.get("SOFTSHADOW_ADDON_PATH") or os.path.join(ROOT, "blender_addon")
+if ADDON_PATH not in sys.path:
+    sys.path.insert(0, ADDON_PATH)
+
+try:
+    import bpy
+except ImportError:
+    bpy = None
+
+
+class Failure(AssertionError):
+    pass
+
+
+def check(condition, message):
+    if not condition:
+        raise Failure(message)
+
+
+def close(a, b, tolerance, what):
+    check(abs(a - b) <= tolerance, "%s: %r vs %r (tolerance %r)" % (what, a, b, tolerance))
+
+
+def run(namespace):
+    """Runs every test_* function of the calling module; exits 1 on any failure."""
+    tests = sorted((k, v) for k, v in namespace.items() if k.startswith("test_") and callable(v))
+    failed = 0
+    for name, fn in tests:
+        try:
+            fn()
+            print("  ok   %s" % name)
+        except Exception:
+            failed += 1
+            print("  FAIL %s" % name)
+            traceback.print_exc()
+    print("%d of %d test functions failed" % (failed, len(tests)))
+    if failed:
+        sys.exit(1)
+    print("SOFTSHADOW-TEST-OK")
+    sys.stdout.flush()
+
+
+def addon():
+    import softshadow
+    if not hasattr(bpy.types.Scene, "softshadow"):
+        softshadow.register()
+    return softshadow
+
+
+def tempdir(tag):
+    path = tempfile.mkdtemp(prefix="softshadow-%s-" % tag)
+    return path
+
+
+def clear_scene():
+    """An empty scene (factory startup has a cube, a light and a camera)."""
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj, do_unlink=True)
+    for block in (bpy.data.meshes, bpy.data.lights, bpy.data.cameras):
+        for item in list(block):
+            block.remove(item)
+    return bpy.context.scene
+
+
+def add_plane(name, size, location, faces=True):
+    h = size / 2
+    mesh = bpy.data.meshes.new(name)
+    verts = [(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)]
+    mesh.from_pydata(verts, [], [(0, 1, 2, 3)] if faces else [])
+    obj = bpy.data.objects.new(name, mesh)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def add_box(name, size, location):
+    h = size / 2
+    verts = [(x, y, z) for z in (-h, h) for y in (-h, h) for x in (-h, h)]
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(verts, [], faces)
+    obj = bpy.data.objects.new(name, mesh)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def add_light(name, kind="AREA", location=(0, 0, 4), shape="DISK", size=0.5, energy=500):
+    data = bpy.data.lights.new(name, kind)
+    if kind == "AREA":
+        data.shape = shape
+        data.size = size
+    data.energy = energy
+    obj = bpy.data.objects.new(name, data)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def add_camera(location=(0, 0, 10), width=64, height=48, lens=35):
+    data = bpy.data.cameras.new("Camera")
+    data.lens = lens
+    obj = bpy.data.objects.new("Camera", data)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    scene = bpy.context.scene
+    scene.camera = obj
+    scene.render.resolution_x = width
+    scene.render.resolution_y = height
+    scene.render.resolution_percentage = 100
+    return obj
+
+
+def standard_scene(width=64, height=48):
+    """Ground 10x10 at z=0, a 1.5 box floating at z=1.5 centred at (-1, 0), a disk light at
+    (-1, 0, 5) straight above it, a camera at z=10 looking down: the shadow falls around
+    (-1, 0, 0); the ground near (3, 2, 0) is lit."""
+    scene = clear_scene()
+    add_plane("Ground", 10, (0, 0, 0))
+    add_box("Occluder", 1.5, (-1, 0, 1.5))
+    add_light("Key", location=(-1, 0, 5), size=0.5)
+    add_camera(width=width, height=height)
+    bpy.context.view_layer.update()
+    return scene
+
+
+def pixel_of(scene, point):
+    """(row, col) of the pixel through which the camera sees a world point (row 0 = top)."""
+    from bpy_extras.object_utils import world_to_camera_view
+    from mathutils import Vector
+    ndc = world_to_camera_view(scene, scene.camera, Vector(point))
+    w = scene.render.resolution_x * scene.render.resolution_percentage // 100
+    h = scene.render.resolution_y * scene.render.resolution_percentage // 100
+    return int((1.0 - ndc.y) * h), int(ndc.x * w)
+
+
+def build_dir():
+    return os.environ.get("SOFTSHADOW_BUILD_DIR") or os.path.dirname(os.environ.get("SOFTSHADOW_LIB", ""))
+
+
+def exr_channels(path):
+    """Channel names of an EXR, through OpenImageIO's iinfo."""
+    out = subprocess.run(["oiiotool", "--info", "-v", path], capture_output=True, text=True, check=True).stdout
+    for line in out.splitlines():
+        line = line.strip()
+        if line.startswith("channel list:"):
+            return [c.strip() for c in line.split(":", 1)[1].split(",")]
+    raise Failure("no channel list in oiiotool output for %s:\n%s" % (path, out))
+
+
+def exr_channel(path, channel):
+    """One EXR channel as a numpy (H, W) array, row 0 = top (through oiiotool and a PFM)."""
+    import numpy as np
+    folder = tempfile.mkdtemp(prefix="softshadow-pfm-")
+    try:
+        pfm = os.path.join(folder, "c.pfm")
+        subprocess.run(["oiiotool", path, "--ch", channel, "-d", "float", "-o", pfm],
+                       capture_output=True, text=True, check=True)
+        with open(pfm, "rb") as f:
+            kind = f.readline().strip()
+            w, h = (int(v) for v in f.readline().split())
+            scale = float(f.readline())
+            data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+        check(kind == b"Pf", "expected a one-channel PFM, got %r" % kind)
+        return np.flipud(data.reshape(h, w)).astype(np.float32)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)

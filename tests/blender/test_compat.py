@@ -1,0 +1,101 @@
+# Does compat.py pick the right API shape for Blender 3.x, 4.x and 5.x? (fake objects, no bpy needed)
+# SPDX-License-Identifier: GPL-3.0-or-later
+import os
+import sys
+from types import SimpleNamespace as NS
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sstest  # noqa: E402
+from softshadow import compat  # noqa: E402
+
+
+class FakeGroups:
+    def __init__(self):
+        self.made = []
+
+    def new(self, name, kind):
+        tree = NS(name=name, kind=kind)
+        self.made.append(tree)
+        return tree
+
+
+def test_compositor_tree_3x_shape():
+    tree = NS(name="Compositing")
+    scene = NS(use_nodes=False, node_tree=tree)
+    sstest.check(compat.compositor_tree(scene) is tree, "3.x: scene.node_tree is the tree")
+    sstest.check(scene.use_nodes is False, "looking must not switch nodes on")
+    sstest.check(compat.compositor_tree(scene, create=True) is tree, "3.x create returns node_tree")
+    sstest.check(scene.use_nodes is True, "3.x create switches use_nodes on")
+
+
+def test_compositor_tree_5x_shape():
+    data = NS(node_groups=FakeGroups())
+    scene = NS(compositing_node_group=None)
+    sstest.check(compat.compositor_tree(scene) is None, "5.x: no group yet, no create -> None")
+    tree = compat.compositor_tree(scene, create=True, bpy_data=data)
+    sstest.check(tree is not None and tree.kind == "CompositorNodeTree", "5.x: a compositor group is made")
+    sstest.check(scene.compositing_node_group is tree, "5.x: the group is assigned to the scene")
+    sstest.check(compat.compositor_tree(scene, create=True, bpy_data=data) is tree, "made only once")
+    sstest.check(len(data.node_groups.made) == 1, "no second group")
+
+
+def test_bgl_only_before_4():
+    sstest.check(compat.has_bgl(NS(version=(3, 4, 1))), "3.4 has bgl")
+    sstest.check(not compat.has_bgl(NS(version=(4, 0, 0))), "4.0 has no bgl")
+    sstest.check(not compat.has_bgl(NS(version=(5, 0, 0))), "5.0 has no bgl")
+
+
+def test_light_radius_both_names():
+    sstest.close(compat.light_radius(NS(shadow_soft_size=0.25)), 0.25, 0, "shadow_soft_size")
+    sstest.close(compat.light_radius(NS(radius=0.5)), 0.5, 0, "radius")
+    sstest.close(compat.light_radius(NS()), 0.0, 0, "neither")
+
+
+def test_object_visibility_both_shapes():
+    sstest.check(compat.object_casts_shadow(NS(visible_shadow=False)) is False, "3.0+ visible_shadow")
+    legacy = NS(cycles_visibility=NS(shadow=False, camera=True))
+    sstest.check(compat.object_casts_shadow(legacy) is False, "2.9x cycles_visibility.shadow")
+    sstest.check(compat.object_camera_visible(legacy) is True, "2.9x cycles_visibility.camera")
+    sstest.check(compat.object_camera_visible(NS(visible_camera=False)) is False, "3.0+ visible_camera")
+    sstest.check(compat.object_casts_shadow(NS()) is True, "default casts")
+
+
+def test_material_shadow_method():
+    sstest.check(compat.materials_cast_shadow([]), "no material casts")
+    sstest.check(not compat.materials_cast_shadow([NS(shadow_method="NONE")]), "all NONE -> no cast")
+    sstest.check(compat.materials_cast_shadow([NS(shadow_method="NONE"), NS(shadow_method="HASHED")]),
+                 "one casting material -> casts")
+    sstest.check(compat.materials_cast_shadow([NS(), None]), "4.2+ materials without shadow_method cast")
+
+
+def test_group_sockets_both_shapes():
+    class Sockets(list):
+        def new(self, kind, name):
+            s = NS(name=name, kind=kind)
+            self.append(s)
+            return s
+
+    old = NS(inputs=Sockets(), outputs=Sockets())
+    compat.add_group_socket(old, "INPUT", "NodeSocketFloat", "Visibility")
+    compat.add_group_socket(old, "OUTPUT", "NodeSocketColor", "Image")
+    sstest.check(compat.group_sockets(old, "INPUT") == ["Visibility"], "3.x inputs")
+    sstest.check(compat.group_sockets(old, "OUTPUT") == ["Image"], "3.x outputs")
+
+    class Interface:
+        def __init__(self):
+            self.items_tree = []
+
+        def new_socket(self, name, in_out, socket_type):
+            item = NS(name=name, in_out=in_out, socket_type=socket_type, item_type="SOCKET")
+            self.items_tree.append(item)
+            return item
+
+    new = NS(interface=Interface())
+    compat.add_group_socket(new, "INPUT", "NodeSocketFloat", "Visibility")
+    compat.add_group_socket(new, "OUTPUT", "NodeSocketColor", "Image")
+    sstest.check(compat.group_sockets(new, "INPUT") == ["Visibility"], "4.x interface inputs")
+    sstest.check(compat.group_sockets(new, "OUTPUT") == ["Image"], "4.x interface outputs")
+
+
+if __name__ == "__main__":
+    sstest.run(dict(globals()))

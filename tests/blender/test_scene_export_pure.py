@@ -1,0 +1,83 @@
+# Are the numpy parts of scene export right: names, matrices, sizes, checks? (no bpy needed)
+# SPDX-License-Identifier: GPL-3.0-or-later
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sstest  # noqa: E402
+from softshadow import scene_export as se  # noqa: E402
+
+
+def test_pass_names_follow_design():
+    sstest.check(se.pass_name("Key", "dbuffer") == "Key_dbuffer", "plain")
+    sstest.check(se.pass_name("Area.001", "sweep") == "Area_001_sweep", "dots become _")
+    sstest.check(se.pass_name("Rim Light", "pcss", "umbra") == "Rim_Light_pcss_umbra", "spaces, layer")
+    sstest.check(se.pass_name("Key", "reference", "V") == "Key_reference", "V is the main pass")
+
+
+def test_column_major_layout():
+    rows = [[1, 2, 3, 4], [5, 6, 7, 8], [9, 10, 11, 12], [13, 14, 15, 16]]
+    flat = se.column_major(rows)
+    # m[col*4 + row]: the translation (column 3) is at 12, 13, 14.
+    sstest.check(list(flat[12:15]) == [4, 8, 12], "translation in elements 12..14: %s" % flat)
+    sstest.check(list(flat[0:4]) == [1, 5, 9, 13], "first column first")
+    sstest.check(flat.dtype == np.float32, "float32")
+
+
+def test_transform_points_affine():
+    m = [[0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 2, 3], [0, 0, 0, 1]]  # rotate 90 about z, scale z 2
+    out = se.transform_points(m, [[1, 0, 0], [0, 0, 1]])
+    sstest.check(np.allclose(out, [[1, 3, 3], [1, 2, 5]]), "affine transform: %s" % out)
+
+
+def test_normalized_rigid_removes_scale_keeps_translation():
+    m = [[2, 0, 0, 5], [0, 3, 0, 6], [0, 0, 4, 7], [0, 0, 0, 1]]
+    n = se.normalized_rigid(m)
+    sstest.check(np.allclose(n[:3, :3], np.eye(3)) and np.allclose(n[:3, 3], [5, 6, 7]), "%s" % n)
+
+
+def test_render_size_integer_like_blender():
+    sstest.check(se.render_size(1920, 1080, 50) == (960, 540), "50%")
+    sstest.check(se.render_size(1001, 333, 33) == (330, 109), "truncating integer percentage")
+
+
+def test_mesh_problems():
+    verts = np.zeros((3, 3), np.float32)
+    tris = np.array([[0, 1, 2]], np.uint32)
+    sstest.check(se.mesh_problem("a", verts, tris) is None, "good mesh")
+    sstest.check("no faces" in se.mesh_problem("a", verts, np.zeros((0, 3), np.uint32)), "no faces")
+    bad = verts.copy()
+    bad[1, 2] = np.nan
+    sstest.check("1 vertices" in se.mesh_problem("a", bad, tris), "NaN counted")
+    sstest.check("out of range" in se.mesh_problem("a", verts, np.array([[0, 1, 3]], np.uint32)), "index")
+
+
+def test_light_values_and_problems():
+    eye = np.eye(4)
+    disk = se.light_values("K", "AREA", "DISK", eye, size=0.5, size_y=9.0)
+    sstest.check(disk["type"] == "DISK" and disk["size_y"] == 0.5, "disk ignores size_y: %s" % disk)
+    rect = se.light_values("R", "AREA", "RECTANGLE", eye, size=1.0, size_y=2.0)
+    sstest.check(rect["size_y"] == 2.0, "rectangle keeps size_y")
+    sstest.check(se.light_problem(rect) is None, "good light")
+    zero = se.light_values("Z", "AREA", "SQUARE", eye, size=0.0)
+    sstest.check("zero size" in se.light_problem(zero), "zero-size area light")
+    spot = se.light_values("S", "SPOT", "", eye, radius=0.1, spot_size=1.0, spot_blend=0.2,
+                           use_shadow=False)
+    sstest.check(spot["type"] == "SPOT" and spot["cast_shadows"] is False, "spot without shadow")
+    try:
+        se.light_values("X", "HEMI", "", eye)
+        sstest.check(False, "unknown type must raise")
+    except ValueError as exc:
+        sstest.check("X" in str(exc), "the message names the light")
+
+
+def test_unique_names():
+    used = set()
+    names = [se.unique_name("A", used) for _ in range(3)]
+    sstest.check(names == ["A", "A.001", "A.002"], "%s" % names)
+
+
+if __name__ == "__main__":
+    sstest.run(dict(globals()))

@@ -1,0 +1,280 @@
+// Checks penumbra-map cones and sheets against hand-computed geometry and silhouette counts.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/mesh.h"
+#include "softshadow/softshadow.h"
+#include "geometry/cones_sheets.h"
+#include "geometry/silhouette.h"
+
+namespace ss {
+namespace {
+
+// An axis-aligned box, faces wound counter-clockwise seen from outside.
+Mesh box(glm::vec3 lo, glm::vec3 hi) {
+    Mesh m;
+    m.name = "box";
+    for (int i = 0; i < 8; ++i)
+        m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+    m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                   {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    m.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
+    m.finalize();
+    return m;
+}
+
+// Light 2 units above the origin looking straight down, far plane at depth 10.
+PenumbraLight overhead(float radius) {
+    PenumbraLight l;
+    l.centre = {0, 0, 2};
+    l.axis = {0, 0, -1};
+    l.radius = radius;
+    l.nearDepth = 0.01f;
+    l.farDepth = 10.0f;
+    return l;
+}
+
+TEST(PenumbraMapGeometry, ConeRadiusMatchesSimilarTriangles) {
+    PenumbraLight l = overhead(0.5f);
+    // C_v = L_r (Z_far - Z_v) / Z_v = 0.5 * 8 / 2 = 2.
+    EXPECT_FLOAT_EQ(coneRadius(l, 2.0f), 2.0f);
+    // A vertex on the far plane has a point cone.
+    EXPECT_FLOAT_EQ(coneRadius(l, 10.0f), 0.0f);
+    EXPECT_FLOAT_EQ(coneRadius(overhead(0.0f), 2.0f), 0.0f);
+}
+
+TEST(PenumbraMapGeometry, ConeBaseIsACircleOnTheFarPlaneAroundTheVertexRay) {
+    // A thin box whose top face is at z = 0 (depth 2) and spans [-1,1]^2.
+    Mesh m = box({-1, -1, -0.5f}, {1, 1, 0});
+    PenumbraLight l = overhead(0.5f);
+    PointSilhouette sil = pointSilhouette(m, l.centre);
+    ConeSheetSettings cs;
+    cs.coneSegments = 12;
+    ConesSheets g = buildConesSheets(m, sil, l, cs);
+    ASSERT_EQ(g.cones(), sil.vertices.size());
+    for (size_t i = 0; i < sil.vertices.size(); ++i) {
+        int c = g.coneOfVertex[i];
+        ASSERT_GE(c, 0);
+        glm::vec3 v = m.positions[sil.vertices[i].vertex];
+        float zv = 2.0f - v.z;
+        // Base centre: the vertex ray scaled to depth 10; radius by hand.
+        glm::vec3 centre = l.centre + (v - l.centre) * (10.0f / zv);
+        float radius = 0.5f * (10.0f - zv) / zv;
+        uint32_t t0 = g.coneFirstTriangle[c];
+        for (int k = 0; k < cs.coneSegments; ++k) {
+            const glm::uvec3& t = g.triangles[t0 + k];
+            EXPECT_EQ(g.vertices[t[0]].position, v);
+            for (int j = 1; j < 3; ++j) {
+                const ConeSheetVertex& r = g.vertices[t[j]];
+                EXPECT_NEAR(r.position.z, 2.0f - 10.0f, 1e-5f);
+                EXPECT_NEAR(glm::length(r.position - centre), radius, 1e-4f * radius + 1e-5f);
+                EXPECT_FLOAT_EQ(r.zv, zv);
+            }
+        }
+    }
+}
+
+TEST(PenumbraMapGeometry, SheetCornersByHandForAnEdgeOfASquare) {
+    // Top face at z = 0, light at (0,0,2): every silhouette vertex has depth 2.
+    Mesh m = box({-1, -1, -0.5f}, {1, 1, 0});
+    PenumbraLight l = overhead(0.25f);
+    PointSilhouette sil = pointSilhouette(m, l.centre);
+    ConesSheets g = buildConesSheets(m, sil, l);
+    // The top face's four edges are the silhouette.
+    ASSERT_EQ(sil.edges.size(), 4u);
+    ASSERT_EQ(g.sheets(), 4u);
+    for (size_t i = 0; i < sil.edges.size(); ++i) {
+        int s = g.sheetOfEdge[i];
+        ASSERT_GE(s, 0);
+        // Equal depths at both ends make a planar trapezoid: one strip.
+        EXPECT_EQ(g.sheetStrips[s], 1u);
+        const glm::uvec3& t = g.triangles[g.sheetFirstTriangle[s]];
+        glm::vec3 p0 = g.vertices[t[0]].position, p1 = g.vertices[t[1]].position,
+                  q1 = g.vertices[t[2]].position;
+        // The edge end p0 = (x, y, 0) projects to 5 (x, y) at z = -8 and moves outward (away
+        // from the square, along the edge's outward normal) by C = 0.25 * 8 / 2 = 1.
+        glm::vec3 mid = 0.5f * (p0 + p1);
+        glm::vec3 outward = std::abs(mid.x) > std::abs(mid.y) ? glm::vec3(glm::sign(mid.x), 0, 0)
+                                                              : glm::vec3(0, glm::sign(mid.y), 0);
+        glm::vec3 expectQ1 = glm::vec3(5.0f * p1.x, 5.0f * p1.y, -8.0f) + 1.0f * outward;
+        EXPECT_NEAR(glm::length(q1 - expectQ1), 0.0f, 1e-4f)
+            << "q1 = " << q1.x << "," << q1.y << "," << q1.z;
+        EXPECT_FLOAT_EQ(g.vertices[t[0]].zv, 2.0f);
+        EXPECT_FLOAT_EQ(g.vertices[t[2]].zv, 2.0f);
+    }
+}
+
+// The angle between the normals of triangles (t1) and (t2) of a sheet strip.
+float stripTwist(const ConesSheets& g, const glm::uvec3& t1, const glm::uvec3& t2) {
+    auto normal = [&](const glm::uvec3& t) {
+        return glm::normalize(glm::cross(g.vertices[t[1]].position - g.vertices[t[0]].position,
+                                         g.vertices[t[2]].position - g.vertices[t[0]].position));
+    };
+    return std::acos(std::clamp(glm::dot(normal(t1), normal(t2)), -1.0f, 1.0f));
+}
+
+Mesh shearedBox() {
+    Mesh m = box({-1, -1, -0.5f}, {1, 1, 0});
+    for (glm::vec3& p : m.positions) p.z += 0.6f * p.x;  // depth now varies along x
+    m.finalize();
+    return m;
+}
+
+TEST(PenumbraMapGeometry, TiltedEdgeSheetInterpolatesZvAndIsNearlyPlanar) {
+    Mesh m = shearedBox();
+    PenumbraLight l = overhead(0.5f);
+    PointSilhouette sil = pointSilhouette(m, l.centre);
+    ConesSheets g = buildConesSheets(m, sil, l);
+    ASSERT_EQ(g.sheets(), sil.edges.size());
+    for (size_t i = 0; i < sil.edges.size(); ++i) {
+        int s = g.sheetOfEdge[i];
+        ASSERT_GE(s, 0);
+        const SilhouetteEdge& e = sil.edges[i];
+        float za = 2.0f - m.positions[e.a].z, zb = 2.0f - m.positions[e.b].z;
+        uint32_t strips = g.sheetStrips[s];
+        // Rulings start at the edge end with depth za (first) and reach zb (last); Z_V at both
+        // ends of a ruling is the depth of its edge point.
+        uint32_t first = g.triangles[g.sheetFirstTriangle[s]][0];
+        EXPECT_FLOAT_EQ(g.vertices[first].zv, za);
+        EXPECT_FLOAT_EQ(g.vertices[first + 1].zv, za);
+        EXPECT_FLOAT_EQ(g.vertices[first + 2 * strips].zv, zb);
+        EXPECT_FLOAT_EQ(g.vertices[first + 2 * strips + 1].zv, zb);
+        // By hand: both the cone radius C = L_r (Z_far - Z)/Z and the far-plane image's distance
+        // from the edge grow as (Z_far/Z - 1), so the outer offset tilts the sheet by the same
+        // angle at both ends and the quad is planar up to rounding, whatever the depths.
+        const glm::uvec3& t1 = g.triangles[g.sheetFirstTriangle[s]];
+        const glm::uvec3& t2 = g.triangles[g.sheetFirstTriangle[s] + 1];
+        EXPECT_LT(stripTwist(g, t1, t2), 0.01f) << "depths " << za << " " << zb;
+    }
+}
+
+TEST(PenumbraMapGeometry, TwistedSheetsAreCutIntoStripsAlongTheEdge) {
+    Mesh m = shearedBox();
+    PenumbraLight l = overhead(0.5f);
+    PointSilhouette sil = pointSilhouette(m, l.centre);
+    ConeSheetSettings cs;
+    cs.maxTwist = 1e-7f;  // any rounding-level twist now asks for the most strips
+    cs.maxSheetStrips = 6;
+    ConesSheets g = buildConesSheets(m, sil, l, cs);
+    ConesSheets plain = buildConesSheets(m, sil, l);
+    bool sawSplit = false;
+    for (size_t s = 0; s < g.sheets(); ++s) {
+        uint32_t strips = g.sheetStrips[s];
+        ASSERT_LE(strips, 6u);
+        if (strips < 2) continue;
+        sawSplit = true;
+        // Strip vertices sit on the straight lines between the unsplit quad's corners.
+        uint32_t f = g.triangles[g.sheetFirstTriangle[s]][0];
+        uint32_t pf = plain.triangles[plain.sheetFirstTriangle[s]][0];
+        for (uint32_t k = 0; k <= strips; ++k) {
+            float t = float(k) / float(strips);
+            glm::vec3 p = glm::mix(plain.vertices[pf].position, plain.vertices[pf + 2].position, t);
+            glm::vec3 q = glm::mix(plain.vertices[pf + 1].position, plain.vertices[pf + 3].position, t);
+            EXPECT_NEAR(glm::length(g.vertices[f + 2 * k].position - p), 0.0f, 1e-4f);
+            EXPECT_NEAR(glm::length(g.vertices[f + 2 * k + 1].position - q), 0.0f, 1e-3f);
+        }
+    }
+    EXPECT_TRUE(sawSplit);
+}
+
+TEST(PenumbraMapGeometry, SheetsLieOutsideTheOccludersImage) {
+    Mesh m = box({-1, -0.5f, -0.3f}, {0.7f, 1, 0.2f});
+    PenumbraLight l = overhead(0.3f);
+    PointSilhouette sil = pointSilhouette(m, l.centre);
+    ConesSheets g = buildConesSheets(m, sil, l);
+    // Project the box's centre to the far plane; every sheet's far corners are farther from it
+    // than the far-plane images of their edge ends (the sheet points away from the box).
+    glm::vec3 centre = 0.5f * (glm::vec3(-1, -0.5f, -0.3f) + glm::vec3(0.7f, 1, 0.2f));
+    auto far = [&](glm::vec3 p) { return l.centre + (p - l.centre) * (10.0f / lightDepth(l, p)); };
+    glm::vec3 cFar = far(centre);
+    for (size_t s = 0; s < g.sheets(); ++s) {
+        const glm::uvec3& t = g.triangles[g.sheetFirstTriangle[s]];
+        glm::vec3 p0 = g.vertices[t[0]].position, q1 = g.vertices[t[2]].position,
+                  p1 = g.vertices[t[1]].position;
+        glm::vec3 edgeFar = 0.5f * (far(p0) + far(p1));
+        EXPECT_GT(glm::dot(q1 - far(p1), edgeFar - cFar), 0.0f);
+    }
+}
+
+TEST(PenumbraMapGeometry, VertexWithFourSilhouetteEdgesGetsOneCone) {
+    // Two open triangles touching at one vertex (a bow tie): that vertex has 4 silhouette edges.
+    Mesh m;
+    m.name = "bowtie";
+    m.positions = {{0, 0, 0}, {1, 0.5f, 0}, {1, -0.5f, 0}, {-1, 0.5f, 0}, {-1, -0.5f, 0}};
+    m.triangles = {{0, 2, 1}, {0, 3, 4}};
+    m.flags = SS_MESH_CAST;
+    m.finalize();
+    PenumbraLight l = overhead(0.2f);
+    PointSilhouette sil = pointSilhouette(m, l.centre);
+    ASSERT_EQ(sil.edges.size(), 6u);
+    ConesSheets g = buildConesSheets(m, sil, l);
+    size_t busiest = 0;
+    for (const SilhouetteVertex& v : sil.vertices) busiest = std::max(busiest, v.edges.size());
+    EXPECT_EQ(busiest, 4u);
+    EXPECT_EQ(g.cones(), sil.vertices.size());
+    EXPECT_EQ(g.cones(), 5u);
+    EXPECT_EQ(g.sheets(), 6u);
+    for (int c : g.coneOfVertex) EXPECT_GE(c, 0);
+    for (int s : g.sheetOfEdge) EXPECT_GE(s, 0);
+}
+
+TEST(PenumbraMapGeometry, EverySilhouetteVertexOneConeEveryEdgeOneSheetOnAnIcosphere) {
+    // A sphere-like closed mesh: build an octahedron and subdivide it twice.
+    Mesh m;
+    m.name = "sphere";
+    m.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    for (int level = 0; level < 2; ++level) {
+        std::vector<glm::uvec3> next;
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> mids;
+        auto mid = [&](uint32_t a, uint32_t b) {
+            auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            auto it = mids.find(key);
+            if (it != mids.end()) return it->second;
+            m.positions.push_back(glm::normalize(m.positions[a] + m.positions[b]));
+            return mids[key] = uint32_t(m.positions.size() - 1);
+        };
+        for (const glm::uvec3& t : m.triangles) {
+            uint32_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+            next.insert(next.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
+        }
+        m.triangles = next;
+    }
+    for (glm::vec3& p : m.positions) p = 0.5f * p + glm::vec3(0.1f, 0.2f, -1.0f);
+    m.finalize();
+    PenumbraLight l = overhead(0.3f);
+    PointSilhouette sil = pointSilhouette(m, l.centre);
+    ASSERT_GT(sil.edges.size(), 8u);
+    ConesSheets g = buildConesSheets(m, sil, l);
+    EXPECT_EQ(g.cones(), sil.vertices.size());
+    EXPECT_EQ(g.sheets(), sil.edges.size());
+    // Distinct indices: no vertex or edge shares a cone or sheet.
+    std::set<int> cones(g.coneOfVertex.begin(), g.coneOfVertex.end());
+    std::set<int> sheets(g.sheetOfEdge.begin(), g.sheetOfEdge.end());
+    EXPECT_EQ(cones.size(), g.cones());
+    EXPECT_EQ(sheets.size(), g.sheets());
+    for (const ConeSheetVertex& v : g.vertices) {
+        EXPECT_TRUE(std::isfinite(v.position.x) && std::isfinite(v.position.y) &&
+                    std::isfinite(v.position.z) && std::isfinite(v.zv));
+    }
+}
+
+TEST(PenumbraMapGeometry, VerticesBehindTheLightGetNoCone) {
+    Mesh m = box({-1, -1, 1.0f}, {1, 1, 3.0f});  // straddles the light's plane z = 2
+    PenumbraLight l = overhead(0.3f);
+    PointSilhouette sil = pointSilhouette(m, l.centre);
+    ConesSheets g = buildConesSheets(m, sil, l);
+    for (size_t i = 0; i < sil.vertices.size(); ++i) {
+        float z = lightDepth(l, m.positions[sil.vertices[i].vertex]);
+        EXPECT_EQ(g.coneOfVertex[i] >= 0, z >= l.nearDepth) << "depth " << z;
+    }
+}
+
+}  // namespace
+}  // namespace ss
