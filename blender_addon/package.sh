@@ -25,8 +25,9 @@ strip --strip-unneeded "$STAGE/softshadow/lib/libsoftshadow.so" 2>/dev/null || t
 sed -i "s/^version = \".*\"/version = \"$VERSION\"/" "$STAGE/softshadow/blender_manifest.toml"
 IFS=. read -r MAJ MIN PAT <<<"$VERSION"
 sed -i "s/\"version\": ([0-9, ]*)/\"version\": (${MAJ:-0}, ${MIN:-0}, ${PAT:-0})/" "$STAGE/softshadow/__init__.py"
-mkdir -p "$ROOT/dist"
-OUT="$ROOT/dist/softshadow-$VERSION.zip"
+DIST=${SOFTSHADOW_DIST:-$ROOT/dist}
+mkdir -p "$DIST"
+OUT="$(cd "$DIST" && pwd)/softshadow-$VERSION.zip"
 rm -f "$OUT"
 (cd "$STAGE" && zip -qr -X "$OUT" softshadow)
 echo "$OUT"

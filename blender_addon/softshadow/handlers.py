@@ -1,7 +1,11 @@
 # When the passes are computed for a render: before each frame (F12, animation, background -a).
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""render_pre computes the frame's passes, writes one EXR per frame next to the render output
-and refreshes the compositor's Image node, so the compositor sees them without clicks.
+"""Before each frame the passes are computed, written as one EXR per frame next to the render
+output, and the compositor's Image node is refreshed, so the compositor sees them without clicks.
+
+render_init does the current frame: the render copies the compositor's node tree before the
+first render_pre, so the Image node's pass sockets and links must exist by then. render_pre does
+every later frame of an animation (the file of each frame is read from disk at compositing).
 Nothing here may raise into Blender: every failure becomes a printed, stored message."""
 import threading
 
@@ -32,11 +36,10 @@ def _sync_frame(scene):
     return depsgraph
 
 
-@bpy.app.handlers.persistent
-def on_render_pre(scene, *_args):
-    props = getattr(scene, "softshadow", None)
-    if props is None or not props.enabled:
-        return
+_done_in_init = {"frame": None}
+
+
+def _compute(scene):
     report = {"frame": scene.frame_current, "path": "", "problems": [], "chosen": {}}
     try:
         if not native.available():
@@ -57,11 +60,41 @@ def on_render_pre(scene, *_args):
         print("softshadow: frame %d: wrote %s (%s)" % (report["frame"], report["path"], chosen))
 
 
+def _enabled(scene):
+    props = getattr(scene, "softshadow", None)
+    return props is not None and props.enabled
+
+
+@bpy.app.handlers.persistent
+def on_render_init(scene, *_args):
+    _done_in_init["frame"] = None
+    if _enabled(scene):
+        _compute(scene)
+        _done_in_init["frame"] = scene.frame_current
+
+
+@bpy.app.handlers.persistent
+def on_render_pre(scene, *_args):
+    if _done_in_init["frame"] == scene.frame_current:
+        _done_in_init["frame"] = None  # render_init already did this frame
+        return
+    _done_in_init["frame"] = None
+    if _enabled(scene):
+        _compute(scene)
+
+
+_HANDLERS = (("render_init", on_render_init), ("render_pre", on_render_pre))
+
+
 def register():
-    if on_render_pre not in bpy.app.handlers.render_pre:
-        bpy.app.handlers.render_pre.append(on_render_pre)
+    for name, fn in _HANDLERS:
+        handlers = getattr(bpy.app.handlers, name)
+        if fn not in handlers:
+            handlers.append(fn)
 
 
 def unregister():
-    while on_render_pre in bpy.app.handlers.render_pre:
-        bpy.app.handlers.render_pre.remove(on_render_pre)
+    for name, fn in _HANDLERS:
+        handlers = getattr(bpy.app.handlers, name)
+        while fn in handlers:
+            handlers.remove(fn)

@@ -7,6 +7,6 @@ uniform sampler2D filtered[4];  // per RGBA group: the occlusion texture with it
 
 vec4 boxFilter(int g, vec2 centre, vec2 size) {
     vec2 texSize = vec2(textureSize(filtered[g], 0));
-    return textureGrad(filtered[g], centre / texSize, vec2(size.x / texSize.x, 0.0), vec2(0.0, size.y / texSize.y));
+    return textureLod(filtered[g], centre / texSize, log2(max(min(size.x, size.y), 1.0)));
 }
 #endif

@@ -63,7 +63,14 @@ def tempdir(tag):
 
 
 def clear_scene():
-    """An empty scene (factory startup has a cube, a light and a camera)."""
+    """An empty scene (factory startup has a cube, a light and a camera), add-on settings reset."""
+    scene = bpy.context.scene
+    props = getattr(scene, "softshadow", None)
+    if props is not None:
+        for key in props.bl_rna.properties.keys():
+            if key != "rna_type":
+                props.property_unset(key)
+    scene.frame_current = 1
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
     for block in (bpy.data.meshes, bpy.data.lights, bpy.data.cameras):
@@ -122,16 +129,22 @@ def add_camera(location=(0, 0, 10), width=64, height=48, lens=35):
 
 
 def standard_scene(width=64, height=48):
-    """Ground 10x10 at z=0, a 1.5 box floating at z=1.5 centred at (-1, 0), a disk light at
-    (-1, 0, 5) straight above it, a camera at z=10 looking down: the shadow falls around
-    (-1, 0, 0); the ground near (3, 2, 0) is lit."""
+    """Ground 10x10 at z=0; a 1.5 x 1.5 plate at z=3 centred at (-1, 0); a 0.5 disk light at
+    (-4, 0, 6) aiming down; a camera at z=10 looking down. The plate's shadow is centred at
+    (2, 0, 0) (half-width 1.5, penumbra 0.5 wide), where the camera sees the ground beside the
+    plate (which it sees over x in [-2.5, -0.4]); the ground near (-3.5, -2.8, 0) is lit."""
     scene = clear_scene()
     add_plane("Ground", 10, (0, 0, 0))
-    add_box("Occluder", 1.5, (-1, 0, 1.5))
-    add_light("Key", location=(-1, 0, 5), size=0.5)
+    add_plane("Occluder", 1.5, (-1, 0, 3))
+    add_light("Key", location=(-4, 0, 6), size=0.5)
     add_camera(width=width, height=height)
     bpy.context.view_layer.update()
     return scene
+
+
+def shadow_centre(occluder_x):
+    """Where the standard light puts the centre of the plate's shadow on the ground."""
+    return (2.0 * occluder_x + 4.0, 0.0, 0.0)
 
 
 def pixel_of(scene, point):
@@ -149,7 +162,7 @@ def build_dir():
 
 
 def exr_channels(path):
-    """Channel names of an EXR, through OpenImageIO's iinfo."""
+    """Channel names of an EXR, through OpenImageIO's oiiotool."""
     out = subprocess.run(["oiiotool", "--info", "-v", path], capture_output=True, text=True, check=True).stdout
     for line in out.splitlines():
         line = line.strip()
@@ -159,19 +172,24 @@ def exr_channels(path):
 
 
 def exr_channel(path, channel):
-    """One EXR channel as a numpy (H, W) array, row 0 = top (through oiiotool and a PFM)."""
+    """One EXR channel as a numpy (H, W) array, row 0 = top (through oiiotool --dumpdata, which
+    prints 9 decimals: exact to 5e-10, far below any tolerance used here)."""
+    import re
     import numpy as np
-    folder = tempfile.mkdtemp(prefix="softshadow-pfm-")
+    folder = tempfile.mkdtemp(prefix="softshadow-ch-")
     try:
-        pfm = os.path.join(folder, "c.pfm")
-        subprocess.run(["oiiotool", path, "--ch", channel, "-d", "float", "-o", pfm],
+        single = os.path.join(folder, "c.exr")
+        subprocess.run(["oiiotool", path, "--ch", channel, "-o", single],
                        capture_output=True, text=True, check=True)
-        with open(pfm, "rb") as f:
-            kind = f.readline().strip()
-            w, h = (int(v) for v in f.readline().split())
-            scale = float(f.readline())
-            data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-        check(kind == b"Pf", "expected a one-channel PFM, got %r" % kind)
-        return np.flipud(data.reshape(h, w)).astype(np.float32)
+        text = subprocess.run(["oiiotool", "--dumpdata", single], capture_output=True, text=True,
+                              check=True).stdout
     finally:
         shutil.rmtree(folder, ignore_errors=True)
+    size = re.search(r":\s*(\d+) x\s*(\d+), 1 channel", text)
+    check(size is not None, "oiiotool could not read channel %s of %s" % (channel, path))
+    w, h = int(size.group(1)), int(size.group(2))
+    out = np.full((h, w), np.nan, np.float32)
+    for x, y, v in re.findall(r"Pixel \((\d+), (\d+)\): (\S+)", text):
+        out[int(y), int(x)] = float(v)
+    check(np.isfinite(out).all(), "every pixel of %s read" % channel)
+    return out

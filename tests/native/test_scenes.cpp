@@ -102,8 +102,13 @@ constexpr uint32_t kGround = SS_MESH_CAST | SS_MESH_RECEIVE;
 Scene withGroundAndLight(const SceneParams& p) {
     Scene s;
     s.addMesh(makeGround(8.0f, 0.0f, kGround));
-    s.addLight(makeDiskLight({0.0f, 0.0f, p.lightHeight}, p.lightDiameter));
-    s.setCamera(makeTopCamera(p.width, p.height));
+    s.addLight(makeDiskLight({p.lightShift.x, p.lightShift.y, p.lightHeight}, p.lightDiameter));
+    Camera camera = makeTopCamera(p.width, p.height);
+    if (p.cameraZoom != 1.0f)
+        camera = makeLookAtCamera({0.0f, -2.5f, 8.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
+                                  2.0f * std::atan(std::tan(glm::radians(22.5f)) / p.cameraZoom),
+                                  p.width, p.height, 0.1f, 50.0f);
+    s.setCamera(camera);
     return s;
 }
 

@@ -36,6 +36,11 @@ struct SceneParams {
     float lightHeight = 4.0f;
     float occluderLift = 0.0f;  // raises the occluder(s) by this much (farther from the ground)
     int width = 160, height = 120;
+    // Added later (keep at the end: tests build SceneParams positionally). The light moved
+    // sideways in x, y, so its shadow falls beside the occluder rather than under it; and the
+    // camera's field of view divided by this zoom.
+    glm::vec2 lightShift{0.0f, 0.0f};
+    float cameraZoom = 1.0f;
 };
 
 // Box (1.2 x 1.2 x 0.4, top at z = 1.2) over a ground plane at z = 0.

@@ -123,6 +123,10 @@ SS_API ss_status ss_scene_get_camera(const ss_scene* scene, ss_camera_desc* out)
 SS_API ss_status ss_scene_set_view_layer(ss_scene* scene, const char* name);
 SS_API int32_t ss_scene_light_count(const ss_scene* scene);
 SS_API const char* ss_scene_light_name(const ss_scene* scene, int32_t index);
+/* A light as it was added (name points into the scene, valid while it lives). */
+SS_API ss_status ss_scene_get_light(const ss_scene* scene, int32_t index, ss_light_desc* out);
+/* The view layer name the EXR passes go under (default "ViewLayer"); valid while the scene lives. */
+SS_API const char* ss_scene_view_layer(const ss_scene* scene);
 SS_API int32_t ss_scene_mesh_count(const ss_scene* scene);
 /* The mesh report (open/non-manifold edges, orientation, degenerate faces) as JSON. */
 SS_API ss_status ss_scene_mesh_report(const ss_scene* scene, int32_t mesh, char* buffer,

@@ -181,3 +181,34 @@ SS_API ss_status ss_scene_mesh_report(const ss_scene* scene, int32_t mesh, char*
 }
 
 }  // extern "C"
+
+extern "C" {
+
+SS_API ss_status ss_scene_get_light(const ss_scene* scene, int32_t index, ss_light_desc* out) {
+    return guarded([&] {
+        require(scene, "ss_scene_get_light", "scene");
+        require(out, "ss_scene_get_light", "out");
+        const auto& lights = scene->scene.lights();
+        if (index < 0 || size_t(index) >= lights.size())
+            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_scene_get_light: light index " + std::to_string(index) +
+                                                    " is out of range (the scene has " +
+                                                    std::to_string(lights.size()) + " lights)");
+        const ss::Light& l = lights[size_t(index)];
+        out->name = l.name.c_str();
+        out->type = ss_light_type(int(l.type));
+        fromMat4(l.lightToWorld, out->light_to_world);
+        out->size = l.size;
+        out->size_y = l.sizeY;
+        out->radius = l.radius;
+        out->angle = l.angle;
+        out->spot_size = l.spotSize;
+        out->spot_blend = l.spotBlend;
+        out->cast_shadows = l.castShadows ? 1 : 0;
+    });
+}
+
+SS_API const char* ss_scene_view_layer(const ss_scene* scene) {
+    return scene ? scene->scene.viewLayer().c_str() : nullptr;
+}
+
+}  // extern "C"

@@ -147,8 +147,10 @@ std::vector<Quad> buildQuads(const Mesh& mesh, const std::vector<SilhouetteEdge>
 }
 
 // Cuts two umbra quads meeting at a vertex along the line where their planes intersect, so
-// neither reaches past the other (the paper's trimming). Returns false when that line does not
-// lie inside both quads' wedges (then each keeps its own direction).
+// neither reaches past the other (the paper's trimming). When that line does not lie inside
+// both quads' wedges, or the planes (nearly) coincide, both quads take the mean of their two
+// directions instead (returns false): they still share the far vertex, so the side surface
+// stays closed.
 bool trimCorner(const Mesh& mesh, Quad& in, Quad& out, uint32_t v) {
     glm::vec3 pv = mesh.positions[v];
     glm::vec3 eIn = glm::normalize(mesh.positions[in.a] - pv);   // along the incoming edge
@@ -157,12 +159,18 @@ bool trimCorner(const Mesh& mesh, Quad& in, Quad& out, uint32_t v) {
     glm::vec3 n1 = glm::cross(eIn, dIn), n2 = glm::cross(eOut, dOut);
     glm::vec3 line = glm::cross(n1, n2);
     float l = glm::length(line);
-    if (!(l > 1e-6f * glm::length(n1) * glm::length(n2))) return false;  // coplanar: nothing to trim
+    glm::vec3 mean = safeNormalize(dIn + dOut, dIn);
+    auto share = [&](const glm::vec3& d) {
+        in.dirB = d;
+        out.dirA = d;
+    };
+    if (!(l > 1e-3f * glm::length(n1) * glm::length(n2))) return share(mean), false;
     line /= l;
     if (glm::dot(line, dIn + dOut) < 0.0f) line = -line;
     // Inside each wedge: on the same side of the quad's edge as its own extrusion direction.
-    if (glm::dot(perp(line, eIn), perp(dIn, eIn)) <= 0.0f) return false;
-    if (glm::dot(perp(line, eOut), perp(dOut, eOut)) <= 0.0f) return false;
+    if (glm::dot(perp(line, eIn), perp(dIn, eIn)) <= 0.0f ||
+        glm::dot(perp(line, eOut), perp(dOut, eOut)) <= 0.0f)
+        return share(mean), false;
     in.dirB = line;
     out.dirA = line;
     return true;

@@ -17,7 +17,7 @@ namespace ss::gl {
 class Framebuffer {
 public:
     Framebuffer() = default;
-    // Owns one texture per entry of colorFormats (attachment i = COLOR_ATTACHMENTi) and, when
+    // Owns one texture per entry of colorFormats (none: attach borrowed textures afterwards) (attachment i = COLOR_ATTACHMENTi) and, when
     // depthFormat != 0 (e.g. GL_DEPTH_COMPONENT32F), a depth texture.
     Framebuffer(int width, int height, const std::vector<GLenum>& colorFormats,
                 GLenum depthFormat = 0, GLenum filter = GL_NEAREST);

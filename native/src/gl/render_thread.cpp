@@ -79,7 +79,7 @@ std::unique_ptr<Context> createContext(ss_backend backend) {
 }  // namespace
 
 RenderThread::RenderThread(ss_backend backend) : state_(std::make_shared<State>()) {
-    backendName(backend);  // rejects unknown values before a thread exists
+    gl::backendName(backend);  // rejects unknown values before a thread exists
     std::exception_ptr startError;
     bool started = false;
     auto s = state_;

@@ -23,9 +23,11 @@ void writeAtomically(const std::string& path, const std::function<void(const std
     static std::atomic<unsigned> counter{0};
     // Same folder, so the rename is atomic; same extension, so writers that pick a format by
     // extension still work; a leading dot keeps it out of casual listings.
-    fs::path temp = target.parent_path() /
-                    ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) + "_" +
-                     std::to_string(counter++) + target.extension().string());
+    std::string tempName(1, '.');
+    tempName += target.stem().string();
+    tempName += ".tmp" + std::to_string(getpid()) + "_" + std::to_string(counter++);
+    tempName += target.extension().string();
+    fs::path temp = target.parent_path() / tempName;
     auto removeTemp = [&] {
         std::error_code ignored;
         fs::remove(temp, ignored);

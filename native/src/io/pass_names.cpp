@@ -14,8 +14,13 @@ std::string sanitizePassToken(const std::string& text) {
 }
 
 std::string passName(const std::string& light, const std::string& method, const std::string& layer) {
-    std::string name = sanitizePassToken(light) + "_" + sanitizePassToken(method);
-    if (layer != "V") name += "_" + sanitizePassToken(layer);
+    std::string name = sanitizePassToken(light);
+    name += '_';
+    name += sanitizePassToken(method);
+    if (layer != "V") {
+        name += '_';
+        name += sanitizePassToken(layer);
+    }
     return name;
 }
 
@@ -27,7 +32,8 @@ bool splitPassName(const std::string& pass, PassParts* out) {
     size_t bestPos = std::string::npos;
     std::string bestMethod;
     for (const std::string& m : methodNames()) {
-        std::string token = "_" + m;
+        std::string token(1, '_');
+        token += m;  // (not "_" + m: GCC 12 warns falsely on it, -Wrestrict)
         // Right-most occurrence that ends the name or is followed by "_<layer>".
         for (size_t pos = pass.rfind(token); pos != std::string::npos && pos > 0;
              pos = pos == 0 ? std::string::npos : pass.rfind(token, pos - 1)) {

@@ -10,6 +10,11 @@ namespace ss {
 // One factory per method, defined in that method's own file. A method not built yet has none.
 std::unique_ptr<Method> makeShadowMapMethod();
 std::unique_ptr<Method> makeReferenceMethod();
+std::unique_ptr<Method> makeSweepMethod();
+std::unique_ptr<Method> makePcssMethod();
+std::unique_ptr<Method> makePenumbraMapMethod();
+std::unique_ptr<Method> makeOcclusionTexturesMethod();
+std::unique_ptr<Method> makeDbufferMethod();
 
 namespace {
 struct Entry {
@@ -19,11 +24,11 @@ struct Entry {
 const std::vector<Entry>& entries() {
     static const std::vector<Entry> table = {
         {"shadow_map", makeShadowMapMethod},
-        {"pcss", nullptr},
-        {"dbuffer", nullptr},
-        {"sweep", nullptr},
-        {"penumbra_map", nullptr},
-        {"occlusion_textures", nullptr},
+        {"pcss", makePcssMethod},
+        {"dbuffer", makeDbufferMethod},
+        {"sweep", makeSweepMethod},
+        {"penumbra_map", makePenumbraMapMethod},
+        {"occlusion_textures", makeOcclusionTexturesMethod},
         {"reference", makeReferenceMethod},
     };
     return table;

@@ -53,34 +53,39 @@ std::vector<DirectedEdge> regionBoundary(std::span<const SweepSegment> segments,
     return out;
 }
 
-std::vector<Chain> linkChains(std::span<const DirectedEdge> boundary) {
-    auto less = [](const IPoint& a, const IPoint& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; };
-    std::map<IPoint, int, decltype(less)> balance(less);
-    std::vector<std::pair<IPoint, IPoint>> edges;
-    for (const DirectedEdge& e : boundary)
-        for (int k = 0; k < std::abs(e.weight); ++k) {
-            IPoint a = e.weight > 0 ? e.a : e.b, b = e.weight > 0 ? e.b : e.a;
-            edges.emplace_back(a, b);
-            balance[a] += 1;
-            balance[b] -= 1;
-        }
-    // Vertical connectors: along each grid column, the running out-minus-in balance from the
-    // bottom says how many connectors run between consecutive unbalanced points, and which way.
-    std::vector<std::pair<IPoint, IPoint>> connectors;
+namespace {
+bool lessPoint(const IPoint& a, const IPoint& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; }
+}  // namespace
+
+void addVerticalConnectors(std::vector<DirectedEdge>* boundary) {
+    std::map<IPoint, int, decltype(&lessPoint)> balance(&lessPoint);
+    for (const DirectedEdge& e : *boundary) {
+        balance[e.a] += e.weight;
+        balance[e.b] -= e.weight;
+    }
     IPoint prev{};
     int running = 0;
     bool havePrev = false;
     for (const auto& [p, b] : balance) {
         if (b == 0) continue;
-        if (havePrev && prev.x == p.x && running != 0)
-            for (int k = 0; k < std::abs(running); ++k)
-                connectors.push_back(running > 0 ? std::make_pair(p, prev) : std::make_pair(prev, p));
         if (!havePrev || prev.x != p.x) running = 0;
+        // running > 0: the points below send out more than they receive, so edges come down.
+        if (running > 0) boundary->push_back(DirectedEdge{p, prev, running});
+        if (running < 0) boundary->push_back(DirectedEdge{prev, p, -running});
         running += b;
         prev = p;
         havePrev = true;
     }
-    edges.insert(edges.end(), connectors.begin(), connectors.end());
+}
+
+std::vector<Chain> linkChains(std::span<const DirectedEdge> boundaryIn) {
+    auto less = &lessPoint;
+    std::vector<DirectedEdge> boundary(boundaryIn.begin(), boundaryIn.end());
+    addVerticalConnectors(&boundary);
+    std::vector<std::pair<IPoint, IPoint>> edges;
+    for (const DirectedEdge& e : boundary)
+        for (int k = 0; k < std::abs(e.weight); ++k)
+            edges.push_back(e.weight > 0 ? std::make_pair(e.a, e.b) : std::make_pair(e.b, e.a));
 
     std::map<IPoint, std::vector<int>, decltype(less)> outgoing(less);
     for (size_t i = 0; i < edges.size(); ++i) outgoing[edges[i].first].push_back(int(i));
@@ -133,7 +138,9 @@ double regionArea(std::span<const Chain> chains) {
 
 std::vector<DirectedEdge> hardOutline(std::span<const DirectedEdge> projected) {
     std::vector<SweepSegment> segs = toSweepSegments(projected);
-    return regionBoundary(segs, [](int w) { return w >= 1; });
+    std::vector<DirectedEdge> out = regionBoundary(segs, [](int w) { return w >= 1; });
+    addVerticalConnectors(&out);
+    return out;
 }
 
 }  // namespace ss::planar

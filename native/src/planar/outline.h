@@ -31,7 +31,13 @@ i128 twiceSignedArea(const Chain& chain);
 // The area a set of chains encloses with the region on the right, in grid units squared.
 double regionArea(std::span<const Chain> chains);
 
-// The hard shadow of one sample: the outline of winding >= 1 of its projected directed edges.
+// Adds the vertical pieces regionBoundary() leaves out: along each grid column the running
+// out-minus-in balance from the bottom says how many run between consecutive unbalanced
+// points, and which way. The result is a set of closed cycles.
+void addVerticalConnectors(std::vector<DirectedEdge>* boundary);
+
+// The hard shadow of one sample: the outline of winding >= 1 of its projected directed edges,
+// closed (vertical pieces included).
 std::vector<DirectedEdge> hardOutline(std::span<const DirectedEdge> projected);
 
 }  // namespace ss::planar

@@ -28,6 +28,7 @@ struct ShadowMesh {
     double shadowArea = 0.0;    // count >= 1
 };
 
-ShadowMesh fillShadow(std::span<const SweepSegment> merged, int samples, FillMode mode);
+// `merged`: mergeOutlines() of the n samples' closed hard outlines.
+ShadowMesh fillShadow(std::span<const DirectedEdge> merged, int samples, FillMode mode);
 
 }  // namespace ss::planar

@@ -4,10 +4,10 @@
 
 namespace ss::planar {
 
-std::vector<SweepSegment> mergeOutlines(std::span<const std::vector<DirectedEdge>> outlines) {
+std::vector<DirectedEdge> mergeOutlines(std::span<const std::vector<DirectedEdge>> outlines) {
     std::vector<DirectedEdge> all;
     for (const auto& o : outlines) all.insert(all.end(), o.begin(), o.end());
-    return toSweepSegments(all);
+    return all;
 }
 
 float ringIntensity(int level, int samples) {
@@ -15,7 +15,8 @@ float ringIntensity(int level, int samples) {
     return float(level - 1) / float(samples - 1);
 }
 
-std::vector<Ring> buildRings(std::span<const SweepSegment> merged, int samples) {
+std::vector<Ring> buildRings(std::span<const DirectedEdge> mergedEdges, int samples) {
+    std::vector<SweepSegment> merged = toSweepSegments(mergedEdges);
     std::vector<Ring> rings;
     for (int k = 1; k <= samples; ++k) {
         Ring r;

@@ -9,9 +9,9 @@
 
 namespace ss::planar {
 
-// All n outlines as one segment set: its winding number at a point is how many samples see
-// the point in shadow (each outline winds once around its own shadow).
-std::vector<SweepSegment> mergeOutlines(std::span<const std::vector<DirectedEdge>> outlines);
+// All n outlines as one edge set: its winding number at a point is how many samples see the
+// point in shadow (each outline winds once around its own shadow).
+std::vector<DirectedEdge> mergeOutlines(std::span<const std::vector<DirectedEdge>> outlines);
 
 struct Ring {
     int level = 0;           // k: the boundary of {count >= k}
@@ -20,7 +20,7 @@ struct Ring {
 };
 
 // Rings 1..n, outermost first. Ring k+1 lies inside ring k by construction (level sets).
-std::vector<Ring> buildRings(std::span<const SweepSegment> merged, int samples);
+std::vector<Ring> buildRings(std::span<const DirectedEdge> merged, int samples);
 
 // The intensity a ring of level k carries.
 float ringIntensity(int level, int samples);

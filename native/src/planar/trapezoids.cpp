@@ -29,11 +29,21 @@ std::vector<Trapezoid> trapezoids(std::span<const SweepSegment> segments, const 
         z.winding = o.winding;
         z.windingBelow = o.below;
         z.windingAbove = o.above;
+        z.bottomSeg = o.bottom;
+        z.topSeg = o.top;
+        z.rx0 = o.x0;
+        z.rx1 = o.x1;
         out.push_back(z);
     };
     std::unordered_map<uint64_t, Open> open, next;
+    std::vector<SlabGroup> live;
     sweep(segments, [&](const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups) {
         next.clear();
+        // Coincident edges that cancel (delta 0) change nothing: trapezoids span across them.
+        live.clear();
+        for (const SlabGroup& g : groups)
+            if (g.delta != 0) live.push_back(g);
+        groups = live;
         int w = 0;
         for (size_t i = 0; i + 1 < groups.size(); ++i) {
             int below = w;
@@ -56,15 +66,47 @@ std::vector<Trapezoid> trapezoids(std::span<const SweepSegment> segments, const 
     return out;
 }
 
-void triangulate(const Trapezoid& t, std::vector<Triangle2>* out) {
+int triangulateCorners(const Trapezoid& t, int (*tris)[3]) {
+    // Which vertical sides have length is decided exactly by the sweep order (bottom below top
+    // in the slab), but the doubles may round equal: a side of zero length in doubles has no area.
     bool left = t.yTop0 > t.yBottom0, right = t.yTop1 > t.yBottom1;
+    int n = 0;
+    auto add = [&](int a, int b, int c) {
+        tris[n][0] = a, tris[n][1] = b, tris[n][2] = c;
+        ++n;
+    };
     if (left && right) {
-        out->push_back({{t.x0, t.x1, t.x1}, {t.yBottom0, t.yBottom1, t.yTop1}});
-        out->push_back({{t.x0, t.x1, t.x0}, {t.yBottom0, t.yTop1, t.yTop0}});
+        add(0, 1, 2);
+        add(0, 2, 3);
     } else if (left) {
-        out->push_back({{t.x0, t.x1, t.x0}, {t.yBottom0, t.yBottom1, t.yTop0}});
+        add(0, 1, 3);
     } else if (right) {
-        out->push_back({{t.x0, t.x1, t.x1}, {t.yBottom0, t.yBottom1, t.yTop1}});
+        add(0, 1, 2);
+    }
+    return n;
+}
+
+double cornerX(const Trapezoid& t, int corner) { return (corner == 0 || corner == 3) ? t.x0 : t.x1; }
+
+double cornerY(const Trapezoid& t, int corner) {
+    switch (corner) {
+        case 0: return t.yBottom0;
+        case 1: return t.yBottom1;
+        case 2: return t.yTop1;
+        default: return t.yTop0;
+    }
+}
+
+void triangulate(const Trapezoid& t, std::vector<Triangle2>* out) {
+    int tris[2][3];
+    int n = triangulateCorners(t, tris);
+    for (int i = 0; i < n; ++i) {
+        Triangle2 tri;
+        for (int k = 0; k < 3; ++k) {
+            tri.x[k] = cornerX(t, tris[i][k]);
+            tri.y[k] = cornerY(t, tris[i][k]);
+        }
+        out->push_back(tri);
     }
 }
 

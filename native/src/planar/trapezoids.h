@@ -17,12 +17,19 @@ struct Trapezoid {
     int winding = 0;                    // inside
     int windingBelow = 0;               // just below the bottom side
     int windingAbove = 0;               // just above the top side
+    int bottomSeg = 0, topSeg = 0;      // representative segments of the two sides
+    RatX rx0, rx1;                      // x0 and x1, exact
     double area() const { return 0.5 * (x1 - x0) * ((yTop0 - yBottom0) + (yTop1 - yBottom1)); }
 };
 
 std::vector<Trapezoid> trapezoids(std::span<const SweepSegment> segments, const RegionFn& inside);
 
-// Two triangles per trapezoid (one when a side has zero length), counter-clockwise.
+// Corners: 0 bottom at x0, 1 bottom at x1, 2 top at x1, 3 top at x0. Two triangles per
+// trapezoid (one when a vertical side has zero length), counter-clockwise, as corner triples.
+int triangulateCorners(const Trapezoid& t, int (*tris)[3]);
+double cornerX(const Trapezoid& t, int corner);
+double cornerY(const Trapezoid& t, int corner);
+
 struct Triangle2 {
     double x[3], y[3];
 };

@@ -4,6 +4,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -57,6 +58,32 @@ constexpr float gammaBound(int n) {
     return n * u / (1.0f - n * u);
 }
 
+// One packet width's worth of shadow rays: RTCRay8 / RTCRay16 share their field names.
+template <int N, typename RayN, void (*OccludedN)(const int*, RTCScene, RTCIntersectContext*, RayN*)>
+void occludedPackets(RTCScene scene, ShadowContext* ctx, const glm::vec3& origin,
+                     const glm::vec3* dirs, const float* tFar, size_t n, uint8_t* hidden) {
+    for (size_t start = 0; start < n; start += N) {
+        alignas(64) int valid[N];
+        alignas(64) RayN r;
+        for (int i = 0; i < N; ++i) {
+            size_t k = start + size_t(i);
+            bool used = k < n;
+            valid[i] = used ? -1 : 0;
+            glm::vec3 d = used ? dirs[k] : glm::vec3(0.0f, 0.0f, 1.0f);
+            r.org_x[i] = origin.x, r.org_y[i] = origin.y, r.org_z[i] = origin.z;
+            r.dir_x[i] = d.x, r.dir_y[i] = d.y, r.dir_z[i] = d.z;
+            r.tnear[i] = 0.0f;
+            r.tfar[i] = used ? tFar[k] : 0.0f;
+            r.time[i] = 0.0f;
+            r.mask[i] = 0xffffffffu;
+            r.id[i] = 0;
+            r.flags[i] = 0;
+        }
+        OccludedN(valid, scene, &ctx->base, &r);
+        for (int i = 0; i < N && start + size_t(i) < n; ++i) hidden[start + size_t(i)] = r.tfar[i] < 0.0f;
+    }
+}
+
 }  // namespace
 
 struct TraceScene::Impl {
@@ -69,6 +96,7 @@ struct TraceScene::Impl {
     RTCScene all = nullptr;      // camera rays
     RTCScene casters = nullptr;  // shadow rays
     bool filterSupported = false;
+    int packetWidth = 1;  // the widest packet the CPU traces natively
     std::vector<MeshCopy> meshes;
 
     ~Impl() {
@@ -103,6 +131,8 @@ TraceScene::TraceScene(const Scene& scene)
     Impl& m = *impl_;
     m.device = sharedDevice();
     m.filterSupported = rtcGetDeviceProperty(m.device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED) != 0;
+    if (rtcGetDeviceProperty(m.device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) m.packetWidth = 16;
+    else if (rtcGetDeviceProperty(m.device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) m.packetWidth = 8;
     m.all = rtcNewScene(m.device);
     m.casters = rtcNewScene(m.device);
     checkDevice(m.device, "creating scenes");
@@ -180,6 +210,25 @@ bool TraceScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float t
     r.mask = 0xffffffffu;
     rtcOccluded1(impl_->casters, &ctx.base, &r);
     return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+void TraceScene::occludedMany(const glm::vec3& origin, const glm::vec3* dirs, const float* tFar,
+                              size_t n, uint32_t skipMesh, uint32_t skipTriangle,
+                              uint8_t* hidden) const {
+    ShadowContext ctx;
+    rtcInitIntersectContext(&ctx.base);
+    // One pixel's shadow rays share their origin and aim at one light: coherent packets.
+    ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    if (impl_->filterSupported) ctx.base.filter = skipOwnTriangle;
+    ctx.skipMesh = skipMesh;
+    ctx.skipTriangle = skipTriangle;
+    if (impl_->packetWidth == 16)
+        occludedPackets<16, RTCRay16, rtcOccluded16>(impl_->casters, &ctx, origin, dirs, tFar, n, hidden);
+    else if (impl_->packetWidth == 8)
+        occludedPackets<8, RTCRay8, rtcOccluded8>(impl_->casters, &ctx, origin, dirs, tFar, n, hidden);
+    else
+        for (size_t i = 0; i < n; ++i)
+            hidden[i] = occluded(origin, dirs[i], tFar[i], skipMesh, skipTriangle);
 }
 
 }  // namespace ss

@@ -42,6 +42,10 @@ public:
     // (skipMesh, skipTriangle) is ignored (a flat triangle never shadows its own points).
     bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tFar, uint32_t skipMesh,
                   uint32_t skipTriangle) const;
+    // The same for n rays sharing one origin (one pixel's light samples), traced as coherent
+    // packets; hidden[i] = 1 when ray i is blocked, else 0.
+    void occludedMany(const glm::vec3& origin, const glm::vec3* dirs, const float* tFar, size_t n,
+                      uint32_t skipMesh, uint32_t skipTriangle, uint8_t* hidden) const;
 
 private:
     struct Impl;

@@ -3,6 +3,8 @@
 #include "reference/visibility_estimator.h"
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace ss {
 
@@ -14,13 +16,16 @@ PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& 
                                    const SurfaceHit& hit, const SampleSequence& sequence,
                                    int samples, bool castShadows) {
     const glm::vec3 origin = hit.point + shadowRayOffset(hit, scene.extent()) * hit.normal;
-    // Double sums: 4096 samples of widely varying weight must not lose the small ones.
-    double sumWeight = 0.0, sumVisible = 0.0;
+    // Per-thread scratch: one pixel's rays are gathered first and traced as packets.
+    thread_local std::vector<glm::vec3> dirs;
+    thread_local std::vector<float> tFars;
+    thread_local std::vector<double> weights;
+    thread_local std::vector<uint8_t> hidden;
+    dirs.clear(), tFars.clear(), weights.clear();
     for (int i = 0; i < samples; ++i) {
         LightSample s = light.sample(hit.point, sequence.point(uint32_t(i)));
         float cosSurface = glm::dot(hit.normal, s.toLight);
-        if (!(cosSurface > 0.0f) || !(s.weight > 0.0f)) continue;
-        double w = double(s.weight) * double(cosSurface);
+        if (!(cosSurface > 0.0f) || !(s.weight > 0.0f)) continue;  // below the horizon / dark
         glm::vec3 dir = s.toLight;
         float tFar = s.distance;
         if (std::isfinite(s.distance)) {
@@ -32,8 +37,20 @@ PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& 
             dir = v / len;
             tFar = len * (1.0f - 1e-5f);
         }
-        sumWeight += w;
-        if (!castShadows || !scene.occluded(origin, dir, tFar, hit.mesh, hit.triangle)) sumVisible += w;
+        dirs.push_back(dir);
+        tFars.push_back(tFar);
+        weights.push_back(double(s.weight) * double(cosSurface));
+    }
+    hidden.assign(weights.size(), 0);
+    if (castShadows && !weights.empty())
+        scene.occludedMany(origin, dirs.data(), tFars.data(), dirs.size(), hit.mesh, hit.triangle,
+                           hidden.data());
+    // Double sums in sample order: 4096 samples of widely varying weight must not lose the
+    // small ones, and with nothing hidden the two sums are bit-identical (V == 1 exactly).
+    double sumWeight = 0.0, sumVisible = 0.0;
+    for (size_t i = 0; i < weights.size(); ++i) {
+        sumWeight += weights[i];
+        if (!hidden[i]) sumVisible += weights[i];
     }
     PointVisibility out;
     if (sumWeight > 0.0) {

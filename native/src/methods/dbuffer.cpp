@@ -1,0 +1,150 @@
+// How the dbuffer method renders: volumes into the D-buffer from the light centre, then eq. 3 per pixel.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+#include <cstddef>
+#include <memory>
+
+#include "core/error.h"
+#include "gl/framebuffer.h"
+#include "gl/program.h"
+#include "gl/render_state.h"
+#include "methods/dbuffer_geometry.h"
+#include "methods/method.h"
+#include "pipeline/frame.h"
+
+namespace ss {
+
+namespace {
+
+// Volumes overlap: keep the surface farthest from the light (paper §4, concave and overlapping
+// occluders). Both sides drawn: the soups have no consistent winding.
+constexpr gl::RenderState kFarthest{"dbuffer_farthest", true, GL_GREATER, true, true, false,
+                                    GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
+
+// One volume soup on the GPU.
+struct GpuSoup {
+    gl::BufferHandle buffer;
+    gl::VertexArrayHandle vao;
+    GLsizei count = 0;
+};
+
+GpuSoup upload(const std::vector<VolumeVertex>& soup) {
+    GpuSoup s;
+    s.count = GLsizei(soup.size());
+    if (soup.empty()) return s;
+    const gl::Functions& g = gl::api();
+    s.buffer = gl::makeBuffer(soup.data(), soup.size() * sizeof(VolumeVertex));
+    GLuint vao = 0;
+    g.CreateVertexArrays(1, &vao);
+    s.vao = gl::VertexArrayHandle(vao);
+    g.VertexArrayVertexBuffer(vao, 0, s.buffer.id(), 0, sizeof(VolumeVertex));
+    const GLuint offsets[4] = {offsetof(VolumeVertex, position), offsetof(VolumeVertex, edgeA),
+                               offsetof(VolumeVertex, edgeB), offsetof(VolumeVertex, extrusion)};
+    for (GLuint i = 0; i < 4; ++i) {
+        g.VertexArrayAttribFormat(vao, i, 3, GL_FLOAT, GL_FALSE, offsets[i]);
+        g.VertexArrayAttribBinding(vao, i, 0);
+        g.EnableVertexArrayAttrib(vao, i);
+    }
+    return s;
+}
+
+void draw(const GpuSoup& s) {
+    if (s.count == 0) return;
+    const gl::Functions& g = gl::api();
+    g.BindVertexArray(s.vao.id());
+    g.DrawArrays(GL_TRIANGLES, 0, s.count);
+    g.BindVertexArray(0);
+}
+
+// Replaces anything non-finite (never expected: a safety net for the contract "no NaN").
+void sanitize(Image& img, float fallback) {
+    for (float& v : img.pixels)
+        if (!std::isfinite(v)) v = fallback;
+}
+
+class DbufferMethod final : public Method {
+public:
+    const char* name() const override { return "dbuffer"; }
+    bool needsGl() const override { return true; }
+
+    void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        settings.report(0.0f, "silhouettes and volumes");
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex);
+    }
+
+    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        // A cache hit when prepare() ran for this light (the cache keys on scene and light).
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex);
+        const DbufferGeometry& geo = *geometry_;
+        const gl::Functions& g = frame.gl();
+        const CameraPass& cam = frame.cameraPass();
+        const ShadowMap& map = frame.shadowMap(lightIndex, int(settings.number("shadow_map_size", 0.0f)));
+
+        // D-buffer: the shared map's view, so its texels are the shadow map's texels.
+        settings.report(0.3f, "D-buffer pass");
+        gl::Framebuffer dbuf(map.size, map.size, {GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
+        dbuf.bind();
+        dbuf.clearColor(0, glm::vec4(0.0f));
+        gl::apply(kFarthest);
+        const gl::Program& vol = gl::program("dbuffer/volume.vert.glsl", "dbuffer/volume.frag.glsl");
+        vol.use();
+        vol.set("uWorldToClip", map.worldToClip());
+        vol.set("uCentre", geo.disk.centre);
+        vol.set("uNormal", geo.disk.normal);
+        // Depth = distance / uFar: anything past the far plane is clipped anyway.
+        float far = glm::length(map.origin - geo.disk.centre) + map.farPlane * 2.0f + 1e-6f;
+        vol.set("uFar", far);
+        GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
+        // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
+        dbuf.clearDepth(0.0f);
+        g.ColorMask(GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE);
+        draw(umbra);
+        dbuf.clearDepth(0.0f);
+        g.ColorMask(GL_FALSE, GL_FALSE, GL_TRUE, GL_TRUE);
+        draw(penumbra);
+        g.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        g.check("drawing the D-buffer");
+
+        // Camera pass: eq. 3 and eq. 4 per pixel.
+        settings.report(0.7f, "camera pass");
+        gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F});
+        out.bind();
+        gl::apply(gl::states::overwrite);
+        const gl::Program& shade = gl::program("common/fullscreen.vert.glsl", "dbuffer/camera.frag.glsl");
+        shade.use();
+        int unit = frame.bindCameraPass(shade, 0);
+        unit = frame.bindShadowMap(shade, map, unit);
+        shade.setTexture("uDBuffer", unit++, dbuf.colorId(0));
+        frame.setLightUniforms(shade, lightIndex);
+        shade.set("uCentre", geo.disk.centre);
+        shade.set("uSmallOccluders", settings.flag("small_occluders", false) ? 1 : 0);
+        shade.set("uBiasTexels", settings.number("bias_texels", 1.5f));
+        frame.drawFullscreen();
+        g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        g.check("drawing the dbuffer camera pass");
+
+        Layers layers;
+        layers.add("V", out.readChannel(0, 0));
+        layers.add("mask", out.readChannel(0, 1));
+        if (settings.extraLayers) {
+            layers.add("umbra", out.readChannel(0, 2));
+            layers.add("penumbra", out.readChannel(0, 3));
+            layers.add("dist_occluder", out.readChannel(1, 0));
+            layers.add("dist_umbra", out.readChannel(1, 1));
+            layers.add("dist_penumbra", out.readChannel(1, 2));
+            layers.add("dist_silhouette", out.readChannel(1, 3));
+        }
+        for (auto& [name, img] : layers.items) sanitize(img, name == "V" ? 1.0f : 0.0f);
+        settings.report(1.0f, "done");
+        return layers;
+    }
+
+private:
+    std::shared_ptr<const DbufferGeometry> geometry_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makeDbufferMethod() { return std::make_unique<DbufferMethod>(); }
+
+}  // namespace ss

@@ -1,0 +1,86 @@
+// How the dbuffer volumes of a scene and light are built and cached.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "methods/dbuffer_geometry.h"
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <list>
+#include <mutex>
+
+#include "core/error.h"
+#include "methods/dbuffer_light.h"
+
+namespace ss {
+
+namespace {
+
+struct Key {
+    uint64_t sceneId = 0, revision = 0;
+    int lightIndex = 0;
+    Disk disk;
+    bool operator==(const Key& o) const {
+        return sceneId == o.sceneId && revision == o.revision && lightIndex == o.lightIndex &&
+               disk.centre == o.disk.centre && disk.normal == o.disk.normal && disk.radius == o.disk.radius;
+    }
+};
+
+constexpr size_t kCacheEntries = 8;
+std::mutex cacheMutex;
+std::list<std::pair<Key, std::shared_ptr<const DbufferGeometry>>> cache;  // most recent first
+std::atomic<size_t> builds{0};
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& disk) {
+    auto g = std::make_shared<DbufferGeometry>();
+    g->disk = disk;
+    Bounds all = scene.bounds();
+    // Far enough that every volume reaches past every receiver: from the light to the far side
+    // of the scene, twice over.
+    float reach = all.empty() ? 1.0f : glm::length(all.center() - disk.centre) + all.diagonal();
+    g->extrusionLength = 2.0f * reach;
+    for (const Mesh& mesh : scene.meshes()) {
+        if (!mesh.casts() || mesh.triangles.empty()) continue;
+        auto t0 = std::chrono::steady_clock::now();
+        DiskSilhouette sil = diskSilhouette(mesh, disk);
+        g->silhouetteMs += msSince(t0);
+        auto t1 = std::chrono::steady_clock::now();
+        g->volumes.append(extrudeVolumes(mesh, sil, disk, g->extrusionLength));
+        g->extrusionMs += msSince(t1);
+    }
+    ++builds;
+    return g;
+}
+
+}  // namespace
+
+std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex) {
+    if (lightIndex < 0 || size_t(lightIndex) >= scene.lights().size())
+        fail(SS_ERROR_INVALID_ARGUMENT, "dbuffer: light index " + std::to_string(lightIndex) + " is out of range");
+    Bounds casters;
+    for (const Mesh& m : scene.meshes())
+        if (m.casts())
+            for (const glm::vec3& p : m.positions) casters.extend(p);
+    Key key{scene.id(), scene.revision(), lightIndex,
+            dbufferDisk(scene.lights()[size_t(lightIndex)], casters, scene.bounds())};
+    {
+        std::lock_guard<std::mutex> lock(cacheMutex);
+        for (auto it = cache.begin(); it != cache.end(); ++it)
+            if (it->first == key) {
+                cache.splice(cache.begin(), cache, it);
+                return cache.front().second;
+            }
+    }
+    auto g = build(scene, key.disk);
+    std::lock_guard<std::mutex> lock(cacheMutex);
+    cache.emplace_front(key, g);
+    if (cache.size() > kCacheEntries) cache.pop_back();
+    return g;
+}
+
+size_t dbufferGeometryBuilds() { return builds.load(); }
+
+}  // namespace ss

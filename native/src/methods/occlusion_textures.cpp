@@ -1,0 +1,82 @@
+// How the occlusion_textures method runs for one light: fit the slices, slice, pre-filter,
+// shade, and name the layers (paper 4: Eisemann and Décoret, occlusion textures).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "io/metrics.h"
+#include "methods/method.h"
+#include "methods/occlusion_textures_passes.h"
+#include "pipeline/frame.h"
+
+namespace ss {
+
+namespace {
+
+occlusion::Fade parseFade(const std::string& name) {
+    if (name == "below") return occlusion::Fade::Below;
+    if (name == "paper") return occlusion::Fade::Paper;
+    fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: fade = '" + name + "' (known: below, paper)");
+}
+
+int integerSetting(const RenderSettings& settings, const char* key, int fallback) {
+    float v = settings.number(key, float(fallback));
+    if (v != std::floor(v)) fail(SS_ERROR_INVALID_ARGUMENT, std::string("occlusion_textures: ") + key + " must be an integer");
+    return int(v);
+}
+
+class OcclusionTexturesMethod final : public Method {
+public:
+    const char* name() const override { return "occlusion_textures"; }
+    bool needsGl() const override { return true; }
+
+    // Settings: slices (1..16, default 8), resolution (long side of the occlusion textures,
+    // default 512), filter (mipmap | nbuffer | sat, default nbuffer), thin_fix (on: every
+    // mesh; default off: only meshes flagged SS_MESH_THIN), fade (below | paper).
+    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        const Light& light = frame.light(lightIndex);
+        int sliceCount = integerSetting(settings, "slices", 8);
+        int resolution = integerSetting(settings, "resolution", 512);
+        occlusion::Filter filter = occlusion::parseFilter(settings.text("filter", "nbuffer"));
+        occlusion::Fade fade = parseFade(settings.text("fade", "below"));
+        bool thinFixAll = settings.flag("thin_fix", false);
+
+        occlusion::KernelLight kernel = occlusion::kernelLight(light, frame.scene().bounds());
+        occlusion::SliceSetup setup = occlusion::fitSlices(frame.scene(), kernel, sliceCount, resolution);
+        settings.report(0.1f, "slicing");
+        occlusion::SliceTextures slices = occlusion::renderSlices(frame, setup, filter, thinFixAll);
+        settings.report(0.4f, "pre-filtering");
+        occlusion::FilteredSlices filtered = occlusion::prefilter(filter, slices);
+        settings.report(0.6f, "shading");
+        occlusion::ShadeOutput out = occlusion::shade(frame, lightIndex, setup, filtered, fade, settings.extraLayers);
+        settings.report(1.0f, "done");
+
+        Layers layers;
+        int width = out.visibility.width, height = out.visibility.height;
+        if (settings.extraLayers) {
+            Image umbra(width, height, 0.0f), penumbra(width, height, 0.0f);
+            for (size_t i = 0; i < out.visibility.pixels.size(); ++i) {
+                if (out.mask.pixels[i] < 0.5f) continue;
+                float v = out.visibility.pixels[i];
+                umbra.pixels[i] = v < kUmbraThreshold ? 1.0f : 0.0f;
+                penumbra.pixels[i] = (v >= kUmbraThreshold && v <= kLitThreshold) ? 1.0f : 0.0f;
+            }
+            layers.add("V", std::move(out.visibility));
+            layers.add("mask", std::move(out.mask));
+            layers.add("umbra", std::move(umbra));
+            layers.add("penumbra", std::move(penumbra));
+            for (size_t k = 0; k < out.slices.size(); ++k) layers.add("slice_" + std::to_string(k), std::move(out.slices[k]));
+        } else {
+            layers.add("V", std::move(out.visibility));
+            layers.add("mask", std::move(out.mask));
+        }
+        return layers;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makeOcclusionTexturesMethod() { return std::make_unique<OcclusionTexturesMethod>(); }
+
+}  // namespace ss

@@ -1,0 +1,61 @@
+// What the GL stages of occlusion_textures hand each other: the packed occlusion textures
+// (four slices per RGBA target) and their pre-filtered form, one per filter type.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <string>
+#include <vector>
+
+#include "gl/objects.h"
+#include "gl/program.h"
+
+#include <glm/glm.hpp>
+
+namespace ss::occlusion {
+
+enum class Filter { Mipmap, NBuffer, Sat };
+// "mipmap", "nbuffer", "sat"; throws ss::Error(SS_ERROR_INVALID_ARGUMENT) otherwise.
+Filter parseFilter(const std::string& name);
+const char* filterName(Filter filter);
+// The program define that picks the filter's boxFilter() in the shaders.
+const char* filterDefine(Filter filter);
+
+using TextureHandle = gl::Handle<gl::deleteTexture>;
+
+// The slicing pass output: ceil(count / 4) RGBA16F textures of width x height; slice k is
+// channel k % 4 of texture k / 4. With mipmap storage when the mipmap filter will run.
+struct SliceTextures {
+    int width = 0, height = 0, count = 0;
+    std::vector<TextureHandle> groups;
+    int groupCount() const { return int(groups.size()); }
+};
+SliceTextures makeSliceTextures(int width, int height, int count, bool withMipmaps);
+
+// Pre-filtered textures, one per group, bound to the shaders' `filtered[4]` samplers.
+struct FilteredSlices {
+    Filter filter = Filter::NBuffer;
+    GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_2D_ARRAY for N-Buffers
+    std::vector<TextureHandle> owned;  // SAT tables and N-Buffers (mipmaps live in the slices)
+    std::vector<GLuint> textures;
+};
+
+FilteredSlices prefilterMipmap(const SliceTextures& slices);
+FilteredSlices prefilterSat(const SliceTextures& slices);
+FilteredSlices prefilterNBuffer(const SliceTextures& slices);
+FilteredSlices prefilter(Filter filter, const SliceTextures& slices);
+
+// Points `filtered[0..3]` of `program` at the groups (units firstUnit..firstUnit+3); unused
+// entries repeat group 0 so every sampler is valid.
+void bindFiltered(const gl::Program& program, const FilteredSlices& filtered, int firstUnit);
+
+// Reads every level of one group texture back (tests and debug): RGBA floats, row 0 first.
+std::vector<float> readTexture(GLuint texture, GLenum target, int level, int layer, int width, int height);
+
+}  // namespace ss::occlusion
+
+namespace ss::occlusion {
+// Evaluates the GLSL boxFilter of `filtered` for group `group` at each query
+// (centre.x, centre.y, width, height in texels) and returns the RGBA responses (tests).
+std::vector<glm::vec4> probeFilter(const FilteredSlices& filtered, int group, const std::vector<glm::vec4>& queries);
+// Uploads RGBA texels (row 0 first) into level 0 of a group texture (tests).
+void uploadGroup(const SliceTextures& slices, int group, const std::vector<float>& rgba);
+}  // namespace ss::occlusion

@@ -1,0 +1,29 @@
+// Which GL passes make occlusion_textures: slicing the casters into packed occlusion textures,
+// and shading the camera G-buffer from the pre-filtered slices.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include "core/image.h"
+#include "methods/occlusion_textures_gl.h"
+#include "methods/occlusion_textures_slicing.h"
+
+namespace ss {
+class Frame;
+}
+
+namespace ss::occlusion {
+
+// Light-local coordinates (x along axisX, y along axisY, z depth below the light) as a matrix.
+glm::mat4 worldToLocal(const KernelLight& light);
+
+// One draw of every casting mesh from the offset camera; a fragment sets its slice's channel
+// (and the next one for thin meshes, or every mesh when thinFixAll).
+SliceTextures renderSlices(Frame& frame, const SliceSetup& setup, Filter filter, bool thinFixAll);
+
+struct ShadeOutput {
+    Image visibility, mask;
+    std::vector<Image> slices;  // camera-aligned w_k I_k, when requested
+};
+ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const FilteredSlices& filtered,
+                  Fade fade, bool sliceLayers);
+
+}  // namespace ss::occlusion

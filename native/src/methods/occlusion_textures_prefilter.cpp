@@ -1,0 +1,90 @@
+// How occlusion_textures picks, dispatches and binds a pre-filter, and owns its slice textures.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "methods/occlusion_textures_gl.h"
+
+namespace ss::occlusion {
+
+Filter parseFilter(const std::string& name) {
+    if (name == "mipmap") return Filter::Mipmap;
+    if (name == "nbuffer") return Filter::NBuffer;
+    if (name == "sat") return Filter::Sat;
+    fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: filter = '" + name + "' (known: mipmap, nbuffer, sat)");
+}
+
+const char* filterName(Filter filter) {
+    switch (filter) {
+        case Filter::Mipmap: return "mipmap";
+        case Filter::NBuffer: return "nbuffer";
+        case Filter::Sat: return "sat";
+    }
+    return "?";
+}
+
+const char* filterDefine(Filter filter) {
+    switch (filter) {
+        case Filter::Mipmap: return "FILTER_MIPMAP";
+        case Filter::NBuffer: return "FILTER_NBUFFER";
+        case Filter::Sat: return "FILTER_SAT";
+    }
+    return "FILTER_NBUFFER";
+}
+
+SliceTextures makeSliceTextures(int width, int height, int count, bool withMipmaps) {
+    const gl::Functions& gl = gl::api();
+    SliceTextures s;
+    s.width = width;
+    s.height = height;
+    s.count = count;
+    int levels = withMipmaps ? 1 + int(std::floor(std::log2(float(std::max(width, height))))) : 1;
+    const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int g = 0; g < (count + 3) / 4; ++g) {
+        GLuint id = 0;
+        gl.CreateTextures(GL_TEXTURE_2D, 1, &id);
+        s.groups.emplace_back(id);
+        gl.TextureStorage2D(id, levels, GL_RGBA16F, width, height);
+        // Outside the slicing frustum nothing occludes: sample the border as 0.
+        gl.TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+        gl.TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+        gl.TextureParameterfv(id, GL_TEXTURE_BORDER_COLOR, border);
+        gl.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, withMipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
+        gl.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, withMipmaps ? GL_LINEAR : GL_NEAREST);
+        if (withMipmaps) gl.TextureParameterf(id, GL_TEXTURE_MAX_ANISOTROPY, 16.0f);
+    }
+    gl.check("creating the occlusion textures");
+    return s;
+}
+
+FilteredSlices prefilter(Filter filter, const SliceTextures& slices) {
+    switch (filter) {
+        case Filter::Mipmap: return prefilterMipmap(slices);
+        case Filter::NBuffer: return prefilterNBuffer(slices);
+        case Filter::Sat: return prefilterSat(slices);
+    }
+    return prefilterNBuffer(slices);
+}
+
+void bindFiltered(const gl::Program& program, const FilteredSlices& filtered, int firstUnit) {
+    static const char* names[4] = {"filtered[0]", "filtered[1]", "filtered[2]", "filtered[3]"};
+    for (int g = 0; g < 4; ++g) {
+        GLuint tex = filtered.textures[size_t(std::min(g, int(filtered.textures.size()) - 1))];
+        program.setTexture(names[g], firstUnit + g, tex, filtered.target);
+    }
+}
+
+std::vector<float> readTexture(GLuint texture, GLenum target, int level, int layer, int width, int height) {
+    const gl::Functions& gl = gl::api();
+    std::vector<float> out(size_t(width) * height * 4);
+    if (target == GL_TEXTURE_2D_ARRAY)
+        gl.GetTextureSubImage(texture, level, 0, 0, layer, width, height, 1, GL_RGBA, GL_FLOAT,
+                              GLsizei(out.size() * sizeof(float)), out.data());
+    else
+        gl.GetTextureImage(texture, level, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());
+    gl.check("reading an occlusion texture back");
+    return out;
+}
+
+}  // namespace ss::occlusion

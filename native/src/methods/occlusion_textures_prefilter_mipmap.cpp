@@ -1,0 +1,21 @@
+// How occlusion_textures pre-filters with mipmaps: the GL texture unit builds the pyramid of
+// all four packed slices at once; lookups are anisotropic trilinear (filter_mipmap.glsl).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "methods/occlusion_textures_gl.h"
+
+namespace ss::occlusion {
+
+FilteredSlices prefilterMipmap(const SliceTextures& slices) {
+    const gl::Functions& gl = gl::api();
+    FilteredSlices f;
+    f.filter = Filter::Mipmap;
+    f.target = GL_TEXTURE_2D;
+    for (const TextureHandle& t : slices.groups) {
+        gl.GenerateTextureMipmap(t.id());
+        f.textures.push_back(t.id());
+    }
+    gl.check("building occlusion texture mipmaps");
+    return f;
+}
+
+}  // namespace ss::occlusion

@@ -1,0 +1,26 @@
+// What pcss and penumbra_map share on the C++ side: the shadow-ray basis of the receiver-plane
+// comparison (shaders/pcss/receiver_plane.glsl) and the umbra/penumbra class layers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <glm/glm.hpp>
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "gl/program.h"
+#include "pipeline/frame.h"
+
+namespace ss {
+
+// uShadowRayBasis of receiver_plane.glsl for `map`.
+glm::mat3 shadowRayBasis(const ShadowMap& map);
+void setShadowRayBasis(const gl::Program& program, const ShadowMap& map);
+
+// The smallest map quantity (distance, or depth for a sun) of any caster vertex, never below
+// the map's near plane; the map's far plane when nothing casts.
+float nearestCasterDistance(const Scene& scene, const ShadowMap& map);
+
+// "umbra" (V < kUmbraThreshold) and "penumbra" (in between the thresholds) inside the mask, as
+// 0/1 images: the same classes the metrics use, so the layers and the IoU numbers agree.
+void addClassLayers(Layers& layers, const Image& v, const Image& mask);
+
+}  // namespace ss

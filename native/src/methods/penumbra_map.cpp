@@ -1,0 +1,170 @@
+// How penumbra maps (Wyman and Hansen 2003) are rendered: the shared shadow map (pass 1), cones
+// and sheets into the penumbra map (pass 2), and the camera lookup (pass 3).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+#include <optional>
+
+#include "core/error.h"
+#include "geometry/cones_sheets.h"
+#include "geometry/silhouette.h"
+#include "gl/framebuffer.h"
+#include "gl/render_state.h"
+#include "methods/method.h"
+#include "methods/penumbra_map.h"
+#include "methods/pcss_common.h"
+#include "pipeline/frame.h"
+
+namespace ss {
+
+// The light radius penumbra_map models: a sphere (point, spot) or the area-equal disk of an
+// area light (Light::equivalentRadius()), seen face-on from every occluder.
+float penumbraMapLightRadius(const Light& light) { return light.equivalentRadius(); }
+
+// The cones and sheets of every casting mesh for one light and shadow map.
+ConesSheets buildPenumbraGeometry(const Scene& scene, const ShadowMap& map, float radius,
+                                  const ConeSheetSettings& settings) {
+    PenumbraLight pl;
+    pl.centre = map.origin;
+    pl.axis = map.axis;
+    pl.radius = radius;
+    pl.nearDepth = map.nearPlane;
+    pl.farDepth = map.farPlane;
+    ConesSheets all;
+    for (const Mesh& mesh : scene.meshes()) {
+        if (!mesh.casts()) continue;
+        PointSilhouette sil = pointSilhouette(mesh, map.origin);
+        all.append(buildConesSheets(mesh, sil, pl, settings));
+    }
+    return all;
+}
+
+namespace {
+
+// Cones and sheets on the GPU, kept while the light index and its parameters stay the same
+// (the Renderer drops the whole method object when the scene changes).
+struct GpuConesSheets {
+    int lightIndex = -1;
+    float radius = -1.0f;
+    int mapSize = 0;
+    int coneSegments = 0;
+    size_t cones = 0, sheets = 0;
+    GLsizei indexCount = 0;
+    gl::VertexArrayHandle vao;
+    gl::BufferHandle vertices, indices;
+};
+
+class PenumbraMapMethod final : public Method {
+public:
+    const char* name() const override { return "penumbra_map"; }
+    bool needsGl() const override { return true; }
+
+    void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        const Light& light = frame.light(lightIndex);
+        if (light.type == LightType::Sun)
+            fail(SS_ERROR_UNSUPPORTED, "penumbra_map: light '" + light.name +
+                                           "' is a sun; penumbra maps need a light centre (use pcss)");
+        const int mapSize = int(settings.number("shadow_map_size", 0.0f));
+        ConeSheetSettings cs;
+        cs.coneSegments = int(settings.number("cone_segments", 16.0f));
+        if (cs.coneSegments < 3 || cs.coneSegments > 256)
+            fail(SS_ERROR_INVALID_ARGUMENT, "penumbra_map: cone_segments must be in 3..256");
+        const float radius = penumbraMapLightRadius(light);
+        GpuConesSheets& g = geometry_;
+        if (g.lightIndex == lightIndex && g.radius == radius && g.mapSize == mapSize &&
+            g.coneSegments == cs.coneSegments)
+            return;
+        const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
+        settings.report(0.1f, "penumbra_map cones and sheets");
+        ConesSheets cpu = buildPenumbraGeometry(frame.scene(), map, radius, cs);
+        const gl::Functions& api = frame.gl();
+        g = GpuConesSheets{};
+        g.lightIndex = lightIndex;
+        g.radius = radius;
+        g.mapSize = mapSize;
+        g.coneSegments = cs.coneSegments;
+        g.cones = cpu.cones();
+        g.sheets = cpu.sheets();
+        g.indexCount = GLsizei(cpu.triangles.size() * 3);
+        if (g.indexCount == 0) return;
+        g.vertices = gl::makeBuffer(cpu.vertices.data(), cpu.vertices.size() * sizeof(ConeSheetVertex));
+        g.indices = gl::makeBuffer(cpu.triangles.data(), cpu.triangles.size() * sizeof(glm::uvec3));
+        GLuint vao = 0;
+        api.CreateVertexArrays(1, &vao);
+        g.vao = gl::VertexArrayHandle(vao);
+        static_assert(sizeof(ConeSheetVertex) == 4 * sizeof(float));
+        api.VertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, sizeof(ConeSheetVertex));
+        api.VertexArrayAttribFormat(vao, 0, 4, GL_FLOAT, GL_FALSE, 0);
+        api.VertexArrayAttribBinding(vao, 0, 0);
+        api.EnableVertexArrayAttrib(vao, 0);
+        api.VertexArrayElementBuffer(vao, g.indices.id());
+        api.check("uploading penumbra_map cones and sheets");
+    }
+
+    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        const gl::Functions& api = frame.gl();
+        const ShadowMap& map = frame.shadowMap(lightIndex, geometry_.mapSize);
+        const CameraPass& cam = frame.cameraPass();
+
+        // Pass 2: the penumbra map, cleared to lit; darkest fragment wins through LESS.
+        settings.report(0.3f, "penumbra_map pass 2");
+        gl::Framebuffer pm(map.size, map.size, {GL_R32F}, GL_DEPTH_COMPONENT32F);
+        pm.bind();
+        pm.clearColor(0, glm::vec4(1.0f));
+        pm.clearDepth(1.0f);
+        if (geometry_.indexCount > 0) {
+            gl::apply(gl::states::opaque);
+            // Cone bases lie on the far plane: clamp rather than clip them there.
+            api.Enable(GL_DEPTH_CLAMP);
+            const gl::Program& p = gl::program("penumbra_map/cones.vert.glsl", "penumbra_map/cones.frag.glsl");
+            p.use();
+            frame.bindShadowMap(p, map, 0);
+            api.BindVertexArray(geometry_.vao.id());
+            api.DrawElements(GL_TRIANGLES, geometry_.indexCount, GL_UNSIGNED_INT, nullptr);
+            api.BindVertexArray(0);
+            api.Disable(GL_DEPTH_CLAMP);
+            api.check("penumbra_map pass 2");
+        }
+
+        // Pass 3: the camera lookup.
+        settings.report(0.7f, "penumbra_map pass 3");
+        gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F});
+        out.bind();
+        out.clearColor(0, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+        gl::apply(gl::states::overwrite);
+        const gl::Program& p = gl::program("common/fullscreen.vert.glsl", "penumbra_map/camera.frag.glsl");
+        p.use();
+        int unit = frame.bindCameraPass(p, 0);
+        unit = frame.bindShadowMap(p, map, unit);
+        p.setTexture("uPenumbraMap", unit, pm.colorId(0));
+        frame.setLightUniforms(p, lightIndex);
+        setShadowRayBasis(p, map);
+        frame.drawFullscreen();
+        api.check("penumbra_map pass 3");
+
+        Layers layers;
+        Image v = out.readChannel(0, 0);
+        Image mask = out.readChannel(0, 1);
+        layers.add("V", v);
+        layers.add("mask", mask);
+        if (settings.extraLayers) {
+            addClassLayers(layers, v, mask);
+            layers.add("penumbra_map", out.readChannel(0, 3));
+            layers.add("hard_shadow", out.readChannel(0, 2));
+        }
+        api.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        return layers;
+    }
+
+    // For tests and the benchmark: how many cones and sheets the last prepare() built.
+    size_t cones() const { return geometry_.cones; }
+    size_t sheets() const { return geometry_.sheets; }
+
+private:
+    GpuConesSheets geometry_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makePenumbraMapMethod() { return std::make_unique<PenumbraMapMethod>(); }
+
+}  // namespace ss

@@ -1,0 +1,75 @@
+// How the hard shadow from the light centre is resolved over the camera pass (the baseline method).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "core/error.h"
+#include "gl/render_state.h"
+#include "methods/method.h"
+#include "pipeline/frame.h"
+
+namespace ss {
+
+namespace {
+
+// Bias, in world sizes of one shadow-map texel at the receiver's distance:
+//   constant 1.0  absorbs rasterisation and 32F rounding of the stored distance;
+//   slope    1.0  x tan(theta): with nearest sampling the texel centre lies up to sqrt(2)/2
+//                 texel from the receiver point, and on a surface tilted by theta from the
+//                 light direction the distance changes by tan(theta) per unit of that offset.
+// tan(theta) is capped at 20 (theta ~ 87 deg) so grazing receivers are not lit straight through.
+// Settings "bias" and "slope_bias" override both; "shadow_map_size" the map (default 2048).
+constexpr float kConstantBias = 1.0f;
+constexpr float kSlopeBias = 1.0f;
+
+class ShadowMapMethod final : public Method {
+public:
+    const char* name() const override { return "shadow_map"; }
+    bool needsGl() const override { return true; }
+
+    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        const gl::Functions& g = frame.gl();
+        settings.report(0.0f, "shadow map");
+        const CameraPass& cam = frame.cameraPass();
+        const ShadowMap& map = frame.shadowMap(lightIndex, int(settings.number("shadow_map_size", 0.0f)));
+        settings.report(0.5f, "resolve");
+
+        gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F});
+        out.bind();
+        gl::apply(gl::states::overwrite);
+        const gl::Program& p = gl::program("common/fullscreen.vert.glsl", "shadow_map/resolve.frag.glsl");
+        p.use();
+        int unit = frame.bindCameraPass(p);
+        frame.bindShadowMap(p, map, unit);
+        frame.setLightUniforms(p, lightIndex);
+        p.set("uConstantBias", settings.number("bias", kConstantBias));
+        p.set("uSlopeBias", settings.number("slope_bias", kSlopeBias));
+        frame.drawFullscreen();
+        g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        g.check("resolving the shadow map");
+
+        std::vector<glm::vec4> px = out.readRgba(0);
+        Layers layers;
+        Image& V = layers.add("V", Image(cam.width, cam.height));
+        Image& mask = layers.add("mask", Image(cam.width, cam.height));
+        for (size_t i = 0; i < px.size(); ++i) {
+            V.pixels[i] = px[i].x;
+            mask.pixels[i] = px[i].y;
+        }
+        if (settings.extraLayers) {
+            Image umbra(cam.width, cam.height), lightDistance(cam.width, cam.height);
+            for (size_t i = 0; i < px.size(); ++i) {
+                umbra.pixels[i] = (px[i].y > 0.5f && px[i].x < 0.5f) ? 1.0f : 0.0f;
+                lightDistance.pixels[i] = px[i].z;
+            }
+            layers.add("umbra", std::move(umbra));
+            layers.add("penumbra", Image(cam.width, cam.height, 0.0f));  // a hard shadow has none
+            layers.add("light_distance", std::move(lightDistance));
+        }
+        settings.report(1.0f, "done");
+        return layers;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makeShadowMapMethod() { return std::make_unique<ShadowMapMethod>(); }
+
+}  // namespace ss

@@ -1,0 +1,93 @@
+// What the `sweep` method is: geometric soft shadows on a planar receiver from light samples,
+// sweep-line outlines, rings and a triangulated penumbra (paper 2), evaluated per camera pixel.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <memory>
+#include <optional>
+
+#include "core/error.h"
+#include "methods/method.h"
+#include "methods/sweep_lookup.h"
+#include "methods/sweep_shadow.h"
+#include "pipeline/frame.h"
+#include "pipeline/visibility_contract.h"
+
+namespace ss {
+
+namespace {
+
+class SweepMethod final : public Method {
+public:
+    const char* name() const override { return "sweep"; }
+    // GL only for the shared camera pass; the shadow mesh itself is CPU geometry.
+    bool needsGl() const override { return true; }
+
+    void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        shadowFor(frame.scene(), lightIndex, settings);
+    }
+
+    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        const SweepShadow& shadow = shadowFor(frame.scene(), lightIndex, settings);
+        const Light& light = frame.light(lightIndex);
+        settings.report(0.5f, "sweep: camera pass");
+        const CameraImages& cam = frame.cameraImages();
+        const int w = cam.width, h = cam.height;
+        Image V(w, h, 1.0f), mask(w, h, 0.0f), umbra(w, h, 0.0f), penumbra(w, h, 0.0f);
+        ShadowLookup lookup(shadow.mesh);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                size_t i = cam.index(x, y);
+                // Pixels that do not see the receiver plane are outside this method's mask.
+                if (!cam.covered(x, y) || !cam.receives(x, y) || int(cam.ids[i].x) != shadow.plane.mesh) continue;
+                glm::vec3 P = cam.position(x, y);
+                if (!lightReaches(light, P, cam.normal(x, y))) continue;
+                mask.at(x, y) = 1.0f;
+                glm::dvec2 q = shadow.plane.toPlane(glm::dvec3(P));
+                double gx = (q.x - shadow.plane.cu) * shadow.snap.scale();
+                double gy = (q.y - shadow.plane.cv) * shadow.snap.scale();
+                float v = 1.0f - lookup.intensity(gx, gy);
+                V.at(x, y) = v;
+                umbra.at(x, y) = v < 0.05f ? 1.0f : 0.0f;
+                penumbra.at(x, y) = (v >= 0.05f && v <= 0.95f) ? 1.0f : 0.0f;
+            }
+        Layers layers;
+        layers.add("V", std::move(V));
+        layers.add("mask", std::move(mask));
+        if (settings.extraLayers) {
+            layers.add("umbra", std::move(umbra));
+            layers.add("penumbra", std::move(penumbra));
+        }
+        settings.report(1.0f, "sweep: done");
+        return layers;
+    }
+
+private:
+    struct Key {
+        uint64_t scene = 0, revision = 0;
+        int light = -1, samples = 0;
+        uint32_t seed = 0;
+        double border = 0;
+        planar::FillMode fill{};
+        std::string receiver;
+        bool operator==(const Key&) const = default;
+    };
+
+    const SweepShadow& shadowFor(const Scene& scene, int lightIndex, const RenderSettings& settings) {
+        SweepOptions o = sweepOptions(settings);
+        Key k{scene.id(), scene.revision(), lightIndex, o.samples, o.seed, o.borderShare, o.fill, o.receiver};
+        if (!cached_ || !(key_ == k)) {
+            settings.report(0.0f, "sweep: geometry");
+            cached_ = computeSweepShadow(scene, lightIndex, o);
+            key_ = k;
+        }
+        return *cached_;
+    }
+
+    Key key_;
+    std::optional<SweepShadow> cached_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makeSweepMethod() { return std::make_unique<SweepMethod>(); }
+
+}  // namespace ss

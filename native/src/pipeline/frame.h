@@ -1,0 +1,153 @@
+// What every method shares for one scene revision: the scene, GL meshes, the camera G-buffer and
+// one light-centre shadow map per light, each computed once and cached.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+#include "gl/framebuffer.h"
+#include "gl/gl_functions.h"
+#include "gl/objects.h"
+#include "gl/program.h"
+
+namespace ss {
+
+// One scene mesh on the GPU. Vertex attribute 0 = world position (vec3); indexed triangles.
+struct GpuMesh {
+    int meshIndex = 0;  // into scene.meshes()
+    uint32_t flags = 0;
+    GLsizei indexCount = 0;
+    gl::VertexArrayHandle vao;
+    gl::BufferHandle positions;    // vec3 per vertex
+    gl::BufferHandle indices;      // uint32 x3 per triangle
+    gl::BufferHandle faceNormals;  // SSBO, vec4 per triangle (xyz unit, 0 for degenerate)
+    bool casts() const;
+    bool receives() const;
+};
+
+// The camera G-buffer: camera resolution, drawn with the scene camera's own matrices, so GL
+// fragment (x, y) is contract pixel (x, height-1-y); read-backs flip to row 0 = top.
+// In shaders read it with texelFetch(tex, ivec2(gl_FragCoord.xy), 0) from a full-screen pass at
+// camera resolution, or include "common/camera_gbuffer.glsl" and call Frame::bindCameraPass().
+struct CameraPass {
+    int width = 0, height = 0;
+    // colour 0 RGBA32F: world position xyz at the pixel centre; w = view depth (distance along
+    //                   the camera axis, > 0) where a surface is seen, 0 where none is.
+    // colour 1 RGBA32F: unit geometric (face) normal turned to face the camera; w = 1 when the
+    //                   surface's mesh has SS_MESH_RECEIVE, else 0.
+    // colour 2 RGBA32F: x = mesh index, y = triangle index within the mesh (-1, -1 background).
+    // depth DEPTH_COMPONENT32F: window depth; attach it to a camera-resolution framebuffer for
+    //                   depth-tested passes (with depth writes off).
+    gl::Framebuffer framebuffer;
+    GLuint positionDepth() const { return framebuffer.colorId(0); }
+    GLuint normalReceive() const { return framebuffer.colorId(1); }
+    GLuint ids() const { return framebuffer.colorId(2); }
+    GLuint depth() const { return framebuffer.depth().id(); }
+};
+
+// The camera pass on the CPU, row 0 = top (index y * width + x).
+struct CameraImages {
+    int width = 0, height = 0;
+    std::vector<glm::vec4> positionDepth, normalReceive, ids;
+    size_t index(int x, int y) const { return size_t(y) * width + x; }
+    bool covered(int x, int y) const { return positionDepth[index(x, y)].w > 0.0f; }
+    bool receives(int x, int y) const { return normalReceive[index(x, y)].w > 0.5f; }
+    glm::vec3 position(int x, int y) const { return glm::vec3(positionDepth[index(x, y)]); }
+    glm::vec3 normal(int x, int y) const { return glm::vec3(normalReceive[index(x, y)]); }
+};
+
+// The light-centre shadow map shared by every method for one light. Casters only
+// (SS_MESH_CAST), two-sided. Texel (u, v) = shadow clip xy * 0.5 + 0.5 (GL orientation).
+struct ShadowMap {
+    static constexpr float kEmpty = 1e30f;  // distance stored where no caster is seen
+    int size = 0;                           // square, size x size texels
+    bool orthographic = false;              // sun
+    glm::vec3 origin{0.0f};                 // light centre (sun: a point on the near plane)
+    glm::vec3 axis{0.0f, 0.0f, -1.0f};      // view direction of the map (unit)
+    glm::mat4 worldToLight{1.0f};           // view matrix (looks down -Z along `axis`)
+    glm::mat4 projection{1.0f};             // light view -> clip
+    float nearPlane = 0.0f, farPlane = 0.0f;
+    float tanHalfFov = 0.0f;   // perspective: tan of the half field of view
+    float halfWidth = 0.0f;    // orthographic: half width of the square view in world units
+    // False when the scene's bounds could not all fit (light inside the scene, sun looking
+    // sideways...): points outside the map are then treated as unshadowed by it.
+    bool coversScene = true;
+    // R32F: world-space distance from the light centre to the nearest caster (perspective), or
+    // distance along `axis` from `origin` (orthographic); kEmpty where no caster is seen.
+    gl::Texture distance;
+    gl::Texture depth;  // DEPTH_COMPONENT32F window depth of the same draw
+    glm::mat4 worldToClip() const { return projection * worldToLight; }
+    // World size of one texel at `distanceToLight` (perspective) or anywhere (orthographic).
+    float texelWorldSize(float distanceToLight) const;
+    // The quantity stored in `distance` for a world point (what a receiver compares with).
+    float distanceOf(const glm::vec3& world) const;
+};
+
+// The frustum a light's shadow map uses (exposed for tests and CPU methods); no GL needed.
+ShadowMap fitShadowMap(const Light& light, const Bounds& bounds, int size);
+
+struct FrameStats {
+    int meshUploads = 0, cameraPasses = 0, shadowMaps = 0, cameraReadbacks = 0;
+};
+
+class Frame {
+public:
+    static constexpr int kDefaultShadowMapSize = 2048;
+
+    explicit Frame(const Scene& scene);
+    ~Frame();
+    Frame(const Frame&) = delete;
+    Frame& operator=(const Frame&) = delete;
+
+    const Scene& scene() const { return scene_; }
+    const Camera& camera() const { return scene_.camera(); }
+    const Light& light(int index) const;  // throws ss::Error(SS_ERROR_INVALID_ARGUMENT)
+    // The GL function table; throws ss::Error(SS_ERROR_GL) when called off the render thread
+    // (CPU methods run on the caller's thread and have no GL).
+    const gl::Functions& gl() const;
+
+    // ---- shared passes (GL methods only; each computed once per frame) ----
+    const std::vector<GpuMesh>& meshes();
+    const CameraPass& cameraPass();
+    const CameraImages& cameraImages();  // read back on first call
+    // size 0 = kDefaultShadowMapSize; one map per (light, size).
+    const ShadowMap& shadowMap(int lightIndex, int size = 0);
+
+    // ---- helpers ----
+    // Draws every mesh whose flags contain all of `requiredFlags` with the bound program and
+    // framebuffer; `before` runs for each mesh first (e.g. to set a per-mesh uniform). Binds
+    // each mesh's face normals to SSBO binding 0.
+    void drawMeshes(uint32_t requiredFlags, const std::function<void(const GpuMesh&)>& before = {});
+    // Draws one triangle covering the viewport (vertex shader "common/fullscreen.vert.glsl").
+    void drawFullscreen();
+    // Binds the camera pass textures to units firstUnit.. and sets the samplers of
+    // "common/camera_gbuffer.glsl" (uCamPositionDepth, uCamNormalReceive, uCamIds).
+    // Returns the next free texture unit.
+    int bindCameraPass(const gl::Program& program, int firstUnit = 0);
+    // Sets the uLight uniforms of "common/light.glsl" for light `lightIndex`.
+    void setLightUniforms(const gl::Program& program, int lightIndex) const;
+    // Sets uShadowDistance (texture) and uShadow* of "common/shadow_map.glsl"; returns next unit.
+    int bindShadowMap(const gl::Program& program, const ShadowMap& map, int unit) const;
+
+    const FrameStats& stats() const { return stats_; }
+
+private:
+    void bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const;
+    const Scene& scene_;
+    std::vector<GpuMesh> meshes_;
+    bool meshesUploaded_ = false;
+    std::unique_ptr<CameraPass> camera_;
+    std::unique_ptr<CameraImages> cameraImages_;
+    std::map<std::pair<int, int>, std::unique_ptr<ShadowMap>> shadowMaps_;
+    gl::VertexArrayHandle emptyVao_;
+    FrameStats stats_;
+};
+
+}  // namespace ss

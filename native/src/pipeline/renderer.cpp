@@ -1,0 +1,135 @@
+// How a (light, method) render is dispatched: lazy GL start, the frame cache, CPU vs GL methods.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "pipeline/renderer.h"
+
+#include <map>
+#include <mutex>
+
+#include "core/error.h"
+#include "gl/capabilities.h"
+#include "gl/context.h"
+#include "gl/render_thread.h"
+#include "pipeline/frame.h"
+
+namespace ss {
+
+struct Renderer::Impl {
+    ss_backend backend;
+    std::mutex m;  // one render at a time per renderer: frames and methods are not thread-safe
+    std::unique_ptr<gl::RenderThread> thread;
+    std::string infoJson;
+
+    // The shared passes and the method objects (with whatever they prepared) of the last
+    // scene revision rendered; a new (scene id, revision) replaces them.
+    struct Cached {
+        uint64_t sceneId = 0, revision = 0;
+        std::unique_ptr<Frame> frame;
+        std::map<std::string, std::unique_ptr<Method>> methods;
+    };
+    std::unique_ptr<Cached> cache;
+
+    gl::RenderThread& glThread() {
+        if (thread && !thread->running()) {
+            // ss_shutdown() stopped it: everything GL died with its context, start afresh.
+            dropCache();
+            thread.reset();
+            infoJson.clear();
+        }
+        if (!thread) thread = std::make_unique<gl::RenderThread>(backend);
+        return *thread;
+    }
+
+    // GL objects are deleted on the thread that owns their context; off it (after shutdown)
+    // their handles just forget them.
+    void dropCache() {
+        if (!cache) return;
+        if (thread && thread->running()) {
+            thread->run([&] { cache.reset(); });
+        }
+        cache.reset();
+    }
+
+    Cached& cacheFor(const Scene& scene) {
+        if (cache && cache->sceneId == scene.id() && cache->revision == scene.revision()) return *cache;
+        dropCache();
+        cache = std::make_unique<Cached>();
+        cache->sceneId = scene.id();
+        cache->revision = scene.revision();
+        cache->frame = std::make_unique<Frame>(scene);
+        return *cache;
+    }
+};
+
+Renderer::Renderer(ss_backend backend) : impl_(std::make_unique<Impl>()) {
+    gl::backendName(backend);  // throws for an unknown backend now, not at the first render
+    impl_->backend = backend;
+}
+
+Renderer::~Renderer() {
+    try {
+        impl_->dropCache();
+    } catch (...) {
+        // A destructor must not throw; GL objects of a broken context are gone anyway.
+    }
+    impl_->thread.reset();
+}
+
+std::string Renderer::info() {
+    std::lock_guard lock(impl_->m);
+    if (impl_->infoJson.empty()) {
+        gl::RenderThread& t = impl_->glThread();
+        gl::Capabilities caps;
+        t.run([&] { caps = gl::probeCapabilities(); });
+        impl_->infoJson = caps.toJson(t.backendName());
+    }
+    return impl_->infoJson;
+}
+
+namespace {
+
+void checkLayers(const Layers& layers, const Camera& camera, const std::string& method) {
+    if (!layers.find("V") || !layers.find("mask"))
+        fail(SS_ERROR_INTERNAL, "method '" + method + "' did not produce the V and mask layers");
+    for (const auto& [name, img] : layers.items)
+        if (img.width != camera.width || img.height != camera.height ||
+            img.pixels.size() != size_t(img.width) * size_t(img.height))
+            fail(SS_ERROR_INTERNAL, "method '" + method + "' layer '" + name + "' is " +
+                                        std::to_string(img.width) + "x" + std::to_string(img.height) +
+                                        ", not the camera's " + std::to_string(camera.width) + "x" +
+                                        std::to_string(camera.height));
+}
+
+}  // namespace
+
+Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& method,
+                        const RenderSettings& settings, std::string* methodUsed) {
+    std::lock_guard lock(impl_->m);
+    const Camera& camera = scene.camera();  // throws when the scene has no camera
+    if (lightIndex < 0 || size_t(lightIndex) >= scene.lights().size())
+        fail(SS_ERROR_INVALID_ARGUMENT, "light index " + std::to_string(lightIndex) +
+                                            " is out of range (the scene has " +
+                                            std::to_string(scene.lights().size()) + " lights)");
+    std::string name = method == "auto" ? chooseAutoMethod(scene, lightIndex) : method;
+    std::unique_ptr<Method> fresh;
+    auto& cached = impl_->cacheFor(scene);
+    auto it = cached.methods.find(name);
+    if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
+    Method& m = *it->second;
+    Frame& frame = *cached.frame;
+
+    Layers layers;
+    if (!m.needsGl()) {
+        m.prepare(frame, lightIndex, settings);
+        layers = m.render(frame, lightIndex, settings);
+    } else {
+        impl_->glThread().run([&] {
+            m.prepare(frame, lightIndex, settings);
+            layers = m.render(frame, lightIndex, settings);
+        });
+    }
+    checkLayers(layers, camera, name);
+    if (methodUsed) *methodUsed = name;
+    return layers;
+}
+
+}  // namespace ss

@@ -1,0 +1,28 @@
+// What the camera pass writes per pixel: world position + view depth, facing normal + receive
+// flag, mesh and triangle ids (the layout is documented at ss::CameraPass).
+// SPDX-License-Identifier: GPL-3.0-or-later
+in vec3 vWorld;
+
+layout(std430, binding = 0) readonly buffer FaceNormals { vec4 faceNormal[]; };
+
+uniform mat4 uWorldToView;
+uniform vec3 uCameraPosition;
+uniform vec3 uCameraForward;
+uniform int uOrthographic;
+uniform int uMeshIndex;
+uniform float uReceives;
+
+layout(location = 0) out vec4 oPositionDepth;
+layout(location = 1) out vec4 oNormalReceive;
+layout(location = 2) out vec4 oIds;
+
+void main() {
+    // The face normal from the mesh (exact), not from derivatives (noisy at grazing angles).
+    vec3 n = faceNormal[gl_PrimitiveID].xyz;
+    vec3 toEye = uOrthographic != 0 ? -uCameraForward : uCameraPosition - vWorld;
+    if (dot(n, toEye) < 0.0) n = -n;
+    float viewDepth = -(uWorldToView * vec4(vWorld, 1.0)).z;
+    oPositionDepth = vec4(vWorld, max(viewDepth, 1e-30));
+    oNormalReceive = vec4(n, uReceives);
+    oIds = vec4(float(uMeshIndex), float(gl_PrimitiveID), 0.0, 0.0);
+}

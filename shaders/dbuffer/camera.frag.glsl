@@ -1,0 +1,69 @@
+// How the dbuffer visibility of a camera pixel follows from the D-buffer (eq. 3 and eq. 4).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "common/camera_gbuffer.glsl"
+#include "common/shadow_map.glsl"
+#include "common/visibility_contract.glsl"
+
+uniform sampler2D uDBuffer;  // R |cx_uv|, G |cx_s| (umbra), B |cx_pv|, A |cx_s| (penumbra); 0 = none
+uniform vec3 uCentre;        // disk centre c
+uniform int uSmallOccluders; // V = sqrt(t) instead of 3t^2 - 2t^3
+uniform float uBiasTexels;   // receiver bias in shadow-map texels
+
+layout(location = 0) out vec4 oResult;     // V, mask, umbra, penumbra
+layout(location = 1) out vec4 oDistances;  // |cx_o|, |cx_uv|, |cx_pv|, |cx_s| (the one used)
+
+// t of eq. 3 for a point at distance d whose ray leaves the occluder's shadow through a volume
+// surface at distance b, with silhouette distance a: the share of the light's 2D section that
+// lies beyond the line through x and the silhouette edge. Exact in that section; the printed
+// eq. 3 has (b - a) where this has (d - a), its first-order form at the volume surface.
+float sectionShare(float d, float b, float a) {
+    float den = 2.0 * b * (d - a);
+    return den > 0.0 ? a * (d - b) / den : 0.5;
+}
+
+void main() {
+    Surface s = loadSurface(ivec2(gl_FragCoord.xy));
+    oResult = vec4(1.0, 0.0, 0.0, 0.0);
+    oDistances = vec4(0.0);
+    if (!s.receives || !lightReaches(s.position, s.normal)) return;
+    oResult.y = 1.0;
+    vec2 uv;
+    if (!shadowMapUv(s.position, uv)) return;
+    ivec2 texel = clamp(ivec2(uv * uShadowSize), ivec2(0), ivec2(int(uShadowSize) - 1));
+    float o = texelFetch(uShadowDistance, texel, 0).r;
+    vec4 db = texelFetch(uDBuffer, texel, 0);
+    float d = length(s.position - uCentre);
+    float ds = shadowDistanceOf(s.position);
+    // Slope-scaled bias: a texel covers more depth on surfaces seen at a grazing angle.
+    vec3 toC = normalize(uCentre - s.position);
+    float cosA = clamp(abs(dot(s.normal, toC)), 0.05, 1.0);
+    float tanA = sqrt(1.0 - cosA * cosA) / cosA;
+    float bias = shadowTexelWorldSize(ds) * uBiasTexels * (1.0 + min(tanA, 10.0));
+    bool hard = o < 1e29 && o < ds - bias;
+    float t;
+    if (hard) {
+        // Shadowed from the centre: in the umbra until the ray leaves the umbra volume.
+        float b = db.x, a = db.y;
+        oDistances = vec4(o, b, db.z, a);
+        if (b <= 0.0 || d < b) {
+            t = 0.0;
+            oResult.z = 1.0;
+        } else {
+            t = clamp(sectionShare(d, b, a), 0.0, 0.5);
+            oResult.w = 1.0;
+        }
+    } else {
+        // Lit from the centre: lit until the ray enters the penumbra volume (the symmetric
+        // branch of eq. 3).
+        float b = db.z, a = db.w;
+        oDistances = vec4(o < 1e29 ? o : 0.0, db.x, b, a);
+        if (b <= 0.0 || d <= b) {
+            t = 1.0;
+        } else {
+            t = clamp(1.0 - sectionShare(d, b, a), 0.5, 1.0);
+            oResult.w = 1.0;
+        }
+    }
+    float V = uSmallOccluders != 0 ? sqrt(t) : t * t * (3.0 - 2.0 * t);
+    oResult.x = clamp(V, 0.0, 1.0);
+}

@@ -1,0 +1,31 @@
+// How occlusion_textures shades the camera G-buffer: visibility from the pre-filtered slices
+// (product combination), the shared mask, and each slice's weighted shadow for the debug layers.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#version 450 core
+#include "common/camera_gbuffer.glsl"
+#include "common/visibility_contract.glsl"
+#include "occlusion_textures/lookup_common.glsl"
+// One of FILTER_SAT, FILTER_NBUFFER, FILTER_MIPMAP is defined by the program's variant.
+#include "occlusion_textures/filter_sat.glsl"
+#include "occlusion_textures/filter_nbuffer.glsl"
+#include "occlusion_textures/filter_mipmap.glsl"
+#include "occlusion_textures/combine.glsl"
+
+layout(location = 0) out vec4 result;  // x = V, y = mask
+layout(location = 1) out vec4 slices0;  // w_k I_k of slices 0..3
+layout(location = 2) out vec4 slices1;
+layout(location = 3) out vec4 slices2;
+layout(location = 4) out vec4 slices3;
+
+void main() {
+    Surface s = loadSurface(ivec2(gl_FragCoord.xy));
+    vec4 occlusion[4] = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    bool reached = s.receives && lightReaches(s.position, s.normal);
+    float visibility = 1.0;
+    if (reached) visibility = clamp(sliceVisibility(s.position, occlusion), 0.0, 1.0);
+    result = vec4(visibility, reached ? 1.0 : 0.0, 0.0, 1.0);
+    slices0 = occlusion[0];
+    slices1 = occlusion[1];
+    slices2 = occlusion[2];
+    slices3 = occlusion[3];
+}

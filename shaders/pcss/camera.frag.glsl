@@ -1,0 +1,77 @@
+// How pcss shades a camera pixel: blocker search, penumbra width from the blockers' mean
+// distance, then percentage-closer filtering over a kernel of that size (Fernando 2005).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "common/camera_gbuffer.glsl"
+#include "common/visibility_contract.glsl"
+#include "pcss/receiver_plane.glsl"
+
+uniform int uBlockerSamples;
+uniform int uPcfSamples;
+uniform float uLightSize;     // perspective: light radius (world); orthographic: tan(sun half angle)
+uniform float uNearCaster;    // map quantity (distance) of the nearest caster the search allows for
+uniform float uMaxSearchUv;   // cap on the blocker-search radius, in map widths
+
+layout(location = 0) out vec4 oResult;  // V, mask, mean blocker distance (0 none), kernel radius (texels)
+
+// Sample i of n on a unit disk (Vogel spiral: even density), turned by phi.
+vec2 diskSample(int i, int n, float phi) {
+    float r = sqrt((float(i) + 0.5) / float(n));
+    float a = float(i) * 2.39996323 + phi;
+    return r * vec2(cos(a), sin(a));
+}
+
+// The map's width in world units at map quantity d.
+float mapWidthAt(float d) { return shadowTexelWorldSize(d) * uShadowSize; }
+
+// Radius of the penumbra at a receiver at dR behind blockers at dB, in world units.
+float penumbraRadius(float dR, float dB) {
+    if (uShadowOrthographic != 0) return (dR - dB) * uLightSize;
+    return uLightSize * (dR - dB) / max(dB, 1e-6);
+}
+
+void main() {
+    Surface s = loadSurface(ivec2(gl_FragCoord.xy));
+    oResult = vec4(1.0, 0.0, 0.0, 0.0);
+    if (!s.receives || !lightReaches(s.position, s.normal)) return;
+    oResult.y = 1.0;
+    vec2 uv;
+    if (!shadowMapUv(s.position, uv)) return;  // outside the map: nothing casts onto it
+    float dP = shadowDistanceOf(s.position);
+    vec3 N = s.normal;
+    // Interleaved gradient noise turns the pattern per pixel: banding becomes fine noise.
+    float phi = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+
+    // Blockers can sit anywhere between the nearest caster and the receiver; the widest
+    // footprint of the light seen from P is at the nearest caster's distance.
+    float nearD = min(uNearCaster, dP);
+    float searchWorld = uShadowOrthographic != 0 ? (dP - nearD) * uLightSize
+                                                 : uLightSize * (dP - nearD) / dP;
+    float searchUv = min(searchWorld / mapWidthAt(nearD), uMaxSearchUv);
+    searchUv = max(searchUv, 1.0 / uShadowSize);
+
+    float sum = 0.0;
+    int found = 0;
+    for (int i = 0; i < uBlockerSamples; ++i) {
+        vec2 q = uv + searchUv * diskSample(i, uBlockerSamples, phi);
+        ivec2 t = shadowTexel(q);
+        float z = texelFetch(uShadowDistance, t, 0).r;
+        float expect = receiverDistanceAt((vec2(t) + 0.5) / uShadowSize, s.position, N, dP);
+        if (z < expect - receiverTolerance(expect)) {
+            sum += z;
+            ++found;
+        }
+    }
+    if (found == 0) return;  // lit
+    float dB = sum / float(found);
+    oResult.z = dB;
+
+    float filterUv = penumbraRadius(dP, dB) / mapWidthAt(dP);
+    filterUv = max(filterUv, 0.5 / uShadowSize);  // never below half a texel: the hard shadow
+    oResult.w = filterUv * uShadowSize;
+    int lit = 0;
+    for (int i = 0; i < uPcfSamples; ++i) {
+        vec2 q = uv + filterUv * diskSample(i, uPcfSamples, phi);
+        if (!blockedAtTexel(shadowTexel(q), s.position, N, dP)) ++lit;
+    }
+    oResult.x = float(lit) / float(uPcfSamples);
+}

@@ -1,0 +1,99 @@
+# Does `blender -b file.blend --addons softshadow -a` deliver per-frame passes that move with the
+# occluder, and a composited output darkened where the pass is dark?
+# SPDX-License-Identifier: GPL-3.0-or-later
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sstest  # noqa: E402
+import bpy  # noqa: E402
+
+ss = sstest.addon()
+W, H = 64, 48
+XS = (-3.0, -2.0, -1.0)  # the occluder's x on frames 1, 2, 3 (its shadow: -2, 0, 2)
+
+
+def _make_blend(folder):
+    scene = sstest.standard_scene(W, H)
+    scene.objects["Key"].data.softshadow.method = "shadow_map"
+    box = scene.objects["Occluder"]
+    for frame, x in enumerate(XS, start=1):
+        box.location.x = x
+        box.keyframe_insert("location", index=0, frame=frame)
+    scene.frame_start, scene.frame_end = 1, len(XS)
+    # Workbench, flat white, no shadows of its own: any darkening comes from the pass.
+    scene.render.engine = "BLENDER_WORKBENCH"
+    shading = scene.display.shading
+    shading.light = "FLAT"
+    shading.color_type = "SINGLE"
+    shading.single_color = (1.0, 1.0, 1.0)
+    shading.show_shadows = False
+    shading.show_cavity = False
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "PNG"
+    scene.render.filepath = os.path.join(folder, "render_####")
+    scene.softshadow.output_dir = os.path.join(folder, "passes")
+    sstest.check(bpy.ops.softshadow.setup_compositor() == {"FINISHED"}, "compositor set up")
+    path = os.path.join(folder, "anim.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    return scene, path
+
+
+def _addon_scripts(folder):
+    """A user scripts folder holding the add-on, so `--addons softshadow` finds it."""
+    scripts = os.path.join(folder, "scripts", "addons")
+    os.makedirs(scripts)
+    os.symlink(os.path.join(sstest.ADDON_PATH, "softshadow"), os.path.join(scripts, "softshadow"))
+    return os.path.join(folder, "scripts")
+
+
+def _png(path):
+    image = bpy.data.images.load(path, check_existing=False)
+    w, h = image.size
+    pixels = np.empty(w * h * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    return np.flipud(pixels.reshape(h, w, 4))[..., :3].mean(axis=2)  # row 0 = top
+
+
+def test_three_frame_animation_render():
+    folder = sstest.tempdir("anim")
+    scene, blend = _make_blend(folder)
+    env = dict(os.environ, BLENDER_USER_SCRIPTS=_addon_scripts(folder))
+    run = subprocess.run([bpy.app.binary_path, "-b", blend, "--addons", "softshadow", "-a"],
+                         capture_output=True, text=True, env=env, timeout=900)
+    log = run.stdout + run.stderr
+    sstest.check(run.returncode == 0, "blender -a failed:\n%s" % log[-3000:])
+    sstest.check("Traceback" not in log, "no traceback:\n%s" % log[-3000:])
+    centres, composite_ratio = [], []
+    for frame, x in enumerate(XS, start=1):
+        exr = os.path.join(folder, "passes", "softshadow_%04d.exr" % frame)
+        png = os.path.join(folder, "render_%04d.png" % frame)
+        sstest.check(os.path.exists(exr), "frame %d EXR written:\n%s" % (frame, log[-2000:]))
+        sstest.check(os.path.exists(png), "frame %d render written" % frame)
+        v = sstest.exr_channel(exr, "ViewLayer.Key_shadow_map.V")
+        sstest.check(v.shape == (H, W), "frame %d pass shape %s" % (frame, v.shape))
+        dark = v < 0.05
+        sstest.check(dark.sum() > 4, "frame %d has a shadow (%d dark pixels)" % (frame, dark.sum()))
+        cols = np.nonzero(dark)[1]
+        centres.append(cols.mean())
+        # Where the geometry puts the shadow's centre at this frame.
+        expect = sstest.pixel_of(scene, sstest.shadow_centre(x))
+        sstest.check(v[expect] < 0.05, "frame %d: dark where the geometry puts the shadow %s (V=%.3f)"
+                     % (frame, expect, v[expect]))
+        picture = _png(png)
+        lit = (v > 0.95) & (picture > 0.5)
+        sstest.check(lit.sum() > 50, "frame %d: lit ground visible" % frame)
+        ratio = picture[dark].mean() / picture[lit].mean()
+        composite_ratio.append(ratio)
+        # The darken group multiplies by V (strength 1): under the umbra the output is ~black.
+        sstest.check(ratio < 0.1, "frame %d: composited output darker under the pass (ratio %.3f)" % (frame, ratio))
+    sstest.check(centres[0] < centres[1] < centres[2], "the shadow moves left to right: %s" % centres)
+    print("   shadow centre columns", ["%.1f" % c for c in centres], "dark/lit", ["%.3f" % r for r in composite_ratio])
+
+
+if __name__ == "__main__":
+    sstest.run(dict(globals()))

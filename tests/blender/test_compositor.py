@@ -1,0 +1,81 @@
+# Is the compositor wired to the passes once, and refreshed (not duplicated) on every render?
+# SPDX-License-Identifier: GPL-3.0-or-later
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sstest  # noqa: E402
+import bpy  # noqa: E402
+
+ss = sstest.addon()
+
+
+def _counts(tree):
+    counts = {}
+    for node in tree.nodes:
+        counts[node.bl_idname] = counts.get(node.bl_idname, 0) + 1
+    return counts
+
+
+def test_setup_then_rerender_does_not_pile_up():
+    folder = sstest.tempdir("comp")
+    scene = sstest.standard_scene(32, 24)
+    scene.objects["Key"].data.softshadow.method = "shadow_map"
+    scene.softshadow.output_dir = folder
+    scene.frame_current = 3
+    result = bpy.ops.softshadow.setup_compositor()
+    sstest.check(result == {"FINISHED"}, "set-up operator: %s" % result)
+    result = bpy.ops.softshadow.render_passes()
+    sstest.check(result == {"FINISHED"}, "render operator: %s" % result)
+    tree = scene.node_tree
+    first = _counts(tree)
+    for _ in range(2):
+        bpy.ops.softshadow.render_passes()
+        bpy.ops.softshadow.setup_compositor()
+        ss.handlers.on_render_pre(scene)
+    sstest.check(_counts(tree) == first, "same nodes after re-rendering: %s vs %s" % (_counts(tree), first))
+    sstest.check(first.get("CompositorNodeImage") == 1, "one Image node: %s" % first)
+    sstest.check(len([g for g in bpy.data.node_groups if g.name.startswith(ss.compositor.GROUP_NAME)]) == 1,
+                 "one darken group datablock")
+    sstest.check(len([i for i in bpy.data.images if i.name.startswith(ss.compositor.IMAGE_NAME)]) == 1,
+                 "one passes image datablock")
+
+    node = tree.nodes[ss.compositor.IMAGE_NODE]
+    sstest.check(node.image is not None and node.image.source == "SEQUENCE", "image is a sequence")
+    sstest.check(node.image.type == "MULTILAYER", "multilayer: %s" % node.image.type)
+    sstest.check("Key_shadow_map" in ss.compositor.pass_sockets(node), "pass socket: %s" % list(node.outputs.keys()))
+    group = tree.nodes[ss.compositor.GROUP_NODE]
+    link = group.inputs["Visibility"].links[0]
+    sstest.check(link.from_node == node and link.from_socket.name == "Key_shadow_map",
+                 "darken group reads the pass: %s.%s" % (link.from_node.name, link.from_socket.name))
+    composite = next(n for n in tree.nodes if n.bl_idname == "CompositorNodeComposite")
+    sstest.check(composite.inputs["Image"].links[0].from_node == group, "group feeds the Composite")
+    layers = group.inputs["Image"].links[0].from_node
+    sstest.check(layers.bl_idname == "CompositorNodeRLayers", "group darkens the render layer")
+
+
+def test_chosen_pass_and_sequence_frame():
+    folder = sstest.tempdir("comp2")
+    scene = sstest.standard_scene(32, 24)
+    sstest.add_light("Fill", location=(2, 2, 5), size=0.3).data.softshadow.method = "shadow_map"
+    scene.objects["Key"].data.softshadow.method = "shadow_map"
+    scene.softshadow.output_dir = folder
+    scene.softshadow.compositor_pass = "Fill_shadow_map"
+    bpy.ops.softshadow.setup_compositor()
+    for frame in (1, 2):
+        scene.frame_set(frame)
+        sstest.check(bpy.ops.softshadow.render_passes() == {"FINISHED"}, "frame %d" % frame)
+    tree = scene.node_tree
+    group = tree.nodes[ss.compositor.GROUP_NODE]
+    sstest.check(group.inputs["Visibility"].links[0].from_socket.name == "Fill_shadow_map", "chosen pass linked")
+    node = tree.nodes[ss.compositor.IMAGE_NODE]
+    # The node maps scene frame f to file number f (start 1, offset 0).
+    sstest.check(node.frame_start == 1 and node.frame_offset == 0 and node.frame_duration >= scene.frame_end,
+                 "sequence follows the frame: start %d offset %d duration %d"
+                 % (node.frame_start, node.frame_offset, node.frame_duration))
+    sstest.check(sorted(os.listdir(folder)) == ["softshadow_0001.exr", "softshadow_0002.exr"],
+                 "one EXR per frame: %s" % os.listdir(folder))
+
+
+if __name__ == "__main__":
+    sstest.run(dict(globals()))

@@ -1,0 +1,83 @@
+# Does Blender open the written EXR as a MULTILAYER image whose passes have the exact contract names?
+# SPDX-License-Identifier: GPL-3.0-or-later
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sstest  # noqa: E402
+import bpy  # noqa: E402
+
+ss = sstest.addon()
+
+
+def _scene_with_two_lights(folder):
+    scene = sstest.standard_scene(48, 32)
+    key = scene.objects["Key"]
+    key.data.softshadow.method = "shadow_map"
+    rim = sstest.add_light("Rim.Light 2", location=(1, 1, 5), size=0.3)
+    rim.data.softshadow.method = "reference"
+    rim.data.softshadow.samples = 4
+    scene.softshadow.output_dir = folder
+    bpy.context.view_layer.update()
+    return scene
+
+
+def _image_node_outputs(path):
+    image = bpy.data.images.load(path, check_existing=False)
+    image.size[:]  # Blender decides MULTILAYER only once the buffer is read (DESIGN.md)
+    kind = image.type
+    scene = bpy.context.scene
+    scene.use_nodes = True
+    node = scene.node_tree.nodes.new("CompositorNodeImage")
+    node.image = image
+    names = [s.name for s in node.outputs if s.enabled]
+    scene.node_tree.nodes.remove(node)
+    return kind, names
+
+
+def test_main_passes_exact_names():
+    folder = sstest.tempdir("exr")
+    scene = _scene_with_two_lights(folder)
+    scene.frame_current = 7
+    path, problems, chosen = ss.api.render_frame(scene)
+    sstest.check(problems == [], "no problems: %s" % problems)
+    sstest.check(path == os.path.join(folder, "softshadow_0007.exr"), "one file per frame: %s" % path)
+    sstest.check(os.path.exists(path), "written")
+    want = ["Key_shadow_map", "Rim_Light_2_reference"]
+    channels = sstest.exr_channels(path)
+    # Without extra layers: the V pass of each (light, method), and the mask methods always make.
+    allowed = {"ViewLayer.%s%s.V" % (p, suffix) for p in want for suffix in ("", "_mask")}
+    sstest.check(all("ViewLayer.%s.V" % p in channels for p in want) and set(channels) <= allowed,
+                 "EXR channels are <view layer>.<light>_<method>[_mask].V: %s" % channels)
+    kind, names = _image_node_outputs(path)
+    sstest.check(kind == "MULTILAYER", "Blender opens it as MULTILAYER, got %s" % kind)
+    for name in want:
+        sstest.check(name in names, "pass %r listed by the Image node: %s" % (name, names))
+    leftovers = [f for f in os.listdir(folder) if not f.endswith(".exr")]
+    sstest.check(leftovers == [], "no temporary files left: %s" % leftovers)
+
+
+def test_extra_layers_and_values():
+    folder = sstest.tempdir("exr-extra")
+    scene = _scene_with_two_lights(folder)
+    scene.softshadow.extra_layers = True
+    scene.frame_current = 1
+    path, problems, _ = ss.api.render_frame(scene)
+    sstest.check(problems == [] and path, "written: %s" % problems)
+    channels = sstest.exr_channels(path)
+    for suffix in ("", "_mask"):
+        name = "ViewLayer.Key_shadow_map%s.V" % suffix
+        sstest.check(name in channels, "%s in %s" % (name, channels))
+    kind, names = _image_node_outputs(path)
+    sstest.check(kind == "MULTILAYER" and "Key_shadow_map_mask" in names, "mask pass listed: %s" % names)
+    # The file holds what render_passes returns (row 0 = top in both).
+    stored = sstest.exr_channel(path, "ViewLayer.Key_shadow_map.V")
+    direct = ss.render_passes(scene, lights="Key", methods="shadow_map")[("Key", "shadow_map")]
+    sstest.check(stored.shape == direct.shape, "shape %s vs %s" % (stored.shape, direct.shape))
+    sstest.check(float(np.abs(stored - direct).max()) <= 1e-6, "EXR equals the array")
+
+
+if __name__ == "__main__":
+    sstest.run(dict(globals()))

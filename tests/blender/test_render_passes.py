@@ -1,0 +1,119 @@
+# Does softshadow.render_passes return camera-aligned arrays with the shadow where the geometry puts it?
+# SPDX-License-Identifier: GPL-3.0-or-later
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sstest  # noqa: E402
+import bpy  # noqa: E402
+
+ss = sstest.addon()
+W, H = 64, 48
+# The shadow centre is 1.25 inside the umbra edge (penumbra 0.5 wide): every light sample is
+# blocked there. (-3.5, -2.8, 0) is 3.5+ away from the shadow: fully lit.
+UNDER = sstest.shadow_centre(-1.0)
+FAR = (-3.5, -2.8, 0.0)
+# A far ground pixel whose hemisphere sees all of the light: V is exactly 1 up to float error.
+LIT_TOLERANCE = 1e-3
+# Deep in the umbra every light sample is blocked: 0 up to float error.
+UMBRA_MAX = 1e-3
+
+
+def _check_pass(array, scene, what):
+    sstest.check(array.dtype == np.float32, "%s: float32, got %s" % (what, array.dtype))
+    sstest.check(array.shape == (H, W), "%s: shape %s, want %s" % (what, array.shape, (H, W)))
+    sstest.check(np.isfinite(array).all(), "%s: finite" % what)
+    sstest.check(array.min() >= 0.0 and array.max() <= 1.0, "%s: in [0,1]: %s..%s" % (what, array.min(), array.max()))
+    under = array[sstest.pixel_of(scene, UNDER)]
+    far = array[sstest.pixel_of(scene, FAR)]
+    sstest.check(under <= UMBRA_MAX, "%s: under the occluder V=%.4f, want <= %s" % (what, under, UMBRA_MAX))
+    sstest.close(far, 1.0, LIT_TOLERANCE, "%s: far ground pixel" % what)
+    # row 0 = top, column 0 = left: the shadow (x = +2) is in the right half, not mirrored.
+    row, col = sstest.pixel_of(scene, UNDER)
+    sstest.check(col > W // 2, "shadow pixel in the right half: col %d" % col)
+    mirrored = array[row, W - 1 - col]
+    sstest.check(mirrored > 0.9, "%s: mirror image of the shadow is lit (%.3f): not flipped" % (what, mirrored))
+
+
+def test_reference_and_shadow_map():
+    scene = sstest.standard_scene(W, H)
+    scene.objects["Key"].data.softshadow.samples = 16
+    result = ss.render_passes(scene, methods=["reference", "shadow_map"])
+    sstest.check(set(result) == {("Key", "reference"), ("Key", "shadow_map")}, "keys: %s" % list(result))
+    for key, array in result.items():
+        _check_pass(array, scene, "%s/%s" % key)
+    # A hard shadow map is 0 or 1 away from edges; both must agree on the umbra core and far field.
+    a, b = result[("Key", "reference")], result[("Key", "shadow_map")]
+    agree = np.mean(np.abs(a - b) < 0.5)
+    sstest.check(agree > 0.9, "reference and shadow_map agree on %.3f of the pixels" % agree)
+
+
+def test_default_every_light_with_its_method():
+    scene = sstest.standard_scene(W, H)
+    rim = sstest.add_light("Rim.Light 2", location=(-4, 2, 6), size=0.3)
+    off = sstest.add_light("NoShadow", location=(2, 2, 5))
+    off.data.use_shadow = False
+    disabled = sstest.add_light("Disabled", location=(-2, 2, 5))
+    disabled.data.softshadow.enabled = False
+    rim.data.softshadow.method = "shadow_map"
+    bpy.context.view_layer.update()
+    result = ss.render_passes(scene)
+    lights = sorted(k[0] for k in result)
+    sstest.check(lights == ["Key", "Rim.Light 2"], "shadow-casting enabled lights only, real names: %s" % list(result))
+    sstest.check(("Rim.Light 2", "shadow_map") in result, "own method setting used: %s" % list(result))
+    auto = [k for k in result if k[0] == "Key"][0][1]
+    sstest.check(auto in ss.passes.METHODS, "auto resolved to a real method: %r" % auto)
+    only = ss.render_passes(scene, lights="Rim.Light 2", methods="shadow_map")
+    sstest.check(list(only) == [("Rim.Light 2", "shadow_map")], "lights= filter: %s" % list(only))
+
+
+def test_render_percentage_and_aspect():
+    scene = sstest.standard_scene(W * 2, H * 2)
+    scene.render.resolution_percentage = 50
+    result = ss.render_passes(scene, methods="shadow_map")
+    array = result[("Key", "shadow_map")]
+    sstest.check(array.shape == (H, W), "50%% of %dx%d is %s" % (2 * W, 2 * H, array.shape))
+    scene.render.resolution_percentage = 100
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.pixel_aspect_x = 2.0
+    array = ss.render_passes(scene, methods="shadow_map")[("Key", "shadow_map")]
+    sstest.check(array[sstest.pixel_of(scene, UNDER)] <= UMBRA_MAX, "pixel aspect 2: shadow still under the box")
+
+
+def test_orthographic_and_shift():
+    scene = sstest.standard_scene(W, H)
+    cam = scene.camera.data
+    cam.type = "ORTHO"
+    cam.ortho_scale = 8.0
+    cam.shift_x = 0.1
+    array = ss.render_passes(scene, methods="shadow_map")[("Key", "shadow_map")]
+    sstest.check(array[sstest.pixel_of(scene, UNDER)] <= UMBRA_MAX, "ortho + shift: shadow under the box")
+    sstest.close(array[sstest.pixel_of(scene, FAR)], 1.0, LIT_TOLERANCE, "ortho far pixel")
+
+
+def test_agrees_with_cli_on_exported_scene():
+    cli = os.path.join(sstest.build_dir(), "softshadow")
+    if not os.path.exists(cli):
+        print("   (no CLI at %s: skipped)" % cli)
+        return
+    scene = sstest.standard_scene(W, H)
+    folder = sstest.tempdir("cli")
+    scene_file = os.path.join(folder, "scene.json")
+    problems = ss.api.export_scene_file(scene, scene_file)
+    sstest.check(problems == [], "clean export: %s" % problems)
+    out = os.path.join(folder, "cli.exr")
+    run = subprocess.run([cli, "render", scene_file, "-m", "shadow_map", "-o", out],
+                         capture_output=True, text=True, timeout=600)
+    sstest.check(run.returncode == 0, "CLI render failed: %s %s" % (run.stdout, run.stderr))
+    from_cli = sstest.exr_channel(out, "ViewLayer.Key_shadow_map.V")
+    from_api = ss.render_passes(scene, methods="shadow_map")[("Key", "shadow_map")]
+    # Same library, same scene, same deterministic method: equal to float precision.
+    diff = float(np.abs(from_cli - from_api).max())
+    sstest.check(diff <= 1e-5, "CLI and add-on differ by %g" % diff)
+
+
+if __name__ == "__main__":
+    sstest.run(dict(globals()))

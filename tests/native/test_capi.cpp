@@ -1,0 +1,318 @@
+// Whether the C API reports every bad input with a status and a message naming the problem,
+// never lets an exception out, keeps its last error per thread, and renders and writes EXRs.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <thread>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "capi/capi_internal.h"
+#include "io/exr_file.h"
+#include "softshadow/softshadow.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path tempDir(const std::string& name) {
+    fs::path d = fs::temp_directory_path() / ("ss_capi_" + std::to_string(getpid()) + "_" + name);
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+bool errorHas(const std::string& fragment) {
+    return std::string(ss_last_error()).find(fragment) != std::string::npos;
+}
+
+// A tetrahedron: 4 vertices, 4 outward faces.
+const float kTet[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+const uint32_t kTetFaces[12] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+
+void identity(float m[16]) {
+    for (int i = 0; i < 16; ++i) m[i] = (i % 5 == 0) ? 1.0f : 0.0f;
+}
+
+ss_light_desc diskLight(const char* name, float size) {
+    ss_light_desc d{};
+    d.name = name;
+    d.type = SS_LIGHT_DISK;
+    identity(d.light_to_world);
+    d.light_to_world[14] = 4.0f;  // at z = 4, emitting down (-Z)
+    d.size = size;
+    d.size_y = size;
+    d.cast_shadows = 1;
+    return d;
+}
+
+// A small scene the reference can render quickly: a box over a ground plane, seen from above.
+ss_scene* smallScene(int w, int h) {
+    ss_scene* s = nullptr;
+    EXPECT_EQ(ss_scene_create(&s), SS_OK);
+    const float ground[12] = {-4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0};
+    const uint32_t groundFaces[6] = {0, 1, 2, 0, 2, 3};
+    EXPECT_EQ(ss_scene_add_mesh(s, "Ground", ground, 4, groundFaces, 2, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
+    float box[8 * 3];
+    for (int i = 0; i < 8; ++i) {
+        box[3 * i] = (i & 1) ? 0.5f : -0.5f;
+        box[3 * i + 1] = (i & 2) ? 0.5f : -0.5f;
+        box[3 * i + 2] = (i & 4) ? 1.5f : 1.0f;
+    }
+    const uint32_t boxFaces[36] = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                   2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+    EXPECT_EQ(ss_scene_add_mesh(s, "Box", box, 8, boxFaces, 12, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
+    ss_light_desc light = diskLight("Key.001", 1.0f);
+    EXPECT_EQ(ss_scene_add_light(s, &light, nullptr), SS_OK);
+    ss_camera_desc cam{};
+    glm::mat4 view = glm::lookAt(glm::vec3(0, -0.01f, 8), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+    glm::mat4 proj = glm::perspective(glm::radians(50.0f), float(w) / float(h), 0.1f, 100.0f);
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) cam.world_to_camera[c * 4 + r] = view[c][r], cam.projection[c * 4 + r] = proj[c][r];
+    cam.width = w;
+    cam.height = h;
+    cam.pixel_aspect = 1.0f;
+    EXPECT_EQ(ss_scene_set_camera(s, &cam), SS_OK);
+    return s;
+}
+
+TEST(CApi, NullPointersAreNamed) {
+    EXPECT_EQ(ss_scene_create(nullptr), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(errorHas("ss_scene_create: out is null")) << ss_last_error();
+    ss_scene* s = nullptr;
+    ASSERT_EQ(ss_scene_create(&s), SS_OK);
+    EXPECT_STREQ(ss_last_error(), "");
+    EXPECT_EQ(ss_scene_add_mesh(s, "m", nullptr, 3, kTetFaces, 1, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(errorHas("xyz is null"));
+    EXPECT_EQ(ss_scene_add_light(s, nullptr, nullptr), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(ss_scene_load(nullptr, &s), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(s, nullptr);  // outputs are cleared on failure
+    EXPECT_EQ(ss_render(nullptr, nullptr, 0, "reference", nullptr, nullptr), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(ss_write_exr(nullptr, "ViewLayer", nullptr, 0), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(ss_scene_light_name(nullptr, 0), nullptr);
+    EXPECT_EQ(ss_scene_light_count(nullptr), 0);
+    ss_scene_destroy(nullptr);
+    ss_result_destroy(nullptr);
+    ss_context_destroy(nullptr);
+}
+
+TEST(CApi, NaNVertexIsRejected) {
+    ss_scene* s = nullptr;
+    ASSERT_EQ(ss_scene_create(&s), SS_OK);
+    float xyz[12];
+    std::copy(kTet, kTet + 12, xyz);
+    xyz[4] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(ss_scene_add_mesh(s, "Bad", xyz, 4, kTetFaces, 4, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_SCENE);
+    EXPECT_TRUE(errorHas("mesh 'Bad'") && errorHas("vertex 1 is not finite")) << ss_last_error();
+    EXPECT_EQ(ss_scene_mesh_count(s), 0);
+    ss_scene_destroy(s);
+}
+
+TEST(CApi, IndexOutOfRangeIsRejected) {
+    ss_scene* s = nullptr;
+    ASSERT_EQ(ss_scene_create(&s), SS_OK);
+    uint32_t faces[12];
+    std::copy(kTetFaces, kTetFaces + 12, faces);
+    faces[7] = 4;
+    EXPECT_EQ(ss_scene_add_mesh(s, "Tet", kTet, 4, faces, 4, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_SCENE);
+    EXPECT_TRUE(errorHas("triangle 2 uses vertex index 4") && errorHas("4 vertices")) << ss_last_error();
+    ss_scene_destroy(s);
+}
+
+TEST(CApi, ZeroSizeLightIsRejected) {
+    ss_scene* s = nullptr;
+    ASSERT_EQ(ss_scene_create(&s), SS_OK);
+    ss_light_desc d = diskLight("Flat", 0.0f);
+    EXPECT_EQ(ss_scene_add_light(s, &d, nullptr), SS_ERROR_INVALID_SCENE);
+    EXPECT_TRUE(errorHas("light 'Flat'") && errorHas("size greater than zero")) << ss_last_error();
+    d.type = ss_light_type(42);
+    EXPECT_EQ(ss_scene_add_light(s, &d, nullptr), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(ss_scene_light_count(s), 0);
+    ss_scene_destroy(s);
+}
+
+TEST(CApi, BadSceneFiles) {
+    fs::path dir = tempDir("files");
+    ss_scene* s = nullptr;
+    std::string missing = (dir / "missing.json").string();
+    EXPECT_EQ(ss_scene_load(missing.c_str(), &s), SS_ERROR_IO);
+    EXPECT_TRUE(errorHas(missing) && errorHas("does not exist")) << ss_last_error();
+    std::ofstream(dir / "bad.json") << "{\"format\": ";
+    EXPECT_EQ(ss_scene_load((dir / "bad.json").c_str(), &s), SS_ERROR_IO);
+    EXPECT_TRUE(errorHas("bad.json") && errorHas("malformed JSON")) << ss_last_error();
+    std::ofstream(dir / "nan.json") << R"({"format":"softshadow-scene","version":1,"meshes":[
+        {"name":"m","positions":[0,0,0, 1,0,0, 0,"nan",0],"triangles":[0,1,2]}]})";
+    EXPECT_EQ(ss_scene_load((dir / "nan.json").c_str(), &s), SS_ERROR_IO);
+    EXPECT_TRUE(errorHas("meshes[0].positions[7]") && errorHas("expected a number")) << ss_last_error();
+    EXPECT_EQ(s, nullptr);
+    fs::remove_all(dir);
+}
+
+TEST(CApi, LastErrorIsPerThread) {
+    EXPECT_EQ(ss_scene_create(nullptr), SS_ERROR_INVALID_ARGUMENT);
+    std::string other = "unset";
+    std::thread([&] { other = ss_last_error(); }).join();
+    EXPECT_EQ(other, "");
+    EXPECT_TRUE(errorHas("out is null"));
+}
+
+TEST(CApi, SceneQueriesAndSaveLoad) {
+    fs::path dir = tempDir("save");
+    ss_scene* s = smallScene(40, 30);
+    ASSERT_EQ(ss_scene_set_view_layer(s, "Main"), SS_OK);
+    EXPECT_EQ(ss_scene_set_view_layer(s, "a.b"), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(ss_scene_light_count(s), 1);
+    EXPECT_STREQ(ss_scene_light_name(s, 0), "Key.001");
+    EXPECT_EQ(ss_scene_light_name(s, 1), nullptr);
+    EXPECT_TRUE(errorHas("light index 1 is out of range"));
+    char report[512];
+    ASSERT_EQ(ss_scene_mesh_report(s, 1, report, sizeof report), SS_OK);
+    EXPECT_NE(std::string(report).find("\"closed_manifold\": true"), std::string::npos) << report;
+    EXPECT_EQ(ss_scene_mesh_report(s, 0, report, 8), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(errorHas("buffer holds 8 bytes"));
+
+    std::string path = (dir / "scene.json").string();
+    ASSERT_EQ(ss_scene_save(s, path.c_str()), SS_OK) << ss_last_error();
+    ss_scene* back = nullptr;
+    ASSERT_EQ(ss_scene_load(path.c_str(), &back), SS_OK) << ss_last_error();
+    EXPECT_EQ(ss_scene_mesh_count(back), 2);
+    EXPECT_STREQ(ss_scene_view_layer(back), "Main");
+    ss_light_desc a, b;
+    ASSERT_EQ(ss_scene_get_light(s, 0, &a), SS_OK);
+    ASSERT_EQ(ss_scene_get_light(back, 0, &b), SS_OK);
+    EXPECT_STREQ(a.name, b.name);
+    EXPECT_EQ(0, std::memcmp(a.light_to_world, b.light_to_world, sizeof a.light_to_world));
+    ss_camera_desc ca, cb;
+    ASSERT_EQ(ss_scene_get_camera(s, &ca), SS_OK);
+    ASSERT_EQ(ss_scene_get_camera(back, &cb), SS_OK);
+    EXPECT_EQ(0, std::memcmp(ca.projection, cb.projection, sizeof ca.projection));
+    EXPECT_EQ(cb.width, 40);
+    ss_scene_destroy(back);
+    ss_scene_destroy(s);
+    fs::remove_all(dir);
+}
+
+TEST(CApi, WriteExrNamesPassesAndFailsCleanly) {
+    fs::path dir = tempDir("exr");
+    // Results made by hand: the writer does not care which method produced them.
+    ss_result r;
+    r.light = "Key.001 lamp";
+    r.method = "reference";
+    r.layers.add("V", ss::Image(6, 4, 0.25f));
+    r.layers.add("mask", ss::Image(6, 4, 1.0f));
+    const ss_result* list[] = {&r};
+    std::string out = (dir / "out.exr").string();
+    ASSERT_EQ(ss_write_exr(out.c_str(), "ViewLayer", list, 1), SS_OK) << ss_last_error();
+    ss::ExrContents back = ss::readMultilayerExr(out);
+    ASSERT_EQ(back.passes.size(), 2u);
+    EXPECT_TRUE(back.find("Key_001_lamp_reference"));
+    EXPECT_TRUE(back.find("Key_001_lamp_reference_mask"));
+
+    std::string bad = (dir / "no_such_folder" / "out.exr").string();
+    EXPECT_EQ(ss_write_exr(bad.c_str(), "ViewLayer", list, 1), SS_ERROR_IO);
+    EXPECT_TRUE(errorHas(bad)) << ss_last_error();
+    EXPECT_FALSE(fs::exists(dir / "no_such_folder"));
+    EXPECT_EQ(ss_write_exr(out.c_str(), "ViewLayer", list, 0), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+    fs::remove_all(dir);
+}
+
+TEST(CApi, RenderArgumentsAreChecked) {
+    ss_context* ctx = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &ctx), SS_OK);
+    EXPECT_EQ(ss_context_create(ss_backend(9), &ctx), SS_ERROR_INVALID_ARGUMENT);
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &ctx), SS_OK);
+    ss_scene* s = smallScene(8, 6);
+    ss_result* res = nullptr;
+    EXPECT_EQ(ss_render(ctx, s, 3, "reference", nullptr, &res), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(errorHas("light index 3 is out of range"));
+    EXPECT_EQ(ss_render(ctx, s, 0, "no_such_method", nullptr, &res), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(errorHas("no_such_method")) << ss_last_error();
+    ss_render_options o;
+    ss_render_options_default(&o);
+    o.samples = -1;
+    EXPECT_EQ(ss_render(ctx, s, 0, "reference", &o, &res), SS_ERROR_INVALID_ARGUMENT);
+    o.samples = 0;
+    o.settings = "novalue";
+    EXPECT_EQ(ss_render(ctx, s, 0, "reference", &o, &res), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(res, nullptr);
+    ss_scene_destroy(s);
+    ss_context_destroy(ctx);
+}
+
+int cancelAtOnce(void*, float, const char*) { return 1; }
+
+TEST(CApi, ReferenceRenderProducesLayersAndExr) {
+    fs::path dir = tempDir("render");
+    ss_context* ctx = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &ctx), SS_OK);
+    ss_scene* s = smallScene(48, 36);
+    ss_render_options o;
+    ss_render_options_default(&o);
+    o.samples = 16;
+    ss_result* res = nullptr;
+    ASSERT_EQ(ss_render(ctx, s, 0, "reference", &o, &res), SS_OK) << ss_last_error();
+    EXPECT_STREQ(ss_result_method(res), "reference");
+    EXPECT_STREQ(ss_result_light(res), "Key.001");
+    ASSERT_GE(ss_result_layer_count(res), 2);
+    const char* name;
+    const float* px;
+    int32_t w, h;
+    ASSERT_EQ(ss_result_layer(res, 0, &name, &px, &w, &h), SS_OK);
+    EXPECT_STREQ(name, "V");
+    EXPECT_EQ(w, 48);
+    EXPECT_EQ(h, 36);
+    float lo = 1, hi = 0;
+    for (int i = 0; i < w * h; ++i) lo = std::min(lo, px[i]), hi = std::max(hi, px[i]);
+    EXPECT_GE(lo, 0.0f);
+    EXPECT_LE(hi, 1.0f);
+    EXPECT_LT(lo, 0.05f);  // the box's umbra is in the picture, straight below the light
+    EXPECT_EQ(hi, 1.0f);   // and so is lit ground
+    EXPECT_EQ(ss_result_layer(res, 99, &name, &px, &w, &h), SS_ERROR_INVALID_ARGUMENT);
+
+    std::string out = (dir / "r.exr").string();
+    const ss_result* list[] = {res};
+    ASSERT_EQ(ss_write_exr(out.c_str(), ss_scene_view_layer(s), list, 1), SS_OK) << ss_last_error();
+    ss::ExrContents back = ss::readMultilayerExr(out);
+    const ss::ExrPass* v = back.find("Key_001_reference");
+    ASSERT_TRUE(v);
+    EXPECT_EQ(v->layer, "ViewLayer");
+    EXPECT_EQ(0, std::memcmp(v->image.pixels.data(), px, sizeof(float) * w * h));
+
+    o.progress = cancelAtOnce;
+    ss_result* cancelled = nullptr;
+    EXPECT_EQ(ss_render(ctx, s, 0, "reference", &o, &cancelled), SS_ERROR_CANCELLED);
+    EXPECT_EQ(cancelled, nullptr);
+    ss_result_destroy(res);
+    ss_scene_destroy(s);
+    ss_context_destroy(ctx);
+    fs::remove_all(dir);
+}
+
+TEST(CApi, ShadowMapRenderThroughGl) {
+    ss_context* ctx = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &ctx), SS_OK);
+    char info[4096];
+    if (ss_context_info(ctx, info, sizeof info) == SS_ERROR_GL) {
+        std::string why = ss_last_error();
+        ss_context_destroy(ctx);
+        GTEST_SKIP() << "no GL backend: " << why;
+    }
+    ss_scene* s = smallScene(32, 24);
+    ss_result* res = nullptr;
+    ASSERT_EQ(ss_render(ctx, s, 0, "auto", nullptr, &res), SS_OK) << ss_last_error();
+    EXPECT_STRNE(ss_result_method(res), "auto");  // the output says which method ran
+    const float* px;
+    ASSERT_EQ(ss_result_layer(res, 0, nullptr, &px, nullptr, nullptr), SS_OK);
+    ss_result_destroy(res);
+    ss_scene_destroy(s);
+    ss_context_destroy(ctx);
+}
+
+}  // namespace
