@@ -5,10 +5,16 @@ in vec3 vWorld;
 flat in vec3 vEdgeA;
 flat in vec3 vEdgeB;
 flat in vec3 vExtrusion;
+flat in int vKind;
 
 uniform vec3 uCentre;     // disk centre c
 uniform vec3 uNormal;     // disk normal, pointing into the scene
+uniform float uRadius;    // disk radius r
 uniform float uFar;       // distances are divided by it for the depth test
+
+const int KIND_QUAD = 0;
+const int KIND_FAN = 1;
+const int KIND_SILHOUETTE_FACE = 2;
 
 // Written to all four channels; the colour mask picks (R, G) for the umbra volume and (B, A)
 // for the penumbra volume.
@@ -18,24 +24,41 @@ void main() {
     vec3 toX = vWorld - uCentre;
     float dist = length(toX);
     vec3 u = toX / max(dist, 1e-30);
+    float cosRay = dot(u, uNormal);
+    gl_FragDepth = clamp(dist / uFar, 0.0, 1.0);
+
+    if (vKind == KIND_SILHOUETTE_FACE) {
+        // The face's own "edge" is the line through vEdgeA along (vEdgeB - vEdgeA), parallel to
+        // the light plane. x_s: the ray at that line's depth; w: its signed offset from the line
+        // across the line, positive on the face's outer side. The ray crosses the umbra plane of
+        // that line (through it and the far rim point) at b = a r / (r + w): what a quad of that
+        // edge would have stored, so the camera pass applies eq. 3 unchanged.
+        float depthE = dot(vEdgeA - uCentre, uNormal);
+        float a = cosRay > 1e-6 ? depthE / cosRay : dist;
+        vec3 along = normalize(vEdgeB - vEdgeA);
+        vec3 across = normalize(cross(along, uNormal));
+        if (dot(across, vExtrusion) < 0.0) across = -across;
+        float w = dot(uCentre + u * a - vEdgeA, across);
+        float b = w + uRadius > 1e-6 * uRadius ? a * uRadius / (w + uRadius) : 1e30;
+        oDistances = vec4(b, a, b, a);
+        return;
+    }
     // e*: the point of the silhouette edge this fragment was extruded from, where the line from
     // the extrusion point through the fragment meets the edge (exact per fragment, where the
-    // paper interpolates per vertex). Fans and silhouette faces carry a single point.
+    // paper interpolates per vertex). Fans carry a single point.
     vec3 eStar = vEdgeA;
     vec3 d1 = vEdgeB - vEdgeA;
     vec3 d2 = vWorld - vExtrusion;
     vec3 c12 = cross(d1, d2);
     float den = dot(c12, c12);
-    if (den > 1e-20 * dot(d1, d1) * dot(d2, d2)) {
+    if (vKind == KIND_QUAD && den > 1e-20 * dot(d1, d1) * dot(d2, d2)) {
         float s = dot(cross(vExtrusion - vEdgeA, d2), c12) / den;
         eStar = vEdgeA + clamp(s, 0.0, 1.0) * d1;
     }
     // Eq. 2: x_s is the point of the ray at e*'s depth below the light plane (the 2D section of
     // assumption 1); its distance from c is depth(e*) / cos(angle between ray and normal).
-    float cosRay = dot(u, uNormal);
     float depthE = dot(eStar - uCentre, uNormal);
     float xs = cosRay > 1e-6 ? depthE / cosRay : dist;
     xs = clamp(xs, 0.0, dist);
     oDistances = vec4(dist, xs, dist, xs);
-    gl_FragDepth = clamp(dist / uFar, 0.0, 1.0);
 }

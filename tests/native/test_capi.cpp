@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -273,7 +274,7 @@ TEST(CApi, ReferenceRenderProducesLayersAndExr) {
     EXPECT_GE(lo, 0.0f);
     EXPECT_LE(hi, 1.0f);
     EXPECT_LT(lo, 0.05f);  // the box's umbra is in the picture, straight below the light
-    EXPECT_EQ(hi, 1.0f);   // and so is lit ground
+    EXPECT_GT(hi, 0.999f);  // and so is lit ground
     EXPECT_EQ(ss_result_layer(res, 99, &name, &px, &w, &h), SS_ERROR_INVALID_ARGUMENT);
 
     std::string out = (dir / "r.exr").string();

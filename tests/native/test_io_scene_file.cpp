@@ -82,8 +82,9 @@ TEST(IoSceneFile, DemoSceneLoads) {
     ASSERT_EQ(s.lights().size(), 1u);
     EXPECT_EQ(s.lights()[0].type, LightType::Disk);
     ASSERT_GE(s.meshes().size(), 2u);
-    for (const Mesh& m : s.meshes())
+    for (const Mesh& m : s.meshes()) {
         if (m.name != "Ground") EXPECT_TRUE(m.report.closedManifold()) << m.name;
+    }
 }
 
 TEST(IoSceneFile, ClosedPrimitivesAreOutwardManifolds) {

@@ -24,11 +24,12 @@ inline Renderer& sharedRenderer() {
 }
 
 inline Layers renderWith(const Scene& scene, const std::string& method,
-                         const std::map<std::string, std::string>& options = {}, int samples = 0) {
+                         const std::map<std::string, std::string>& options = {}, int samples = 0,
+                         int light = 0) {
     RenderSettings s;
     s.options = options;
     s.samples = samples;
-    return sharedRenderer().render(scene, 0, method, s, nullptr);
+    return sharedRenderer().render(scene, light, method, s, nullptr);
 }
 
 // The reference at 256 samples: its own noise (sd <= 0.5/sqrt(256) = 0.03 per pixel, less
@@ -45,6 +46,32 @@ inline Metrics compareToReference(const Layers& method, const Layers& reference)
 inline void dumpPng(const std::string& name, const Image& image) {
     const char* dir = std::getenv("SS_TEST_DUMP");
     if (dir && *dir) writePngPreview(std::string(dir) + "/" + name + ".png", image);
+}
+
+// The shared scenes as the pcss and penumbra_map tests view them: the light moved sideways so
+// each shadow falls beside its occluder (seen, not hidden under it), the camera zoomed in on it.
+inline SceneParams softSceneParams() {
+    SceneParams p;
+    p.lightShift = {1.2f, 0.8f};
+    p.cameraZoom = 1.6f;
+    return p;
+}
+
+// Pixels inside the mask where a and b differ by more than `by`.
+inline size_t countDiffering(const Layers& a, const Layers& b, float by) {
+    const Image& va = *a.find("V");
+    const Image& vb = *b.find("V");
+    const Image& m = *a.find("mask");
+    size_t n = 0;
+    for (size_t i = 0; i < va.pixels.size(); ++i)
+        if (m.pixels[i] > 0.5f && std::abs(va.pixels[i] - vb.pixels[i]) > by) ++n;
+    return n;
+}
+
+inline size_t maskPixels(const Layers& a) {
+    size_t n = 0;
+    for (float x : a.find("mask")->pixels) n += x > 0.5f;
+    return n;
 }
 
 // Count of pixels with mask set whose V is below `below`.

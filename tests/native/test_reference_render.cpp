@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/scene.h"
 #include "methods/method.h"
+#include "pipeline/renderer.h"
 #include "reference/render_reference.h"
 #include "reference/trace_scene.h"
 #include "reference/trace_scene_cache.h"
@@ -293,6 +294,21 @@ TEST(ReferenceRender, BadLightIndexIsRejected) {
     } catch (const Error& e) {
         EXPECT_EQ(e.status(), SS_ERROR_INVALID_ARGUMENT);
     }
+}
+
+TEST(ReferenceRender, RunsThroughTheRendererWithoutGl) {
+    std::unique_ptr<Method> method = createMethod("reference");
+    EXPECT_STREQ(method->name(), "reference");
+    EXPECT_FALSE(method->needsGl());
+    Scene scene = test::sceneBox({1.5f, 4.0f, 0.0f, 40, 30});
+    RenderSettings s = withSamples(16);
+    Renderer renderer(SS_BACKEND_AUTO);
+    std::string used;
+    Layers viaRenderer = renderer.render(scene, 0, "reference", s, &used);
+    EXPECT_EQ(used, "reference");
+    Layers direct = renderReference(scene, 0, s);
+    EXPECT_EQ(layer(viaRenderer, "V").pixels, layer(direct, "V").pixels);
+    EXPECT_EQ(layer(viaRenderer, "mask").pixels, layer(direct, "mask").pixels);
 }
 
 }  // namespace

@@ -148,6 +148,23 @@ SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const c
 SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
                               const ss_result* const* results, int32_t result_count);
 
+/* The `sweep` method's shadow mesh for one light (CPU geometry, no GL context needed), so a host
+ * can bring it in as geometry: triangles on the receiver plane, world-space vertices with a shadow
+ * intensity each (0 lit .. 1 umbra; V = 1 - intensity, Gouraud-interpolated). Options as for
+ * ss_render ("receiver=<mesh name>;fill=smooth|steps;border=0.25"); extra_layers is ignored. */
+typedef struct ss_sweep_mesh ss_sweep_mesh;
+SS_API ss_status ss_sweep_shadow_mesh(const ss_scene* scene, int32_t light_index,
+                                      const ss_render_options* options, ss_sweep_mesh** out);
+SS_API void ss_sweep_mesh_destroy(ss_sweep_mesh* mesh);
+/* Arrays owned by the mesh: xyz (3 floats per vertex), intensity (1 per vertex), triangles
+ * (3 uint32 per triangle, counter-clockwise seen from the light's side of the plane). */
+SS_API ss_status ss_sweep_mesh_data(const ss_sweep_mesh* mesh, const float** xyz,
+                                    const float** intensity, uint32_t* vertex_count,
+                                    const uint32_t** triangles, uint32_t* triangle_count);
+/* Index of the receiver mesh the shadow lies on, and the number of light samples used. */
+SS_API ss_status ss_sweep_mesh_info(const ss_sweep_mesh* mesh, int32_t* receiver_mesh,
+                                    int32_t* samples_used);
+
 #ifdef __cplusplus
 }
 #endif

@@ -118,8 +118,9 @@ struct Quad {
 };
 
 void pushTriangle(std::vector<VolumeVertex>& out, const glm::vec3& p0, const glm::vec3& p1,
-                  const glm::vec3& p2, const glm::vec3& ea, const glm::vec3& eb, const glm::vec3& ext) {
-    for (const glm::vec3& p : {p0, p1, p2}) out.push_back(VolumeVertex{p, ea, eb, ext});
+                  const glm::vec3& p2, const glm::vec3& ea, const glm::vec3& eb, const glm::vec3& ext,
+                  VolumeKind kind = VolumeKind::Quad) {
+    for (const glm::vec3& p : {p0, p1, p2}) out.push_back(VolumeVertex{p, ea, eb, ext, float(int(kind))});
 }
 
 // Component of d perpendicular to the unit vector e.
@@ -206,16 +207,20 @@ ShadowVolumes extrudeVolumes(const Mesh& mesh, const DiskSilhouette& sil, const 
         ++vol.umbraQuads;
     }
     // Silhouette faces of both kinds close the gap between the two silhouettes (§3.3). Their
-    // "edge" for eq. 2 is their vertex farthest from the light plane: the umbra side of the face.
+    // "edge" for eq. 2 is the line through their vertex nearest to the light, parallel to the
+    // light plane within the face (VolumeVertex): seen from a receiver in the hard shadow next to
+    // a box, the edge that bounds the visible part of the light is the top edge of the side face.
     for (const auto* list : {&sil.silhouetteFacesCentreBack, &sil.silhouetteFacesCentreFront})
         for (uint32_t f : *list) {
             const glm::uvec3& t = mesh.triangles[f];
             glm::vec3 p0 = mesh.positions[t[0]], p1 = mesh.positions[t[1]], p2 = mesh.positions[t[2]];
-            glm::vec3 far = p0;
+            glm::vec3 near = p0;
             for (const glm::vec3& p : {p1, p2})
-                if (glm::dot(p - disk.centre, disk.normal) > glm::dot(far - disk.centre, disk.normal))
-                    far = p;
-            pushTriangle(vol.umbra, p0, p1, p2, far, far, disk.centre);
+                if (glm::dot(p - disk.centre, disk.normal) < glm::dot(near - disk.centre, disk.normal))
+                    near = p;
+            glm::vec3 n = mesh.faceNormals[f];
+            glm::vec3 along = safeNormalize(glm::cross(n, disk.normal), glm::vec3(1, 0, 0));
+            pushTriangle(vol.umbra, p0, p1, p2, near, near + along, n, VolumeKind::SilhouetteFace);
             ++vol.silhouetteFaces;
         }
 
@@ -255,7 +260,7 @@ ShadowVolumes extrudeVolumes(const Mesh& mesh, const DiskSilhouette& sil, const 
                 glm::vec3 rim = disk.centre + disk.radius * (std::cos(ang) * u + std::sin(ang) * w);
                 next = pv + length * safeNormalize(pv - rim, in->dirB);
             }
-            pushTriangle(vol.penumbra, pv, prev, next, pv, pv, disk.centre);
+            pushTriangle(vol.penumbra, pv, prev, next, pv, pv, disk.centre, VolumeKind::Fan);
             ++vol.fanTriangles;
             prev = next;
         }

@@ -15,12 +15,18 @@ namespace ss {
 // extrusion point, so the D-buffer fragment stage can find, exactly and per fragment, the point
 // e* of the silhouette edge that the fragment was extruded from (eq. 2's "dist(c, e)"):
 // e* is where the line from `extrusion` through the fragment meets the line edgeA-edgeB.
-// For a fan triangle or a silhouette face edgeA == edgeB (the point itself).
+// For a fan triangle edgeA == edgeB (the silhouette vertex itself).
+// A silhouette face has no silhouette edge of its own: it carries the line through its vertex
+// nearest to the light, parallel to the light plane inside the face's plane (for a box side,
+// exactly its top edge): edgeA = that vertex, edgeB = edgeA + the line's direction, and
+// `extrusion` holds the face's unit normal instead of an extrusion point (see kind).
+enum class VolumeKind : int { Quad = 0, Fan = 1, SilhouetteFace = 2 };
 struct VolumeVertex {
     glm::vec3 position{0.0f};
     glm::vec3 edgeA{0.0f};
     glm::vec3 edgeB{0.0f};
     glm::vec3 extrusion{0.0f};
+    float kind = 0.0f;  // float(VolumeKind), a vertex attribute
 };
 
 // Triangle soups (3 vertices per triangle), world space, no winding guarantees (the D-buffer

@@ -42,19 +42,26 @@ struct RenderThread::State {
 namespace {
 
 // Every live render thread, so one call (or the static destructor below) joins them all.
+// Allocated once and never freed: a RenderThread destroyed during static destruction (a host's
+// global context) must still find it.
 struct Registry {
     std::mutex m;
     std::set<RenderThread*> threads;
-    ~Registry() { stopAll(); }
     void stopAll() {
         std::lock_guard lock(m);
         for (RenderThread* t : threads) t->stop();
     }
 };
 Registry& registry() {
-    static Registry r;
-    return r;
+    static Registry* r = new Registry;
+    return *r;
 }
+
+// Joins every render thread when the library is unloaded or the process exits, so no thread
+// outlives the code it runs (Blender crashed at exit when one did).
+struct JoinAtExit {
+    ~JoinAtExit() { registry().stopAll(); }
+} joinAtExit;
 
 std::unique_ptr<Context> createContext(ss_backend backend) {
     std::string why;

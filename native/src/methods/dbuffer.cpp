@@ -40,8 +40,9 @@ GpuSoup upload(const std::vector<VolumeVertex>& soup) {
     g.VertexArrayVertexBuffer(vao, 0, s.buffer.id(), 0, sizeof(VolumeVertex));
     const GLuint offsets[4] = {offsetof(VolumeVertex, position), offsetof(VolumeVertex, edgeA),
                                offsetof(VolumeVertex, edgeB), offsetof(VolumeVertex, extrusion)};
-    for (GLuint i = 0; i < 4; ++i) {
-        g.VertexArrayAttribFormat(vao, i, 3, GL_FLOAT, GL_FALSE, offsets[i]);
+    for (GLuint i = 0; i < 5; ++i) {
+        if (i < 4) g.VertexArrayAttribFormat(vao, i, 3, GL_FLOAT, GL_FALSE, offsets[i]);
+        else g.VertexArrayAttribFormat(vao, i, 1, GL_FLOAT, GL_FALSE, offsetof(VolumeVertex, kind));
         g.VertexArrayAttribBinding(vao, i, 0);
         g.EnableVertexArrayAttrib(vao, i);
     }
@@ -91,6 +92,7 @@ public:
         vol.set("uWorldToClip", map.worldToClip());
         vol.set("uCentre", geo.disk.centre);
         vol.set("uNormal", geo.disk.normal);
+        vol.set("uRadius", geo.disk.radius);
         // Depth = distance / uFar: anything past the far plane is clipped anyway.
         float far = glm::length(map.origin - geo.disk.centre) + map.farPlane * 2.0f + 1e-6f;
         vol.set("uFar", far);

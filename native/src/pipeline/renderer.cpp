@@ -27,6 +27,13 @@ struct Renderer::Impl {
         std::map<std::string, std::unique_ptr<Method>> methods;
     };
     std::unique_ptr<Cached> cache;
+    CacheStats finished;  // of frames already dropped
+
+    void count(const Frame& f, CacheStats& into) const {
+        into.meshUploads += f.stats().meshUploads;
+        into.cameraPasses += f.stats().cameraPasses;
+        into.shadowMaps += f.stats().shadowMaps;
+    }
 
     gl::RenderThread& glThread() {
         if (thread && !thread->running()) {
@@ -43,6 +50,7 @@ struct Renderer::Impl {
     // their handles just forget them.
     void dropCache() {
         if (!cache) return;
+        count(*cache->frame, finished);
         if (thread && thread->running()) {
             thread->run([&] { cache.reset(); });
         }
@@ -56,6 +64,7 @@ struct Renderer::Impl {
         cache->sceneId = scene.id();
         cache->revision = scene.revision();
         cache->frame = std::make_unique<Frame>(scene);
+        ++finished.frames;
         return *cache;
     }
 };
@@ -85,6 +94,13 @@ std::string Renderer::info() {
     return impl_->infoJson;
 }
 
+Renderer::CacheStats Renderer::cacheStats() const {
+    std::lock_guard lock(impl_->m);
+    CacheStats s = impl_->finished;
+    if (impl_->cache) impl_->count(*impl_->cache->frame, s);
+    return s;
+}
+
 namespace {
 
 void checkLayers(const Layers& layers, const Camera& camera, const std::string& method) {
@@ -110,7 +126,6 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
                                             " is out of range (the scene has " +
                                             std::to_string(scene.lights().size()) + " lights)");
     std::string name = method == "auto" ? chooseAutoMethod(scene, lightIndex) : method;
-    std::unique_ptr<Method> fresh;
     auto& cached = impl_->cacheFor(scene);
     auto it = cached.methods.find(name);
     if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;

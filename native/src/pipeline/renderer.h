@@ -30,6 +30,13 @@ public:
     Layers render(const Scene& scene, int lightIndex, const std::string& method,
                   const RenderSettings& settings, std::string* methodUsed);
 
+    // How many frames were made and how often their shared passes were drawn, over the
+    // renderer's life (tests of the frame cache; the benchmark's stage counts).
+    struct CacheStats {
+        int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0;
+    };
+    CacheStats cacheStats() const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

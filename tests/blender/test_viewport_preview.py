@@ -1,0 +1,72 @@
+# Is the live viewport preview drawn in a real Blender window, with its shadow where the scene puts it?
+# SPDX-License-Identifier: GPL-3.0-or-later
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sstest  # noqa: E402
+import bpy  # noqa: E402
+
+ss = sstest.addon()
+# The preview draws black with alpha 0.75 (1 - V): the umbra darkens the picture by about 75 %.
+DARKENED = 0.4   # at least this fraction of the brightness is removed inside the umbra
+UNCHANGED = 0.03  # a lit pixel changes by less than this (8-bit screenshots, same view)
+
+
+def _screenshot(path):
+    image = bpy.data.images.load(path, check_existing=False)
+    w, h = image.size
+    pixels = np.empty(w * h * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    return pixels.reshape(h, w, 4)[..., :3].mean(axis=2)  # row 0 = bottom, as window coordinates
+
+
+def test_preview_under_xvfb():
+    if shutil.which("xvfb-run") is None:
+        print("   (no xvfb-run: skipped)")
+        return
+    folder = sstest.tempdir("preview")
+    scene = sstest.standard_scene(64, 48)
+    scene.objects["Key"].data.softshadow.method = "shadow_map"
+    blend = os.path.join(folder, "preview.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=blend)
+    scripts = os.path.join(folder, "scripts", "addons")
+    os.makedirs(scripts)
+    os.symlink(os.path.join(sstest.ADDON_PATH, "softshadow"), os.path.join(scripts, "softshadow"))
+    points = {"shadow": list(sstest.shadow_centre(-1.0)), "far": [-3.5, -2.8, 0.0]}
+    env = dict(os.environ, BLENDER_USER_SCRIPTS=os.path.join(folder, "scripts"),
+               SOFTSHADOW_PREVIEW_OUT=folder, SOFTSHADOW_PREVIEW_POINTS=json.dumps(points))
+    child = os.path.join(os.path.dirname(os.path.abspath(__file__)), "viewport_child.py")
+    run = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", bpy.app.binary_path, blend,
+                          "--addons", "softshadow", "--python", child],
+                         capture_output=True, text=True, env=env, timeout=600)
+    log = run.stdout + run.stderr
+    info_path = os.path.join(folder, "info.json")
+    sstest.check(os.path.exists(info_path), "the windowed Blender finished:\n%s" % log[-3000:])
+    with open(info_path) as f:
+        info = json.load(f)
+    sstest.check(info["error"] == "" and info["done"] >= 1, "the preview worker delivered: %s" % info)
+    off = _screenshot(os.path.join(folder, "off.png"))
+    on = _screenshot(os.path.join(folder, "on.png"))
+    rx, ry = info["region"][:2]
+
+    def at(image, name):
+        x, y = info[name]
+        col, row = int(rx + x), int(ry + y)
+        return float(image[row - 1:row + 2, col - 1:col + 2].mean())
+
+    removed = 1.0 - at(on, "shadow") / max(at(off, "shadow"), 1e-3)
+    sstest.check(removed >= DARKENED, "the preview darkens the shadow centre by %.2f" % removed)
+    change = abs(at(on, "far") - at(off, "far"))
+    sstest.check(change <= UNCHANGED, "a lit pixel stays as it was (changed %.3f)" % change)
+    print("   shadow darkened by %.2f, lit pixel changed %.3f" % (removed, change))
+
+
+if __name__ == "__main__":
+    sstest.run(dict(globals()))

@@ -1,0 +1,74 @@
+# How the viewport-preview test drives a real Blender window (run by test_viewport_preview.py).
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Top view over the scene; a screenshot with the preview off, then one with it on once the
+preview worker has delivered; writes the region and the projected test points as JSON."""
+import json
+import os
+import sys
+import time
+
+import bpy
+from bpy_extras.view3d_utils import location_3d_to_region_2d
+from mathutils import Quaternion, Vector
+
+OUT = os.environ["SOFTSHADOW_PREVIEW_OUT"]
+POINTS = json.loads(os.environ["SOFTSHADOW_PREVIEW_POINTS"])
+state = {"step": 0, "t": time.time()}
+
+
+def _view():
+    win = bpy.context.window_manager.windows[0]
+    area = max((a for a in win.screen.areas if a.type == "VIEW_3D"), key=lambda a: a.width * a.height)
+    region = next(r for r in area.regions if r.type == "WINDOW")
+    return win, area, region, area.spaces.active
+
+
+def _shot(name):
+    win, area, region, space = _view()
+    with bpy.context.temp_override(window=win, area=area, region=region):
+        bpy.ops.screen.screenshot(filepath=os.path.join(OUT, name))
+
+
+def step():
+    import softshadow
+    win, area, region, space = _view()
+    scene = bpy.context.scene
+    s = state["step"]
+    if s == 0:
+        space.overlay.show_overlays = False
+        space.shading.type = "SOLID"
+        rv3d = space.region_3d
+        rv3d.view_perspective = "PERSP"
+        rv3d.view_rotation = Quaternion((1, 0, 0, 0))  # looking down -Z
+        rv3d.view_location = (0, 0, 0)
+        rv3d.view_distance = 12
+        scene.softshadow.preview = False
+        area.tag_redraw()
+    elif s == 1:
+        _shot("off.png")
+        scene.softshadow.preview = True
+        area.tag_redraw()
+        state["t"] = time.time()
+    elif s == 2:
+        if not softshadow.preview._state.done and time.time() - state["t"] < 60:
+            area.tag_redraw()
+            return 0.5  # still computing
+        area.tag_redraw()
+    elif s == 3:
+        _shot("on.png")
+        rv3d = space.region_3d
+        info = {"region": [region.x, region.y, region.width, region.height],
+                "window": [win.width, win.height], "error": softshadow.preview._state.error,
+                "done": len(softshadow.preview._state.done)}
+        for name, p in POINTS.items():
+            xy = location_3d_to_region_2d(region, rv3d, Vector(p))
+            info[name] = [xy.x, xy.y] if xy is not None else None
+        with open(os.path.join(OUT, "info.json"), "w") as f:
+            json.dump(info, f)
+        bpy.ops.wm.quit_blender()
+        return None
+    state["step"] += 1
+    return 1.0
+
+
+bpy.app.timers.register(step, first_interval=2.0)

@@ -1,0 +1,173 @@
+// Whether the `softshadow` command fails with one clear line and no output file on bad input,
+// and renders, compares and reports as documented.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/exr_file.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int code = -1;
+    std::string out;  // stdout
+    std::string err;  // stderr
+};
+
+// Runs the CLI with a shell command line (arguments already quoted by the caller).
+CliRun cli(const std::string& args) {
+    static int counter = 0;
+    fs::path errFile = fs::temp_directory_path() / ("ss_cli_err_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+    std::string command = std::string("'") + SS_CLI_PATH + "' " + args + " 2>'" + errFile.string() + "'";
+    CliRun r;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+    int status = pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream e(errFile);
+    r.err.assign(std::istreambuf_iterator<char>(e), {});
+    fs::remove(errFile);
+    return r;
+}
+
+fs::path tempDir(const std::string& name) {
+    fs::path d = fs::temp_directory_path() / ("ss_cli_" + std::to_string(getpid()) + "_" + name);
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+size_t entries(const fs::path& dir) {
+    return size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}));
+}
+
+// One failing command: non-zero exit, exactly one "softshadow: error:" line naming the problem.
+void expectFailure(const CliRun& r, std::initializer_list<std::string> fragments) {
+    EXPECT_NE(r.code, 0);
+    EXPECT_EQ(r.err.rfind("softshadow: error: ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    for (const std::string& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << "'" << f << "' not in: " << r.err;
+}
+
+const char* kTetMesh = R"({"name":"Tet","positions":%P%,"triangles":%T%})";
+
+std::string scene(const std::string& positions, const std::string& triangles, const std::string& size = "0.5") {
+    std::string mesh = kTetMesh;
+    mesh.replace(mesh.find("%P%"), 3, positions);
+    mesh.replace(mesh.find("%T%"), 3, triangles);
+    return R"({"format":"softshadow-scene","version":1,
+      "camera":{"look_from":[3,-3,3],"look_at":[0,0,0],"fov_y_degrees":40,"width":32,"height":24},
+      "lights":[{"name":"Key","type":"disk","position":[0,0,4],"direction":[0,0,-1],"size":)" + size + R"(}],
+      "meshes":[)" + mesh + "]}";
+}
+const std::string kPos = "[0,0,0, 1,0,0, 0,1,0, 0,0,1]";
+const std::string kTri = "[0,2,1, 0,1,3, 1,2,3, 0,3,2]";
+
+TEST(Cli, BadInputFailsWithOneLineAndNoOutput) {
+    fs::path dir = tempDir("bad");
+    std::ofstream(dir / "malformed.json") << "{\"format\": \"softshadow-scene\",";
+    std::ofstream(dir / "nan.json") << scene("[0,0,0, 1,0,0, 0,\"NaN\",0, 0,0,1]", kTri);
+    std::ofstream(dir / "index.json") << scene(kPos, "[0,2,1, 0,1,3, 1,2,3, 0,3,12]");
+    std::ofstream(dir / "zero.json") << scene(kPos, kTri, "0");
+    std::ofstream(dir / "good.json") << scene(kPos, kTri);
+    size_t before = entries(dir);
+    std::string out = " -m reference -o '" + (dir / "out.exr").string() + "'";
+    auto render = [&](const std::string& file) { return cli("render '" + (dir / file).string() + "'" + out); };
+
+    expectFailure(render("missing.json"), {"missing.json", "does not exist"});
+    expectFailure(render("malformed.json"), {"malformed.json", "malformed JSON"});
+    expectFailure(render("nan.json"), {"nan.json", "meshes[0].positions[7]", "expected a number"});
+    expectFailure(render("index.json"), {"meshes[0].triangles[11]", "vertex index 12"});
+    expectFailure(render("zero.json"), {"lights[0]", "size greater than zero"});
+    expectFailure(cli("render '" + (dir / "good.json").string() + "' -m reference -o '" +
+                      (dir / "no_folder" / "out.exr").string() + "'"),
+                  {"no_folder", "does not exist"});
+    expectFailure(cli("render '" + (dir / "good.json").string() + "' -m reference -o '" + dir.string() + "'"),
+                  {"is a directory"});
+    expectFailure(cli("render '" + (dir / "good.json").string() + "' -m nonsense" + out), {"nonsense"});
+    expectFailure(cli("render '" + (dir / "good.json").string() + "' -m reference -l Nobody" + out),
+                  {"no light named 'Nobody'", "Key"});
+    expectFailure(cli("render '" + (dir / "good.json").string() + "' -o x.exr"), {"needs a method"});
+    expectFailure(cli("frobnicate"), {"unknown command 'frobnicate'"});
+    expectFailure(cli("compare '" + (dir / "a.exr").string() + "' '" + (dir / "b.exr").string() + "'"), {"a.exr"});
+    EXPECT_EQ(entries(dir), before);  // nothing written, nothing half-written
+    fs::remove_all(dir);
+}
+
+TEST(Cli, ReportListsMeshes) {
+    CliRun r = cli("report '" SS_SOURCE_DIR "/examples/scenes/demo.json' --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    ASSERT_GE(j["meshes"].size(), 2u);
+    EXPECT_EQ(j["meshes"][0]["mesh"], "Ground");
+    EXPECT_EQ(j["meshes"][0]["closed_manifold"], false);  // a plane is open
+    EXPECT_EQ(j["meshes"][1]["closed_manifold"], true);
+    EXPECT_EQ(j["lights"][0]["name"], "Area");
+    EXPECT_EQ(j["camera"]["width"], 640);
+    CliRun table = cli("report '" SS_SOURCE_DIR "/examples/scenes/demo.json'");
+    EXPECT_EQ(table.code, 0);
+    EXPECT_NE(table.out.find("Torus"), std::string::npos) << table.out;
+}
+
+TEST(Cli, CompareGivesKnownNumbers) {
+    fs::path dir = tempDir("compare");
+    // A: V = 0 on the left half, 1 on the right; B: 0.5 everywhere; a mask of the top row only.
+    ss::Image a(8, 2, 1.0f), b(8, 2, 0.5f), mask(8, 2, 0.0f);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 4; ++x) a.at(x, y) = 0.0f;
+    for (int x = 0; x < 8; ++x) mask.at(x, 0) = 1.0f;
+    ss::writeMultilayerExr((dir / "a.exr").string(), "ViewLayer", {{"L_reference", &a}, {"L_reference_mask", &mask}});
+    ss::writeMultilayerExr((dir / "b.exr").string(), "ViewLayer", {{"L_shadow_map", &b}});
+    CliRun r = cli("compare '" + (dir / "a.exr").string() + "' '" + (dir / "b.exr").string() + "' --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    auto rows = nlohmann::json::parse(r.out);
+    ASSERT_EQ(rows.size(), 1u);
+    // Different method names pair by light and layer; |a - b| = 0.5 on the 8 masked pixels.
+    EXPECT_EQ(rows[0]["a"], "L_reference");
+    EXPECT_EQ(rows[0]["b"], "L_shadow_map");
+    EXPECT_EQ(rows[0]["pixels"], 8);
+    EXPECT_DOUBLE_EQ(rows[0]["rmse"].get<double>(), 0.5);
+    EXPECT_DOUBLE_EQ(rows[0]["p99"].get<double>(), 0.5);
+    EXPECT_DOUBLE_EQ(rows[0]["umbra_iou"].get<double>(), 0.0);
+    CliRun all = cli("compare '" + (dir / "a.exr").string() + "' '" + (dir / "b.exr").string() + "' --mask none --json");
+    EXPECT_EQ(nlohmann::json::parse(all.out)[0]["pixels"], 16);
+    CliRun table = cli("compare '" + (dir / "a.exr").string() + "' '" + (dir / "b.exr").string() + "'");
+    EXPECT_EQ(table.code, 0);
+    EXPECT_NE(table.out.find("L_reference vs L_shadow_map"), std::string::npos) << table.out;
+    fs::remove_all(dir);
+}
+
+TEST(Cli, RenderWritesExactPassNames) {
+    fs::path dir = tempDir("render");
+    std::string out = (dir / "demo.exr").string();
+    CliRun r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m reference --width 40 --samples 4 -o '" +
+                out + "' --png-dir '" + (dir / "png").string() + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("wrote"), std::string::npos) << r.out;
+    ss::ExrContents back = ss::readMultilayerExr(out);
+    EXPECT_EQ(back.width, 40);
+    EXPECT_EQ(back.height, 30);  // --width alone keeps the 4:3 aspect
+    ASSERT_TRUE(back.find("Area_reference"));
+    EXPECT_EQ(back.find("Area_reference")->layer, "ViewLayer");
+    EXPECT_TRUE(fs::exists(dir / "png" / "Area_reference.png"));
+    // The same file against itself: zero error on every shared pass.
+    CliRun c = cli("compare '" + out + "' '" + out + "' --json");
+    ASSERT_EQ(c.code, 0) << c.err;
+    for (auto& row : nlohmann::json::parse(c.out)) EXPECT_EQ(row["rmse"].get<double>(), 0.0);
+    fs::remove_all(dir);
+}
+
+}  // namespace
