@@ -1,6 +1,8 @@
 // What the D-buffer stores for a volume surface: its distance |cx_v| to the light centre and the
 // silhouette distance |cx_s| of eq. 2, both along the ray from the centre through the fragment.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "common/shadow_map.glsl"
+
 in vec3 vWorld;
 flat in vec3 vEdgeA;
 flat in vec3 vEdgeB;
@@ -11,6 +13,11 @@ uniform vec3 uCentre;     // disk centre c
 uniform vec3 uNormal;     // disk normal, pointing into the scene
 uniform float uRadius;    // disk radius r
 uniform float uFar;       // distances are divided by it for the depth test
+// Umbra pass with the "first exit" rule: only surfaces beyond the first caster along the ray
+// (the shared shadow map, same view and size) count, and the nearest of them wins. uBias keeps
+// the caster's own surface out.
+uniform int uBeyondOccluder;
+uniform float uBias;
 
 const int KIND_QUAD = 0;
 const int KIND_FAN = 1;
@@ -26,6 +33,10 @@ void main() {
     vec3 u = toX / max(dist, 1e-30);
     float cosRay = dot(u, uNormal);
     gl_FragDepth = clamp(dist / uFar, 0.0, 1.0);
+    if (uBeyondOccluder != 0) {
+        float o = texelFetch(uShadowDistance, ivec2(gl_FragCoord.xy), 0).r;
+        if (!(shadowDistanceOf(vWorld) > o + uBias * shadowTexelWorldSize(o))) discard;
+    }
 
     if (vKind == KIND_SILHOUETTE_FACE) {
         // The face's own "edge" is the line through vEdgeA along (vEdgeB - vEdgeA), parallel to

@@ -11,7 +11,6 @@ export SOFTSHADOW_LIB="$BUILD_DIR/libsoftshadow.so"
 export SOFTSHADOW_ADDON_PATH="$ROOT/blender_addon"
 export SOFTSHADOW_BUILD_DIR="$BUILD_DIR"
 export SOFTSHADOW_ROOT="$ROOT"
-export PYTHONPATH="$ROOT/blender_addon:$HERE${PYTHONPATH:+:$PYTHONPATH}"
 BLENDER=${BLENDER:-blender}
 LOGS=$(mktemp -d)
 passed=0; failed=0; failures=()

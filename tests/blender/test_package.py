@@ -42,7 +42,7 @@ def test_zip_installs_and_loads_bundled_library():
     sstest.check('"version": (9, 8, 7)' in init, "bl_info version stamped")
 
     # A fresh user config: install as a user would, with no SOFTSHADOW_LIB to fall back on.
-    env = {k: v for k, v in os.environ.items() if k != "SOFTSHADOW_LIB"}
+    env = {k: v for k, v in os.environ.items() if k not in ("SOFTSHADOW_LIB", "PYTHONPATH")}
     env["BLENDER_USER_SCRIPTS"] = os.path.join(folder, "scripts")
     env["BLENDER_USER_CONFIG"] = os.path.join(folder, "config")
     run = subprocess.run([bpy.app.binary_path, "--background", "--factory-startup", "--python-expr",

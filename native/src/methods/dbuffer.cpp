@@ -20,6 +20,9 @@ namespace {
 // occluders). Both sides drawn: the soups have no consistent winding.
 constexpr gl::RenderState kFarthest{"dbuffer_farthest", true, GL_GREATER, true, true, false,
                                     GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
+// The umbra "first exit" rule: the nearest umbra surface beyond the first caster.
+constexpr gl::RenderState kNearest{"dbuffer_nearest", true, GL_LESS, true, true, false,
+                                   GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
 
 // One volume soup on the GPU.
 struct GpuSoup {
@@ -86,9 +89,10 @@ public:
         gl::Framebuffer dbuf(map.size, map.size, {GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
         dbuf.bind();
         dbuf.clearColor(0, glm::vec4(0.0f));
-        gl::apply(kFarthest);
         const gl::Program& vol = gl::program("dbuffer/volume.vert.glsl", "dbuffer/volume.frag.glsl");
         vol.use();
+        int volUnit = frame.bindShadowMap(vol, map, 0);
+        (void)volUnit;
         vol.set("uWorldToClip", map.worldToClip());
         vol.set("uCentre", geo.disk.centre);
         vol.set("uNormal", geo.disk.normal);
@@ -98,9 +102,15 @@ public:
         vol.set("uFar", far);
         GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
         // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
-        dbuf.clearDepth(0.0f);
+        bool firstExit = settings.text("umbra_rule", "first_exit") == "first_exit";
+        gl::apply(firstExit ? kNearest : kFarthest);
+        vol.set("uBeyondOccluder", firstExit ? 1 : 0);
+        vol.set("uBias", settings.number("bias_texels", 1.5f));
+        dbuf.clearDepth(firstExit ? 1.0f : 0.0f);
         g.ColorMask(GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE);
         draw(umbra);
+        gl::apply(kFarthest);
+        vol.set("uBeyondOccluder", 0);
         dbuf.clearDepth(0.0f);
         g.ColorMask(GL_FALSE, GL_FALSE, GL_TRUE, GL_TRUE);
         draw(penumbra);

@@ -1,0 +1,190 @@
+// Checks penumbra_map end to end: sane layers, the monotonic penumbra, collapse to the hard
+// shadow, its numbers against the reference, and the paper's two limits shown, not hidden.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "softshadow/softshadow.h"
+#include "test_pcss_support.h"
+
+namespace ss::test {
+namespace {
+
+TEST(PenumbraMap, AgainstTheReferenceOnTheSharedScenes) {
+    for (auto& [name, scene] : sharedScenes(softSceneParams())) {
+        Layers ref = renderReference(scene);
+        Layers pm = renderWith(scene, "penumbra_map");
+        Layers sm = renderWith(scene, "shadow_map");
+        Metrics m = compareToReference(pm, ref);
+        Metrics h = compareToReference(sm, ref);
+        SCOPED_TRACE(name + " penumbra_map: " + m.toString() + "\n shadow_map: " + h.toString());
+        EXPECT_EQ(checkLayersSane(pm), "");
+        // The outer edge of the soft shadow is right: lit IoU measured 0.955-0.981 against
+        // 0.83-0.94 for the hard shadow map. This is where the method is better.
+        EXPECT_GT(m.litIoU, h.litIoU + 0.01);
+        EXPECT_GT(m.litIoU, 0.94);
+        // By construction the whole penumbra is drawn OUTSIDE the hard shadow and fades from 0
+        // at its edge, where the truth is about 0.5: the shadow is too large and too dark, so
+        // RMSE (measured 0.14-0.22) is worse than shadow_map's (0.09-0.16) and the umbra
+        // (measured IoU 0.24-0.49) too big. The bounds pin those numbers so a change that makes
+        // them worse still fails; docs/methods/penumbra_map.md explains them.
+        EXPECT_LT(m.rmse, 0.26);
+        EXPECT_GT(m.umbraIoU, 0.18);
+    }
+}
+
+TEST(PenumbraMap, LimitOuterPenumbraOnlyTheInnerPenumbraIsBlack) {
+    Scene scene = sceneBox(softSceneParams());
+    Layers ref = renderReference(scene);
+    Layers pm = renderWith(scene, "penumbra_map");
+    Layers sm = renderWith(scene, "shadow_map");
+    const Image& vr = *ref.find("V");
+    const Image& vp = *pm.find("V");
+    const Image& vs = *sm.find("V");
+    const Image& mask = *ref.find("mask");
+    // Inside the light-centre hard shadow the reference still sees part of the light (the
+    // inner penumbra); penumbra_map, whose umbra IS that hard shadow, is black there.
+    size_t inner = 0, black = 0;
+    double missing = 0.0;
+    for (size_t i = 0; i < vr.pixels.size(); ++i) {
+        if (mask.pixels[i] <= 0.5f || vs.pixels[i] != 0.0f || vr.pixels[i] < 0.2f) continue;
+        ++inner;
+        black += vp.pixels[i] == 0.0f;
+        missing += vr.pixels[i];
+    }
+    std::printf("inner penumbra: %zu pixels, %zu black in penumbra_map, mean light missed %.3f\n",
+                inner, black, inner ? missing / double(inner) : 0.0);
+    EXPECT_GT(inner, 100u) << "the box scene has a visible inner penumbra";
+    // Allow 2% for pixels where the two methods' depth comparisons differ at the edge.
+    EXPECT_GE(double(black), 0.98 * double(inner));
+}
+
+TEST(PenumbraMap, LimitTheUmbraNeverShrinks) {
+    // A small occluder under a big light: the true umbra ends above the ground (its apex is
+    // 0.4 * 2.8 / (3 - 0.4) = 0.43 below the box, the ground 1.0 below), so the reference has
+    // no umbra at all; penumbra_map keeps the whole hard shadow as umbra.
+    Scene scene;
+    scene.addMesh(makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    scene.addMesh(makeBox({-0.2f, -0.2f, 1.0f}, {0.2f, 0.2f, 1.2f}, SS_MESH_CAST));
+    scene.addLight(makeDiskLight({0.6f, 0.4f, 4.0f}, 3.0f));
+    SceneParams sp = softSceneParams();
+    sp.cameraZoom = 2.5f;
+    scene.setCamera(sceneBox(sp).camera());
+    Layers ref = renderReference(scene);
+    Layers pm = renderWith(scene, "penumbra_map");
+    Layers sm = renderWith(scene, "shadow_map");
+    size_t refUmbra = countBelow(ref, 0.05f);
+    size_t pmUmbra = countBelow(pm, 0.05f);
+    size_t hard = countBelow(sm, 0.5f);
+    std::printf("umbra pixels: reference %zu, penumbra_map %zu, hard shadow %zu\n", refUmbra, pmUmbra,
+                hard);
+    EXPECT_EQ(refUmbra, 0u);
+    EXPECT_GT(hard, 30u);
+    EXPECT_GE(pmUmbra, hard);  // the umbra is at least the hard shadow: it never shrinks
+}
+
+TEST(PenumbraMap, PenumbraWidensWithTheLightRadius) {
+    size_t previous = 0;
+    for (float diameter : {0.4f, 1.0f, 2.0f}) {
+        SceneParams p = softSceneParams();
+        p.lightDiameter = diameter;
+        Layers pm = renderWith(sceneBox(p), "penumbra_map");
+        size_t n = penumbraPixels(pm);
+        SCOPED_TRACE("diameter " + std::to_string(diameter) + ": " + std::to_string(n));
+        // Outer penumbra width = L_r (Z_P - Z_V) / Z_V: linear in the radius (2.5x, 2x steps);
+        // 1.3x leaves room for the pixel grid.
+        EXPECT_GT(double(n), 1.3 * double(previous));
+        previous = n;
+    }
+}
+
+TEST(PenumbraMap, PenumbraWidensAsTheOccluderRisesFromTheReceiver) {
+    size_t previous = 0;
+    for (float lift : {0.0f, 0.6f, 1.2f}) {
+        SceneParams p = softSceneParams();
+        p.occluderLift = lift;
+        Layers pm = renderWith(sceneBox(p), "penumbra_map");
+        size_t n = penumbraPixels(pm);
+        SCOPED_TRACE("lift " + std::to_string(lift) + ": " + std::to_string(n));
+        EXPECT_GT(double(n), 1.3 * double(previous));
+        previous = n;
+    }
+}
+
+TEST(PenumbraMap, CollapsesToTheHardShadowAsTheRadiusGoesToZero) {
+    SceneParams p = softSceneParams();
+    p.lightDiameter = 1e-4f;
+    for (Scene scene : {sceneBox(p), sceneConcave(p), sceneTorus(p)}) {
+        Layers pm = renderWith(scene, "penumbra_map");
+        Layers sm = renderWith(scene, "shadow_map");
+        size_t differ = countDiffering(pm, sm, 0.5f);
+        // Same map, same hard shadow: only edge pixels whose depth comparison differs (the two
+        // methods bias differently) may disagree: at most 1% of the mask.
+        EXPECT_LE(double(differ), 0.01 * double(maskPixels(pm))) << differ << " pixels differ";
+        EXPECT_EQ(penumbraPixels(pm, 0.05f), 0u);
+    }
+}
+
+Light shaped(LightType type) {
+    Light l = makeDiskLight({1.2f, 0.8f, 4.0f}, 1.5f, "shaped");
+    l.type = type;
+    l.sizeY = 0.8f;
+    l.radius = 0.6f;
+    l.spotSize = glm::radians(120.0f);
+    return l;
+}
+
+TEST(PenumbraMap, LightShapesUseTheirEquivalentRadius) {
+    // Sphere and disk natively; ellipse, square, rectangle through the area-equal radius: the
+    // outer penumbra's pixel count follows the radius.
+    for (LightType type : {LightType::Disk, LightType::Ellipse, LightType::Square, LightType::Rectangle,
+                           LightType::Point, LightType::Spot}) {
+        Scene scene = sceneBox(softSceneParams());
+        scene.addLight(shaped(type));
+        Layers pm = renderWith(scene, "penumbra_map", {}, 0, 1);
+        SCOPED_TRACE(lightTypeName(type));
+        EXPECT_EQ(checkLayersSane(pm), "");
+        EXPECT_GT(penumbraPixels(pm), 50u);
+    }
+    Scene scene = sceneBox(softSceneParams());
+    Light sun = shaped(LightType::Sun);
+    sun.angle = 0.1f;
+    scene.addLight(sun);
+    try {
+        renderWith(scene, "penumbra_map", {}, 0, 1);
+        FAIL() << "a sun was accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.status(), SS_ERROR_UNSUPPORTED);
+        EXPECT_NE(std::string(e.what()).find("sun"), std::string::npos) << e.what();
+    }
+}
+
+TEST(PenumbraMap, EachLightHasItsOwnMaps) {
+    // Light 1 of a two-light scene renders exactly as it does alone: no map is shared or
+    // reused across lights.
+    SceneParams p = softSceneParams();
+    Scene both = sceneOverlapping(p);
+    Light second = makeDiskLight({-1.5f, 0.5f, 3.5f}, 0.8f, "second");
+    both.addLight(second);
+    Layers first = renderWith(both, "penumbra_map", {}, 0, 0);
+    Layers fromBoth = renderWith(both, "penumbra_map", {}, 0, 1);
+    Scene alone;
+    for (const Mesh& m : both.meshes()) alone.addMesh(m);
+    alone.addLight(second);
+    alone.setCamera(both.camera());
+    Layers fromAlone = renderWith(alone, "penumbra_map");
+    EXPECT_EQ(countDiffering(fromBoth, fromAlone, 1e-6f), 0u);
+    EXPECT_GT(countDiffering(first, fromBoth, 0.5f), 100u) << "the two lights cast different shadows";
+}
+
+TEST(PenumbraMap, ExtraLayersAreThere) {
+    Layers pm = renderWith(sceneTorus(softSceneParams()), "penumbra_map");
+    for (const char* name : {"V", "mask", "umbra", "penumbra", "penumbra_map", "hard_shadow"})
+        EXPECT_NE(pm.find(name), nullptr) << name;
+    EXPECT_EQ(checkLayersSane(pm), "");
+}
+
+}  // namespace
+}  // namespace ss::test

@@ -1,0 +1,53 @@
+// Does the C API hand out the sweep shadow mesh: world-space vertices on the receiver with
+// intensities in [0, 1], whose intensity integral is the box's mean hard-shadow area?
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "capi/capi_internal.h"
+#include "softshadow/softshadow.h"
+#include "test_scenes.h"
+
+TEST(SweepCapi, ShadowMeshOfTheBox) {
+    ss_scene* scene = nullptr;
+    ASSERT_EQ(ss_scene_create(&scene), SS_OK);
+    scene->scene = ss::test::sceneBox();
+    ss_render_options o;
+    ss_render_options_default(&o);
+    o.samples = 16;
+    o.settings = "fill=steps";
+    ss_sweep_mesh* mesh = nullptr;
+    ASSERT_EQ(ss_sweep_shadow_mesh(scene, 0, &o, &mesh), SS_OK) << ss_last_error();
+    const float *xyz = nullptr, *intensity = nullptr;
+    const uint32_t* tris = nullptr;
+    uint32_t nv = 0, nt = 0;
+    ASSERT_EQ(ss_sweep_mesh_data(mesh, &xyz, &intensity, &nv, &tris, &nt), SS_OK);
+    int32_t receiver = -1, used = 0;
+    ASSERT_EQ(ss_sweep_mesh_info(mesh, &receiver, &used), SS_OK);
+    EXPECT_EQ(used, 16);
+    EXPECT_TRUE(scene->scene.meshes()[receiver].receives());
+    ASSERT_GT(nt, 0u);
+    double integral = 0;
+    for (uint32_t i = 0; i < nv; ++i) {
+        EXPECT_NEAR(xyz[3 * i + 2], 0.0f, 1e-5f);  // on the ground plane z = 0
+        EXPECT_GE(intensity[i], 0.0f);
+        EXPECT_LE(intensity[i], 1.0f);
+    }
+    for (uint32_t t = 0; t < nt; ++t) {
+        const float* a = xyz + 3 * tris[3 * t];
+        const float* b = xyz + 3 * tris[3 * t + 1];
+        const float* c = xyz + 3 * tris[3 * t + 2];
+        double area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+        EXPECT_GE(area, 0.0);  // counter-clockwise seen from above (the light's side)
+        integral += area * (intensity[tris[3 * t]] + intensity[tris[3 * t + 1]] + intensity[tris[3 * t + 2]]) / 3.0;
+    }
+    // Box 1.2 wide, top at 1.2, light 4 up: the centre's hard shadow is the top face scaled by
+    // 4 / 2.8, area 2.94; offset samples stick out by < 0.03 world units on a side: < 3.1.
+    EXPECT_GT(integral, 2.90);
+    EXPECT_LT(integral, 3.10);
+    ss_sweep_mesh_destroy(mesh);
+    EXPECT_NE(ss_sweep_shadow_mesh(scene, 7, &o, &mesh), SS_OK);
+    EXPECT_NE(std::string(ss_last_error()).find("light index"), std::string::npos);
+    ss_scene_destroy(scene);
+}
