@@ -132,7 +132,10 @@ def setup(scene, exr_path=None):
         group_node = tree.nodes.new("CompositorNodeGroup")
         group_node.name = GROUP_NODE
         group_node.label = "Soft Shadow Darken"
-        group_node.location = (100, 100)
+        group_node.location = (layers.location.x + layers.width + 250, layers.location.y)
+        node.location = (layers.location.x, layers.location.y - 450)
+        if composite.location.x < group_node.location.x + 250:
+            composite.location = (group_node.location.x + 250, group_node.location.y)
     if group_node.node_tree is None:
         group_node.node_tree = darken_group()
     group_node.inputs["Strength"].default_value = scene.softshadow.strength

@@ -217,6 +217,29 @@ def scene_camera(scene, depsgraph, width=None, height=None):
                          render.pixel_aspect_y / render.pixel_aspect_x if render.pixel_aspect_x else 1.0)
 
 
+def _instances(depsgraph, view_layer, mode):
+    """(instance or None, evaluated object, is_instance, parent, world matrix) of what to export.
+
+    A viewport depsgraph leaves out objects hidden in the viewport (eye icon) although they
+    render: in RENDER mode those are added from the view layer, evaluated (their own instances
+    are not expanded)."""
+    seen = set()
+    for inst in depsgraph.object_instances:
+        obj = inst.object
+        if obj is None:
+            continue
+        if not inst.is_instance:
+            seen.add(obj.original.name)
+        yield inst, obj, inst.is_instance, inst.parent, inst.matrix_world.copy()
+    if mode != "RENDER":
+        return
+    for original in view_layer.objects:
+        if original.name in seen or original.type not in GEOMETRY_TYPES + ("LIGHT",):
+            continue
+        evaluated = original.evaluated_get(depsgraph)
+        yield None, evaluated, False, None, evaluated.matrix_world.copy()
+
+
 def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None):
     """An evaluated depsgraph -> ExportedScene. mode: 'RENDER' (hide_render, collections'
     render switches) or 'VIEWPORT' (what the viewport shows). camera overrides the scene camera
@@ -227,12 +250,8 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None):
     used_mesh_names, used_light_names = set(), set()
     local_cache = {}
 
-    for inst in depsgraph.object_instances:
-        obj = inst.object
-        if obj is None:
-            continue
-        if inst.is_instance:
-            parent = inst.parent
+    for inst, obj, is_instance, parent, matrix in _instances(depsgraph, view_layer, mode):
+        if is_instance:
             if parent is not None and not _object_visible(parent, mode, view_layer, render_collections):
                 continue
             if mode == "RENDER" and obj.original.hide_render:
@@ -245,8 +264,7 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None):
                 show = obj.original.show_instancer_for_render if mode == "RENDER" else inst.show_self
                 if not show:
                     continue
-        base_name = obj.name if not inst.is_instance else "%s/%s" % (inst.parent.name, obj.name)
-        matrix = inst.matrix_world.copy()
+        base_name = obj.name if not is_instance else "%s/%s" % (parent.name, obj.name)
 
         if obj.type == "LIGHT":
             try:
@@ -261,7 +279,7 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None):
             continue
 
         key = (obj.type, obj.data.as_pointer() if obj.data is not None else obj.as_pointer())
-        if key not in local_cache or inst.is_instance is False:
+        if key not in local_cache or not is_instance:
             try:
                 local_cache[key] = _local_mesh_arrays(obj)
             except RuntimeError as exc:

@@ -1,7 +1,9 @@
 // What `softshadow compare` prints: RMSE, mean and p99 absolute error, umbra and lit IoU for each
 // pass two EXR files share (or each method against a reference method inside one file).
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
 #include <cstdio>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -124,16 +126,21 @@ int runCompare(const std::vector<std::string>& argv) {
         std::printf("%s\n", rows.dump(2).c_str());
         return 0;
     }
-    std::printf("%-44s %9s %9s %9s %9s %9s %9s\n", "pass (A vs B)", "pixels", "rmse", "mean", "p99",
+    auto rowName = [](const nlohmann::json& r) {
+        return r["a"] == r["b"] ? r["a"].get<std::string>()
+                                : r["a"].get<std::string>() + " vs " + r["b"].get<std::string>();
+    };
+    int width = 13;
+    for (const auto& r : rows) width = std::max(width, int(rowName(r).size()));
+    std::printf("%-*s %9s %9s %9s %9s %9s %9s\n", width, "pass (A vs B)", "pixels", "rmse", "mean", "p99",
                 "umbra_iou", "lit_iou");
-    for (const auto& r : rows) {
-        std::string name = r["a"] == r["b"] ? r["a"].get<std::string>()
-                                            : r["a"].get<std::string>() + " vs " + r["b"].get<std::string>();
-        std::printf("%-44s %9zu %9.5f %9.5f %9.5f %9.4f %9.4f\n", name.c_str(), r["pixels"].get<size_t>(),
-                    r["rmse"].get<double>(), r["mean"].get<double>(), r["p99"].get<double>(),
-                    r["umbra_iou"].get<double>(), r["lit_iou"].get<double>());
-    }
-    std::printf("mask: %s\n", rows[0]["mask"].get<std::string>().c_str());
+    for (const auto& r : rows)
+        std::printf("%-*s %9zu %9.5f %9.5f %9.5f %9.4f %9.4f\n", width, rowName(r).c_str(),
+                    r["pixels"].get<size_t>(), r["rmse"].get<double>(), r["mean"].get<double>(),
+                    r["p99"].get<double>(), r["umbra_iou"].get<double>(), r["lit_iou"].get<double>());
+    std::set<std::string> masks;
+    for (const auto& r : rows) masks.insert(r["mask"].get<std::string>());
+    for (const std::string& m : masks) std::printf("mask: %s\n", m.c_str());
     return 0;
 }
 

@@ -7,6 +7,7 @@
 uniform sampler2D uDBuffer;  // R |cx_uv|, G |cx_s| (umbra), B |cx_pv|, A |cx_s| (penumbra); 0 = none
 uniform vec3 uCentre;        // disk centre c
 uniform int uSmallOccluders; // V = sqrt(t) instead of 3t^2 - 2t^3
+uniform int uSegmentProfile; // V = the disk's circular-segment area for a chord at t (exact in 1D)
 uniform float uBiasTexels;   // receiver bias in shadow-map texels
 
 layout(location = 0) out vec4 oResult;     // V, mask, umbra, penumbra
@@ -64,6 +65,13 @@ void main() {
             oResult.w = 1.0;
         }
     }
-    float V = uSmallOccluders != 0 ? sqrt(t) : t * t * (3.0 - 2.0 * t);
+    float V = t * t * (3.0 - 2.0 * t);
+    if (uSmallOccluders != 0) {
+        V = sqrt(t);
+    } else if (uSegmentProfile != 0) {
+        // Share of a disk beyond a chord at distance (1 - 2t) r from its centre.
+        float theta = 2.0 * acos(clamp(1.0 - 2.0 * t, -1.0, 1.0));
+        V = (theta - sin(theta)) / (2.0 * 3.14159265358979);
+    }
     oResult.x = clamp(V, 0.0, 1.0);
 }

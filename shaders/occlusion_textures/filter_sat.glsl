@@ -1,6 +1,6 @@
-// How a box is read from a summed-area table: exact, since the table is bilinear inside a cell;
-// integer corner sums are differenced before the fractional weights (float precision).
+// How a box is read from a summed-area table: exact, since the table is bilinear inside a cell.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// Integer corner sums are differenced before the fractional weights (float precision).
 // Compiled only in the FILTER_SAT variant: the three filters share one include list.
 #if defined(FILTER_SAT)
 uniform sampler2D filtered[4];  // per RGBA group: (W + 1) x (H + 1) RGBA32F table

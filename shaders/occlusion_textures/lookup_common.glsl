@@ -1,6 +1,6 @@
-// Where a shaded point reads slice k: texture centre and kernel size in texels, and the slice's
-// weight (mirrors methods/occlusion_textures_slicing.cpp, lookupSlice()).
+// Where a shaded point reads slice k: texture centre and kernel size in texels.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// And the slice's weight (mirrors methods/occlusion_textures_slicing.cpp, lookupSlice()).
 uniform mat4 worldToLight;  // light-local: x, y in the light plane (kernel light axes), z depth
 uniform vec2 lightHalf;     // half sizes of the kernel rectangle
 uniform float copDistance;  // d: the slicing camera's centre of projection sits d behind the light

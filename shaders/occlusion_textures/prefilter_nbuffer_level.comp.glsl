@@ -1,7 +1,7 @@
-// How N-Buffer level l is made from level l-1: the mean of four boxes of side 2^(l-1) whose
-// lower corners are this texel and its neighbours 2^(l-1) away (outside the texture: 0).
-// Level 0 is a copy of the occlusion textures (half = 0).
+// How N-Buffer level l is made from level l-1.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// The mean of four boxes of side 2^(l-1) whose lower corners are this texel and its neighbours
+// 2^(l-1) away (outside the texture: 0). Level 0 is a copy of the occlusion textures (half = 0).
 #version 450 core
 layout(local_size_x = 8, local_size_y = 8) in;
 

@@ -1,6 +1,6 @@
-// How the summed-area table's second pass runs: one invocation per table column, a running sum
-// downwards over the row sums written by the first pass.
+// How the summed-area table's second pass runs: one invocation per table column.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// A running sum downwards over the row sums written by the first pass.
 #version 450 core
 layout(local_size_x = 64) in;
 

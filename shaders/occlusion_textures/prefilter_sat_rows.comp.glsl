@@ -1,6 +1,6 @@
-// How the summed-area table's first pass runs: one invocation per table row, a running sum of
-// the slice texels to its left (row 0 and column 0 of the table stay zero).
+// How the summed-area table's first pass runs: one invocation per table row.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// A running sum of the slice texels to its left (row 0 and column 0 of the table stay zero).
 #version 450 core
 layout(local_size_x = 64) in;
 

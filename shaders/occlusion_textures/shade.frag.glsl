@@ -1,6 +1,7 @@
-// How occlusion_textures shades the camera G-buffer: visibility from the pre-filtered slices
-// (product combination), the shared mask, and each slice's weighted shadow for the debug layers.
+// How occlusion_textures shades the camera G-buffer.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// Visibility from the pre-filtered slices (product combination), the shared mask, and each slice's
+// weighted shadow for the debug layers.
 #version 450 core
 #include "common/camera_gbuffer.glsl"
 #include "common/visibility_contract.glsl"

@@ -37,7 +37,7 @@ void main() {
     vec2 uv;
     if (!shadowMapUv(s.position, uv)) return;  // outside the map: nothing casts onto it
     float dP = shadowDistanceOf(s.position);
-    vec3 N = s.normal;
+    ReceiverPlane rp = receiverPlane(s.position, s.normal);
     // Interleaved gradient noise turns the pattern per pixel: banding becomes fine noise.
     float phi = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
 
@@ -55,7 +55,7 @@ void main() {
         vec2 q = uv + searchUv * diskSample(i, uBlockerSamples, phi);
         ivec2 t = shadowTexel(q);
         float z = texelFetch(uShadowDistance, t, 0).r;
-        float expect = receiverDistanceAt((vec2(t) + 0.5) / uShadowSize, s.position, N, dP);
+        float expect = receiverDistanceAt(rp, (vec2(t) + 0.5) / uShadowSize, dP);
         if (z < expect - receiverTolerance(expect)) {
             sum += z;
             ++found;
@@ -71,7 +71,7 @@ void main() {
     int lit = 0;
     for (int i = 0; i < uPcfSamples; ++i) {
         vec2 q = uv + filterUv * diskSample(i, uPcfSamples, phi);
-        if (!blockedAtTexel(shadowTexel(q), s.position, N, dP)) ++lit;
+        if (!blockedAtTexel(rp, shadowTexel(q), dP)) ++lit;
     }
     oResult.x = float(lit) / float(uPcfSamples);
 }

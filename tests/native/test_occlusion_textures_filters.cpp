@@ -1,6 +1,6 @@
-// Checks the CPU reference box filters of occlusion_textures: SAT and N-Buffers against brute
-// force, mipmaps within a stated tolerance of the SAT, and the slicing geometry.
+// Checks the CPU reference box filters of occlusion_textures: SAT and N-Buffers against brute force.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// Mipmaps within a stated tolerance of the SAT, and the slicing geometry.
 #include <gtest/gtest.h>
 
 #include <cmath>

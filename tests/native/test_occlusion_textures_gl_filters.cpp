@@ -1,6 +1,6 @@
-// Checks the GL pre-filters of occlusion_textures on packed RGBA slices: SAT against brute force,
-// each N-Buffer level against the brute-force 2^l box, mipmaps within a stated tolerance of SAT.
+// Checks the GL pre-filters of occlusion_textures on packed RGBA slices: SAT against brute force.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// Each N-Buffer level against the brute-force 2^l box, mipmaps within a stated tolerance of SAT.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -133,18 +133,11 @@ TEST_F(GlFilters, NBufferAndMipmapLookupsStayNearTheExactBox) {
         nb = occlusion::probeFilter(fn, 0, queries);
         auto fm = occlusion::prefilter(Filter::Mipmap, slices);
         mip = occlusion::probeFilter(fm, 0, queries);
-        if (getenv("OCCL_DEBUG")) {
-            auto l0 = occlusion::readTexture(fm.textures[0], GL_TEXTURE_2D, 0, 0, kW, kH);
-            auto l1 = occlusion::readTexture(fm.textures[0], GL_TEXTURE_2D, 1, 0, kW / 2, kH / 2);
-            double s0 = 0, s1 = 0;
-            for (size_t i = 0; i < l0.size(); i += 4) s0 += l0[i];
-            for (size_t i = 0; i < l1.size(); i += 4) s1 += l1[i];
-            std::printf("level sums %f %f (x4 %f)\n", s0, s1, 4 * s1);
-        }
     });
     std::vector<filters::NBuffer> cpu;
-    for (const Plane& p : planes) cpu.push_back(filters::NBuffer::build(p));
-    double sumNb = 0.0, sumMip = 0.0, worstModel = 0.0;
+    std::vector<filters::Mipmap> cpuMip;
+    for (const Plane& p : planes) cpu.push_back(filters::NBuffer::build(p)), cpuMip.push_back(filters::Mipmap::build(p));
+    double sumNb = 0.0, sumMip = 0.0, worstModel = 0.0, worstMipModel = 0.0;
     int n = 0;
     for (size_t q = 0; q < queries.size(); ++q) {
         glm::vec4 b = queries[q];
@@ -155,20 +148,20 @@ TEST_F(GlFilters, NBufferAndMipmapLookupsStayNearTheExactBox) {
             sumMip += (mip[q][c] - exact) * (mip[q][c] - exact);
             ++n;
             worstModel = std::max(worstModel, double(std::abs(cpu[size_t(c)].box(b.x, b.y, b.z, b.w) - nb[q][c])));
-            if (getenv("OCCL_DEBUG") && c == 0) {
-                static auto cm = filters::Mipmap::build(p);
-                std::printf("q %6.1f %6.1f %5.1f %5.1f exact %.3f gl %.3f cpu %.3f\n", b.x, b.y, b.z, b.w, exact, mip[q][c], cm.box(b.x, b.y, b.z, b.w));
-            }
+            worstMipModel = std::max(worstMipModel, double(std::abs(cpuMip[size_t(c)].box(b.x, b.y, b.z, b.w) - mip[q][c])));
         }
     }
     double rmsNb = std::sqrt(sumNb / n), rmsMip = std::sqrt(sumMip / n);
-    std::printf("GL box filter RMS vs exact: nbuffer %.4f, mipmap %.4f; GL vs CPU N-Buffer model %.2e\n",
-                rmsNb, rmsMip, worstModel);
+    std::printf("GL box filter RMS vs exact: nbuffer %.4f, mipmap %.4f; GL vs CPU model: nbuffer %.2e, mipmap %.2e\n",
+                rmsNb, rmsMip, worstModel, worstMipModel);
     // The GLSL N-Buffer lookup is the CPU model's rule; they differ by 16-bit storage and the
     // texture unit's 8-bit bilinear weights (1/256 of a level step): bound 1e-2.
     EXPECT_LT(worstModel, 1e-2);
-    // Mipmaps: dyadic blocks, the trilinear tent and the texture unit's own anisotropic
-    // footprint; stated bound 0.12 RMS against the exact box (CPU model measures 0.05).
+    // The shader's mipmap rule is the CPU model's too; llvmpipe quantises the lod fraction and
+    // the bilinear weights to 8 bits: bound 2e-2 (measured 1.4e-2).
+    EXPECT_LT(worstMipModel, 2e-2);
+    // Mipmaps: dyadic blocks and the trilinear tent; stated bound 0.12 RMS against the exact
+    // box (the CPU model measures 0.05 on a 128^2 texture, non-power-of-two sizes cost more).
     EXPECT_LT(rmsMip, 0.12);
     EXPECT_LT(rmsNb, 0.06);
 }

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -78,7 +80,16 @@ double signedDepth(const std::vector<glm::dvec2>& poly, glm::dvec2 q) {
     return inside ? dist : -dist;
 }
 
-TEST(ReferenceRender, HardShadowLandsWhereTheProjectionSays) {
+// The perspective camera used by the alignment check, and an orthographic one (Blender's
+// ortho cameras start their rays on the near plane, not at the eye).
+Camera alignmentCamera(bool orthographic) {
+    Camera cam = makeLookAtCamera({0.3f, -1.0f, 9.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
+                                  glm::radians(35.0f), 160, 120, 0.1f, 50.0f);
+    if (orthographic) cam.projection = glm::ortho(-3.2f, 3.2f, -2.4f, 2.4f, 0.1f, 50.0f);
+    return cam;
+}
+
+void checkHardShadowAlignment(const Camera& cam) {
     const glm::vec3 lo(-0.5f, -0.5f, 1.0f), hi(0.5f, 0.5f, 1.2f), lamp(1.0f, 0.6f, 5.0f);
     Scene scene;
     scene.addMesh(test::makeGround(4.0f, 0.0f, SS_MESH_RECEIVE));
@@ -89,8 +100,6 @@ TEST(ReferenceRender, HardShadowLandsWhereTheProjectionSays) {
     point.radius = 0.0f;
     point.lightToWorld = glm::translate(glm::mat4(1.0f), lamp);
     scene.addLight(point);
-    Camera cam = makeLookAtCamera({0.3f, -1.0f, 9.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
-                                  glm::radians(35.0f), 160, 120, 0.1f, 50.0f);
     scene.setCamera(cam);
     Layers out = renderReference(scene, 0, withSamples(1));
     const Image& v = layer(out, "V");
@@ -123,6 +132,16 @@ TEST(ReferenceRender, HardShadowLandsWhereTheProjectionSays) {
     EXPECT_GT(outside, 10000);
     EXPECT_EQ(wrong, 0) << "pixels disagreeing with the analytic shadow outline (" << inside
                         << " inside, " << outside << " outside tested)";
+}
+
+TEST(ReferenceRender, HardShadowLandsWhereTheProjectionSays) {
+    checkHardShadowAlignment(alignmentCamera(false));
+}
+
+TEST(ReferenceRender, HardShadowLandsWhereTheProjectionSaysOrthographic) {
+    Camera cam = alignmentCamera(true);
+    ASSERT_TRUE(cam.isOrthographic());
+    checkHardShadowAlignment(cam);
 }
 
 // Ground and a box that does not cast, seen from low so the upper rows see only sky.
@@ -225,7 +244,9 @@ TEST(ReferenceRender, EveryLightTypeGivesSaneVisibility) {
             ASSERT_GE(x, 0.0f) << lightTypeName(type);
             ASSERT_LE(x, 1.0f) << lightTypeName(type);
             ASSERT_TRUE(m == 0.0f || m == 1.0f);
-            if (m == 0.0f) ASSERT_EQ(x, 1.0f);
+            if (m == 0.0f) {
+                ASSERT_EQ(x, 1.0f);
+            }
             inMask += m == 1.0f;
             dark += m == 1.0f && x < 0.5f;
             EXPECT_EQ(umbra.pixels[i], (m == 1.0f && x < kUmbraBelow) ? 1.0f : 0.0f);
@@ -233,8 +254,9 @@ TEST(ReferenceRender, EveryLightTypeGivesSaneVisibility) {
         }
         EXPECT_GT(inMask, int(v.pixels.size()) / 10) << lightTypeName(type);
         EXPECT_GT(dark, 30) << lightTypeName(type) << ": the box must cast a shadow";
-        if (type == LightType::Spot)  // a 55 degree cone from 4 m lights a ~2 m disk only
+        if (type == LightType::Spot) {  // a 55 degree cone from 4 m lights a ~2 m disk only
             EXPECT_LT(inMask, int(v.pixels.size()) / 2);
+        }
     }
 }
 

@@ -1,6 +1,6 @@
-// How a box-filtered occlusion texture is computed on the CPU (brute force, summed-area table,
-// N-Buffers, mipmaps): the references the GL pre-filters of occlusion_textures are tested against.
+// How a box-filtered occlusion texture is computed on the CPU (brute force, summed-area table, N-Buffers.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// Mipmaps): the references the GL pre-filters of occlusion_textures are tested against.
 #pragma once
 #include <cstddef>
 #include <vector>

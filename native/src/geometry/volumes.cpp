@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 namespace ss {
 
@@ -185,11 +186,11 @@ float rimAngle(const glm::vec3& p, const Disk& disk, const glm::vec3& u, const g
 
 }  // namespace
 
-ShadowVolumes extrudeVolumes(const Mesh& mesh, const DiskSilhouette& sil, const Disk& disk,
-                             float length, float fanStepRadians) {
-    ShadowVolumes vol;
+namespace {
 
-    // Umbra: quads, trimmed where two meet at a simple silhouette vertex.
+// Umbra: quads, trimmed where two meet at a simple silhouette vertex, plus silhouette faces.
+void extrudeUmbra(const Mesh& mesh, const DiskSilhouette& sil, const Disk& disk, float length,
+                  ShadowVolumes& vol) {
     std::vector<Quad> uq = buildQuads(mesh, sil.umbraEdges, disk, true, &vol.insideDiskEdges);
     for (const SilhouetteVertex& sv : sil.umbraVertices) {
         if (sv.edges.size() != 2) continue;
@@ -223,9 +224,12 @@ ShadowVolumes extrudeVolumes(const Mesh& mesh, const DiskSilhouette& sil, const 
             pushTriangle(vol.umbra, p0, p1, p2, near, near + along, n, VolumeKind::SilhouetteFace);
             ++vol.silhouetteFaces;
         }
+}
 
-    // Penumbra: quads with their own directions, closed at each simple vertex by a fan of
-    // triangles whose directions run along the disk rim from one quad's p_p to the next one's.
+// Penumbra: quads with their own directions, closed at each simple vertex by a fan.
+void extrudePenumbra(const Mesh& mesh, const DiskSilhouette& sil, const Disk& disk, float length,
+                     float fanStepRadians, ShadowVolumes& vol) {
+    // Fans: directions run along the disk rim from one quad's p_p to the next one's.
     std::vector<Quad> pq = buildQuads(mesh, sil.penumbraEdges, disk, false, &vol.insideDiskEdges);
     for (const Quad& q : pq) {
         glm::vec3 a = mesh.positions[q.a], b = mesh.positions[q.b];
@@ -265,6 +269,23 @@ ShadowVolumes extrudeVolumes(const Mesh& mesh, const DiskSilhouette& sil, const 
             prev = next;
         }
     }
+}
+
+}  // namespace
+
+ShadowVolumes extrudeVolumes(const Mesh& mesh, const DiskSilhouette& sil, const Disk& disk,
+                             float length, float fanStepRadians) {
+    // The two volumes are independent: on large silhouettes build them on both cores.
+    ShadowVolumes vol, pen;
+    if (sil.umbraEdges.size() + sil.penumbraEdges.size() > 4000) {
+        std::thread other([&] { extrudePenumbra(mesh, sil, disk, length, fanStepRadians, pen); });
+        extrudeUmbra(mesh, sil, disk, length, vol);
+        other.join();
+    } else {
+        extrudeUmbra(mesh, sil, disk, length, vol);
+        extrudePenumbra(mesh, sil, disk, length, fanStepRadians, pen);
+    }
+    vol.append(pen);
     return vol;
 }
 

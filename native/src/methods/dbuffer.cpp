@@ -1,8 +1,12 @@
 // How the dbuffer method renders: volumes into the D-buffer from the light centre, then eq. 3 per pixel.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <string>
 
 #include "core/error.h"
 #include "gl/framebuffer.h"
@@ -81,18 +85,32 @@ public:
         geometry_ = dbufferGeometry(frame.scene(), lightIndex);
         const DbufferGeometry& geo = *geometry_;
         const gl::Functions& g = frame.gl();
+        // SS_DBUFFER_TIMING=1 prints per-stage milliseconds (glFinish between stages).
+        static const bool timing = std::getenv("SS_DBUFFER_TIMING") != nullptr;
+        auto clock = std::chrono::steady_clock::now();
+        auto lap = [&](const char* stage) {
+            if (!timing) return;
+            g.Finish();
+            auto now = std::chrono::steady_clock::now();
+            std::fprintf(stderr, "dbuffer %s: %.1f ms\n", stage, std::chrono::duration<double, std::milli>(now - clock).count());
+            clock = now;
+        };
+        lap("volumes (cache)");
         const CameraPass& cam = frame.cameraPass();
+        lap("shared camera pass");
         const ShadowMap& map = frame.shadowMap(lightIndex, int(settings.number("shadow_map_size", 0.0f)));
+        lap("shared shadow map");
 
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
         settings.report(0.3f, "D-buffer pass");
         gl::Framebuffer dbuf(map.size, map.size, {GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
         dbuf.bind();
+        gl::apply(kFarthest);  // colour writes on before clearing (clears honour the colour mask)
+        g.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         dbuf.clearColor(0, glm::vec4(0.0f));
         const gl::Program& vol = gl::program("dbuffer/volume.vert.glsl", "dbuffer/volume.frag.glsl");
         vol.use();
-        int volUnit = frame.bindShadowMap(vol, map, 0);
-        (void)volUnit;
+        frame.bindShadowMap(vol, map, 0);  // the first-exit rule reads the casters' distances
         vol.set("uWorldToClip", map.worldToClip());
         vol.set("uCentre", geo.disk.centre);
         vol.set("uNormal", geo.disk.normal);
@@ -102,7 +120,10 @@ public:
         vol.set("uFar", far);
         GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
         // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
-        bool firstExit = settings.text("umbra_rule", "first_exit") == "first_exit";
+        std::string rule = settings.text("umbra_rule", "first_exit");
+        if (rule != "first_exit" && rule != "farthest")
+            fail(SS_ERROR_INVALID_ARGUMENT, "dbuffer: umbra_rule must be 'first_exit' or 'farthest', not '" + rule + "'");
+        bool firstExit = rule == "first_exit";
         gl::apply(firstExit ? kNearest : kFarthest);
         vol.set("uBeyondOccluder", firstExit ? 1 : 0);
         vol.set("uBias", settings.number("bias_texels", 1.5f));
@@ -116,12 +137,13 @@ public:
         draw(penumbra);
         g.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         g.check("drawing the D-buffer");
+        lap("D-buffer pass");
 
         // Camera pass: eq. 3 and eq. 4 per pixel.
         settings.report(0.7f, "camera pass");
         gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F});
         out.bind();
-        gl::apply(gl::states::overwrite);
+        gl::apply(gl::states::overwrite);  // writes every pixel: no clear needed
         const gl::Program& shade = gl::program("common/fullscreen.vert.glsl", "dbuffer/camera.frag.glsl");
         shade.use();
         int unit = frame.bindCameraPass(shade, 0);
@@ -130,23 +152,37 @@ public:
         frame.setLightUniforms(shade, lightIndex);
         shade.set("uCentre", geo.disk.centre);
         shade.set("uSmallOccluders", settings.flag("small_occluders", false) ? 1 : 0);
+        std::string profile = settings.text("profile", "smoothstep");
+        if (profile != "smoothstep" && profile != "segment")
+            fail(SS_ERROR_INVALID_ARGUMENT, "dbuffer: profile must be 'smoothstep' or 'segment', not '" + profile + "'");
+        shade.set("uSegmentProfile", profile == "segment" ? 1 : 0);
         shade.set("uBiasTexels", settings.number("bias_texels", 1.5f));
         frame.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("drawing the dbuffer camera pass");
+        lap("camera pass");
 
+        // One read-back per attachment (top row first), split into channels here.
+        auto split = [&](const std::vector<glm::vec4>& rgba, int channel) {
+            Image img(cam.width, cam.height);
+            for (size_t i = 0; i < rgba.size() && i < img.pixels.size(); ++i) img.pixels[i] = rgba[i][channel];
+            return img;
+        };
+        std::vector<glm::vec4> result = out.readRgba(0);
         Layers layers;
-        layers.add("V", out.readChannel(0, 0));
-        layers.add("mask", out.readChannel(0, 1));
+        layers.add("V", split(result, 0));
+        layers.add("mask", split(result, 1));
         if (settings.extraLayers) {
-            layers.add("umbra", out.readChannel(0, 2));
-            layers.add("penumbra", out.readChannel(0, 3));
-            layers.add("dist_occluder", out.readChannel(1, 0));
-            layers.add("dist_umbra", out.readChannel(1, 1));
-            layers.add("dist_penumbra", out.readChannel(1, 2));
-            layers.add("dist_silhouette", out.readChannel(1, 3));
+            std::vector<glm::vec4> dist = out.readRgba(1);
+            layers.add("umbra", split(result, 2));
+            layers.add("penumbra", split(result, 3));
+            layers.add("dist_occluder", split(dist, 0));
+            layers.add("dist_umbra", split(dist, 1));
+            layers.add("dist_penumbra", split(dist, 2));
+            layers.add("dist_silhouette", split(dist, 3));
         }
         for (auto& [name, img] : layers.items) sanitize(img, name == "V" ? 1.0f : 0.0f);
+        lap("read-back");
         settings.report(1.0f, "done");
         return layers;
     }

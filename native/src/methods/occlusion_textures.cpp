@@ -1,6 +1,6 @@
-// How the occlusion_textures method runs for one light: fit the slices, slice, pre-filter,
-// shade, and name the layers (paper 4: Eisemann and Décoret, occlusion textures).
+// How the occlusion_textures method runs for one light: fit the slices, slice, pre-filter, shade.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// And name the layers (paper 4: Eisemann and Décoret, occlusion textures).
 #include <cmath>
 #include <string>
 
@@ -32,25 +32,32 @@ public:
     bool needsGl() const override { return true; }
 
     // Settings: slices (1..16, default 8), resolution (long side of the occlusion textures,
-    // default 512), filter (mipmap | nbuffer | sat, default nbuffer), thin_fix (on: every
-    // mesh; default off: only meshes flagged SS_MESH_THIN), fade (below | paper).
+    // default 512), filter (mipmap | nbuffer | sat, default sat: exact and the fastest on llvmpipe), thin_fix (on: every
+    // mesh; default off: only meshes flagged SS_MESH_THIN), fade (below | paper),
+    // finish_stages (benchmark: glFinish at each stage so the progress marks time the GPU).
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
         int sliceCount = integerSetting(settings, "slices", 8);
         int resolution = integerSetting(settings, "resolution", 512);
-        occlusion::Filter filter = occlusion::parseFilter(settings.text("filter", "nbuffer"));
+        occlusion::Filter filter = occlusion::parseFilter(settings.text("filter", "sat"));
         occlusion::Fade fade = parseFade(settings.text("fade", "below"));
         bool thinFixAll = settings.flag("thin_fix", false);
+        // The benchmark's per-stage times: wait for the GPU at each stage boundary.
+        bool finishStages = settings.flag("finish_stages", false);
+        auto stage = [&](float fraction, const char* name) {
+            if (finishStages) frame.gl().Finish();
+            settings.report(fraction, name);
+        };
 
         occlusion::KernelLight kernel = occlusion::kernelLight(light, frame.scene().bounds());
         occlusion::SliceSetup setup = occlusion::fitSlices(frame.scene(), kernel, sliceCount, resolution);
-        settings.report(0.1f, "slicing");
+        stage(0.1f, "slicing");
         occlusion::SliceTextures slices = occlusion::renderSlices(frame, setup, filter, thinFixAll);
-        settings.report(0.4f, "pre-filtering");
+        stage(0.4f, "pre-filtering");
         occlusion::FilteredSlices filtered = occlusion::prefilter(filter, slices);
-        settings.report(0.6f, "shading");
+        stage(0.6f, "shading");
         occlusion::ShadeOutput out = occlusion::shade(frame, lightIndex, setup, filtered, fade, settings.extraLayers);
-        settings.report(1.0f, "done");
+        stage(1.0f, "done");
 
         Layers layers;
         int width = out.visibility.width, height = out.visibility.height;

@@ -1,6 +1,7 @@
-// What the GL stages of occlusion_textures hand each other: the packed occlusion textures
-// (four slices per RGBA target) and their pre-filtered form, one per filter type.
+// What the GL stages of occlusion_textures hand each other.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// The packed occlusion textures (four slices per RGBA target) and their pre-filtered form, one per
+// filter type.
 #pragma once
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
-// Which GL passes make occlusion_textures: slicing the casters into packed occlusion textures,
-// and shading the camera G-buffer from the pre-filtered slices.
+// Which GL passes make occlusion_textures: slicing the casters into packed occlusion textures.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// And shading the camera G-buffer from the pre-filtered slices.
 #pragma once
 #include "core/image.h"
 #include "methods/occlusion_textures_gl.h"

@@ -2,7 +2,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "core/error.h"
 #include "methods/occlusion_textures_gl.h"
@@ -53,7 +52,7 @@ SliceTextures makeSliceTextures(int width, int height, int count, bool withMipma
         gl.TextureParameterfv(id, GL_TEXTURE_BORDER_COLOR, border);
         gl.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, withMipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
         gl.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, withMipmaps ? GL_LINEAR : GL_NEAREST);
-        if (withMipmaps && getenv("OCCL_ANISO")) gl.TextureParameterf(id, GL_TEXTURE_MAX_ANISOTROPY, 16.0f);
+
     }
     gl.check("creating the occlusion textures");
     return s;

@@ -1,6 +1,7 @@
-// How occlusion_textures pre-filters with mipmaps: the GL texture unit builds the pyramid of
-// all four packed slices at once; lookups are anisotropic trilinear (filter_mipmap.glsl).
+// How occlusion_textures pre-filters with mipmaps.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// The GL texture unit builds the pyramid of all four packed slices at once; lookups are anisotropic
+// trilinear (filter_mipmap.glsl).
 #include "methods/occlusion_textures_gl.h"
 
 namespace ss::occlusion {

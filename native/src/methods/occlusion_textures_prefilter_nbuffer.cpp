@@ -1,6 +1,7 @@
-// How occlusion_textures pre-filters with N-Buffers: one compute pass per level, each texel the
-// mean of four boxes of the level below, every level at full resolution in one array texture.
+// How occlusion_textures pre-filters with N-Buffers: one compute pass per level.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// Each texel the mean of four boxes of the level below, every level at full resolution in one array
+// texture.
 #include <algorithm>
 
 #include "methods/occlusion_textures_gl.h"

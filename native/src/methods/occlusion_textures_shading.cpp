@@ -1,6 +1,7 @@
-// How occlusion_textures shades the shared camera G-buffer: one full-screen pass reading the
-// pre-filtered slices, V and mask in one target, the per-slice shadows in four more.
+// How occlusion_textures shades the shared camera G-buffer.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// One full-screen pass reading the pre-filtered slices, V and mask in one target, the per-slice
+// shadows in four more.
 #include <string>
 
 #include "gl/framebuffer.h"

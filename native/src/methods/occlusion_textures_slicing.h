@@ -1,6 +1,6 @@
-// Where occlusion_textures cuts the scene: the kernel light, the offset slicing camera fitted to
-// it, the slice planes, and where a shaded point looks up each slice (CPU side, mirrored in GLSL).
+// Where occlusion_textures cuts the scene: the kernel light, the offset slicing camera fitted to it.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// The slice planes, and where a shaded point looks up each slice (CPU side, mirrored in GLSL).
 #pragma once
 #include <vector>
 

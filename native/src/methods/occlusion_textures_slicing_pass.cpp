@@ -1,6 +1,6 @@
-// How occlusion_textures slices the scene on the GPU: one MAX-blended draw of the casters into
-// up to four RGBA targets, four slices per target.
+// How occlusion_textures slices the scene on the GPU.
 // SPDX-License-Identifier: GPL-3.0-or-later
+// One MAX-blended draw of the casters into up to four RGBA targets, four slices per target.
 #include "gl/framebuffer.h"
 #include "methods/occlusion_textures_passes.h"
 #include "pipeline/frame.h"

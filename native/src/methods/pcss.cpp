@@ -1,6 +1,8 @@
 // How percentage-closer soft shadows (Fernando 2005) are rendered over the shared passes.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include "core/error.h"
 #include "gl/framebuffer.h"
@@ -28,9 +30,9 @@ public:
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
-        const int blockerSamples = positiveSetting(settings, "blocker_samples", 32, 1024);
+        const int blockerSamples = positiveSetting(settings, "blocker_samples", 16, 1024);
         const int pcfSamples =
-            positiveSetting(settings, "pcf_samples", settings.samples > 0 ? settings.samples : 64, 4096);
+            positiveSetting(settings, "pcf_samples", settings.samples > 0 ? settings.samples : 32, 4096);
         const int mapSize = int(settings.number("shadow_map_size", 0.0f));
         const float maxSearch = settings.number("max_search", 0.25f);
 
@@ -38,7 +40,9 @@ public:
         const CameraPass& cam = frame.cameraPass();
         settings.report(0.3f, "pcss filter");
 
-        gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F});
+        if (!out_ || out_->width() != cam.width || out_->height() != cam.height)
+            out_ = std::make_unique<gl::Framebuffer>(cam.width, cam.height, std::vector<GLenum>{GL_RGBA32F});
+        const gl::Framebuffer& out = *out_;
         out.bind();
         out.clearColor(0, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
         gl::apply(gl::states::overwrite);
@@ -59,18 +63,23 @@ public:
         frame.gl().check("pcss camera pass");
 
         Layers layers;
-        Image v = out.readChannel(0, 0);
-        Image mask = out.readChannel(0, 1);
+        Channels ch = splitChannels(out.readRgba(0), out.width(), out.height());
+        const Image& v = ch.c[0];
+        const Image& mask = ch.c[1];
         layers.add("V", v);
         layers.add("mask", mask);
         if (settings.extraLayers) {
             addClassLayers(layers, v, mask);
-            layers.add("pcss_blocker_distance", out.readChannel(0, 2));
-            layers.add("pcss_kernel_texels", out.readChannel(0, 3));
+            layers.add("pcss_blocker_distance", std::move(ch.c[2]));
+            layers.add("pcss_kernel_texels", std::move(ch.c[3]));
         }
         frame.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
         return layers;
     }
+
+private:
+    // The output target, kept between renders of the same frame.
+    std::unique_ptr<gl::Framebuffer> out_;
 };
 
 }  // namespace

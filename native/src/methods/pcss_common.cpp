@@ -35,6 +35,14 @@ float nearestCasterDistance(const Scene& scene, const ShadowMap& map) {
     return std::max(best, map.nearPlane);
 }
 
+Channels splitChannels(const std::vector<glm::vec4>& rgba, int width, int height) {
+    Channels out;
+    for (Image& img : out.c) img = Image(width, height);
+    for (size_t i = 0; i < rgba.size(); ++i)
+        for (int k = 0; k < 4; ++k) out.c[k].pixels[i] = rgba[i][k];
+    return out;
+}
+
 void addClassLayers(Layers& layers, const Image& v, const Image& mask) {
     Image umbra(v.width, v.height, 0.0f), penumbra(v.width, v.height, 0.0f);
     for (size_t i = 0; i < v.pixels.size(); ++i) {

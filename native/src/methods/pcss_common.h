@@ -19,6 +19,13 @@ void setShadowRayBasis(const gl::Program& program, const ShadowMap& map);
 // the map's near plane; the map's far plane when nothing casts.
 float nearestCasterDistance(const Scene& scene, const ShadowMap& map);
 
+// The four channels of a top-row-first RGBA read-back as four images: one read-back of an
+// RGBA32F target is cheaper than four single-channel ones.
+struct Channels {
+    Image c[4];
+};
+Channels splitChannels(const std::vector<glm::vec4>& rgba, int width, int height);
+
 // "umbra" (V < kUmbraThreshold) and "penumbra" (in between the thresholds) inside the mask, as
 // 0/1 images: the same classes the metrics use, so the layers and the IoU numbers agree.
 void addClassLayers(Layers& layers, const Image& v, const Image& mask);

@@ -2,7 +2,8 @@
 // and sheets into the penumbra map (pass 2), and the camera lookup (pass 3).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cmath>
-#include <optional>
+#include <memory>
+#include <vector>
 
 #include "core/error.h"
 #include "geometry/cones_sheets.h"
@@ -41,8 +42,9 @@ ConesSheets buildPenumbraGeometry(const Scene& scene, const ShadowMap& map, floa
 namespace {
 
 // Cones and sheets on the GPU, kept while the light index and its parameters stay the same
-// (the Renderer drops the whole method object when the scene changes).
+// and the scene (id, revision) is the one they were built for.
 struct GpuConesSheets {
+    uint64_t sceneId = 0, revision = 0;
     int lightIndex = -1;
     float radius = -1.0f;
     int mapSize = 0;
@@ -70,14 +72,17 @@ public:
             fail(SS_ERROR_INVALID_ARGUMENT, "penumbra_map: cone_segments must be in 3..256");
         const float radius = penumbraMapLightRadius(light);
         GpuConesSheets& g = geometry_;
-        if (g.lightIndex == lightIndex && g.radius == radius && g.mapSize == mapSize &&
-            g.coneSegments == cs.coneSegments)
+        const Scene& scene = frame.scene();
+        if (g.sceneId == scene.id() && g.revision == scene.revision() && g.lightIndex == lightIndex &&
+            g.radius == radius && g.mapSize == mapSize && g.coneSegments == cs.coneSegments)
             return;
         const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
         settings.report(0.1f, "penumbra_map cones and sheets");
         ConesSheets cpu = buildPenumbraGeometry(frame.scene(), map, radius, cs);
         const gl::Functions& api = frame.gl();
         g = GpuConesSheets{};
+        g.sceneId = scene.id();
+        g.revision = scene.revision();
         g.lightIndex = lightIndex;
         g.radius = radius;
         g.mapSize = mapSize;
@@ -104,10 +109,15 @@ public:
         const gl::Functions& api = frame.gl();
         const ShadowMap& map = frame.shadowMap(lightIndex, geometry_.mapSize);
         const CameraPass& cam = frame.cameraPass();
+        // For the benchmark: wait for each pass so progress reports time the stages.
+        const bool finishStages = settings.flag("finish_stages", false);
 
         // Pass 2: the penumbra map, cleared to lit; darkest fragment wins through LESS.
         settings.report(0.3f, "penumbra_map pass 2");
-        gl::Framebuffer pm(map.size, map.size, {GL_R32F}, GL_DEPTH_COMPONENT32F);
+        if (!pm_ || pm_->width() != map.size)
+            pm_ = std::make_unique<gl::Framebuffer>(map.size, map.size, std::vector<GLenum>{GL_R32F},
+                                                    GL_DEPTH_COMPONENT32F);
+        const gl::Framebuffer& pm = *pm_;
         pm.bind();
         pm.clearColor(0, glm::vec4(1.0f));
         pm.clearDepth(1.0f);
@@ -124,10 +134,13 @@ public:
             api.Disable(GL_DEPTH_CLAMP);
             api.check("penumbra_map pass 2");
         }
+        if (finishStages) api.Finish();
 
         // Pass 3: the camera lookup.
         settings.report(0.7f, "penumbra_map pass 3");
-        gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F});
+        if (!out_ || out_->width() != cam.width || out_->height() != cam.height)
+            out_ = std::make_unique<gl::Framebuffer>(cam.width, cam.height, std::vector<GLenum>{GL_RGBA32F});
+        const gl::Framebuffer& out = *out_;
         out.bind();
         out.clearColor(0, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
         gl::apply(gl::states::overwrite);
@@ -140,16 +153,19 @@ public:
         setShadowRayBasis(p, map);
         frame.drawFullscreen();
         api.check("penumbra_map pass 3");
+        if (finishStages) api.Finish();
+        settings.report(0.9f, "penumbra_map readback");
 
         Layers layers;
-        Image v = out.readChannel(0, 0);
-        Image mask = out.readChannel(0, 1);
+        Channels ch = splitChannels(out.readRgba(0), out.width(), out.height());
+        const Image& v = ch.c[0];
+        const Image& mask = ch.c[1];
         layers.add("V", v);
         layers.add("mask", mask);
         if (settings.extraLayers) {
             addClassLayers(layers, v, mask);
-            layers.add("penumbra_map", out.readChannel(0, 3));
-            layers.add("hard_shadow", out.readChannel(0, 2));
+            layers.add("penumbra_map", std::move(ch.c[3]));
+            layers.add("hard_shadow", std::move(ch.c[2]));
         }
         api.BindFramebuffer(GL_FRAMEBUFFER, 0);
         return layers;
@@ -161,6 +177,8 @@ public:
 
 private:
     GpuConesSheets geometry_;
+    // Render targets kept between renders of the same frame (allocation is not free on llvmpipe).
+    std::unique_ptr<gl::Framebuffer> pm_, out_;
 };
 
 }  // namespace

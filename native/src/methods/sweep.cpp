@@ -1,12 +1,15 @@
 // What the `sweep` method is: geometric soft shadows on a planar receiver from light samples,
-// sweep-line outlines, rings and a triangulated penumbra (paper 2), evaluated per camera pixel.
+// sweep-line outlines, rings and a triangulated penumbra (paper 2), drawn into the camera view.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
 
 #include "core/error.h"
 #include "methods/method.h"
 #include "methods/sweep_lookup.h"
+#include "methods/sweep_raster.h"
 #include "methods/sweep_shadow.h"
 #include "pipeline/frame.h"
 #include "pipeline/visibility_contract.h"
@@ -18,7 +21,7 @@ namespace {
 class SweepMethod final : public Method {
 public:
     const char* name() const override { return "sweep"; }
-    // GL only for the shared camera pass; the shadow mesh itself is CPU geometry.
+    // GL for the shared camera pass and for drawing the shadow mesh; the mesh is CPU geometry.
     bool needsGl() const override { return true; }
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
@@ -32,7 +35,15 @@ public:
         const CameraImages& cam = frame.cameraImages();
         const int w = cam.width, h = cam.height;
         Image V(w, h, 1.0f), mask(w, h, 0.0f), umbra(w, h, 0.0f), penumbra(w, h, 0.0f);
-        ShadowLookup lookup(shadow.mesh);
+        // raster=gl (default): the shadow triangles drawn with the camera's matrices;
+        // raster=cpu: the same triangles looked up per pixel (no GL draw; a cross-check).
+        std::string raster = settings.text("raster", "gl");
+        if (raster != "gl" && raster != "cpu")
+            fail(SS_ERROR_INVALID_ARGUMENT, "sweep: setting 'raster' = '" + raster + "' is not gl or cpu");
+        std::optional<ShadowLookup> lookup;
+        Image drawn;
+        if (raster == "gl") drawn = rasterSweepShadow(frame, shadow);
+        else lookup.emplace(shadow.mesh);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 size_t i = cam.index(x, y);
@@ -41,10 +52,17 @@ public:
                 glm::vec3 P = cam.position(x, y);
                 if (!lightReaches(light, P, cam.normal(x, y))) continue;
                 mask.at(x, y) = 1.0f;
-                glm::dvec2 q = shadow.plane.toPlane(glm::dvec3(P));
-                double gx = (q.x - shadow.plane.cu) * shadow.snap.scale();
-                double gy = (q.y - shadow.plane.cv) * shadow.snap.scale();
-                float v = 1.0f - lookup.intensity(gx, gy);
+                float intensity;
+                if (lookup) {
+                    glm::dvec2 q = shadow.plane.toPlane(glm::dvec3(P));
+                    double gx = (q.x - shadow.plane.cu) * shadow.snap.scale();
+                    double gy = (q.y - shadow.plane.cv) * shadow.snap.scale();
+                    intensity = lookup->intensity(gx, gy);
+                } else {
+                    intensity = drawn.at(x, y);
+                    if (!std::isfinite(intensity)) intensity = 0.0f;
+                }
+                float v = 1.0f - std::clamp(intensity, 0.0f, 1.0f);
                 V.at(x, y) = v;
                 umbra.at(x, y) = v < 0.05f ? 1.0f : 0.0f;
                 penumbra.at(x, y) = (v >= 0.05f && v <= 0.95f) ? 1.0f : 0.0f;

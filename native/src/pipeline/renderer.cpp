@@ -35,13 +35,19 @@ struct Renderer::Impl {
         into.shadowMaps += f.stats().shadowMaps;
     }
 
-    gl::RenderThread& glThread() {
+    // ss_shutdown() stopped the thread: everything GL died with its context, so the frame
+    // cache goes too and the next GL use starts afresh. Called before any cache reference is
+    // taken, since it may drop the cache.
+    void forgetStoppedThread() {
         if (thread && !thread->running()) {
-            // ss_shutdown() stopped it: everything GL died with its context, start afresh.
             dropCache();
             thread.reset();
             infoJson.clear();
         }
+    }
+
+    gl::RenderThread& glThread() {
+        forgetStoppedThread();
         if (!thread) thread = std::make_unique<gl::RenderThread>(backend);
         return *thread;
     }
@@ -126,6 +132,7 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
                                             " is out of range (the scene has " +
                                             std::to_string(scene.lights().size()) + " lights)");
     std::string name = method == "auto" ? chooseAutoMethod(scene, lightIndex) : method;
+    impl_->forgetStoppedThread();
     auto& cached = impl_->cacheFor(scene);
     auto it = cached.methods.find(name);
     if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;

@@ -5,7 +5,9 @@
 #include "planar/penumbra_fill.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
+#include <numeric>
 #include <unordered_map>
 
 namespace ss::planar {
@@ -13,14 +15,23 @@ namespace ss::planar {
 namespace {
 
 // A maximal run of one segment group along which the counts on both sides stay the same.
+struct Incident;
 struct Run {
     RatX x0, x1;
     int lo = 0, hi = 0;  // counts on its two sides, lo < hi, clamped to [0, n]
+    // The edges meeting at each end (filled once the vertex table is complete; the table's
+    // nodes never move, so the pointers stay valid).
+    const std::vector<Incident>* at0 = nullptr;
+    const std::vector<Incident>* at1 = nullptr;
 };
 
 i128 gcd128(i128 a, i128 b) {
     if (a < 0) a = -a;
     if (b < 0) b = -b;
+    // Most values fit in 64 bits (grid x, y over a segment's dx): the hardware divide is far
+    // cheaper than the 128-bit one.
+    constexpr i128 kMax = i128(INT64_MAX);
+    if (a <= kMax && b <= kMax) return std::gcd(int64_t(a), int64_t(b));
     while (b != 0) {
         i128 t = a % b;
         a = b;
@@ -85,7 +96,10 @@ int windingAt(std::span<const SweepSegment> segs, std::span<const SlabGroup> gro
 
 class RingField {
 public:
-    RingField(std::span<const SweepSegment> segs, std::span<const DirectedEdge> edges, int n)
+    // `also` receives every slab of the same sweep (the trapezoids), so the merged outlines
+    // are swept once.
+    RingField(std::span<const SweepSegment> segs, std::span<const DirectedEdge> edges, int n,
+              TrapezoidCollector* also)
         : segs_(segs), n_(n), runs_(segs.size()) {
         std::vector<Vertical> verticals;
         for (const DirectedEdge& e : edges)
@@ -104,6 +118,7 @@ public:
         };
         std::vector<bool> open(segs.size(), false);
         sweep(segs, [&](const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups) {
+            if (also) also->onSlab(xl, xr, groups);
             auto [r0, r1] = verticalsAt(xl);
             for (size_t i = r0; i < r1; ++i)
                 verticals[i].right = windingAt(segs, groups, xl, verticals[i].y0 + verticals[i].y1);
@@ -137,6 +152,11 @@ public:
             vertices_[PointKey{e.x, 1, e.y0, 1}].push_back(Incident{lo, hi, Leaves::Up, -1});
             vertices_[PointKey{e.x, 1, e.y1, 1}].push_back(Incident{lo, hi, Leaves::Down, -1});
         }
+        for (size_t s = 0; s < runs_.size(); ++s)
+            for (Run& r : runs_[s]) {
+                r.at0 = &vertices_.find(keyOf(segs_[s].seg, r.x0))->second;
+                r.at1 = &vertices_.find(keyOf(segs_[s].seg, r.x1))->second;
+            }
     }
 
     // The intensity at x on segment group `seg`, seen from a region of count c whose side there
@@ -148,13 +168,12 @@ public:
         float own = ringIntensity(ring, n_);
         if (it == list.end()) return own;  // not on a ring: cannot happen for a trapezoid side
         const Run& r = *it;
-        const ISeg& s = segs_[seg].seg;
-        if (compareX(x, r.x0) == 0) return vertex(s, r.x0, c, own);
-        if (compareX(x, r.x1) == 0) return vertex(s, r.x1, c, own);
+        if (compareX(x, r.x0) == 0) return vertex(*r.at0, c, own);
+        if (compareX(x, r.x1) == 0) return vertex(*r.at1, c, own);
         if (r.hi - r.lo == 1) return own;
         // Coincident rings: interpolate between the points where they part.
         double t = (x.toDouble() - r.x0.toDouble()) / (r.x1.toDouble() - r.x0.toDouble());
-        float v0 = vertex(s, r.x0, c, own), v1 = vertex(s, r.x1, c, own);
+        float v0 = vertex(*r.at0, c, own), v1 = vertex(*r.at1, c, own);
         return float(v0 + t * (v1 - v0));
     }
 
@@ -162,16 +181,14 @@ private:
     // A ring of level L has a corner at a vertex unless exactly two of its edges meet there and
     // go straight on. The region's rings (c, c+1) with a corner here give the vertex its value,
     // their mean when both do (the paper's intersection point); otherwise the side's own ring.
-    float vertex(const ISeg& s, const RatX& x, int c, float own) const {
-        auto it = vertices_.find(keyOf(s, x));
-        if (it == vertices_.end()) return own;
+    float vertex(const std::vector<Incident>& incident, int c, float own) const {
         double sum = 0;
         int count = 0;
         for (int level : {c, c + 1}) {
             if (level < 1 || level > n_) continue;
             const Incident* found[3];
             int k = 0;
-            for (const Incident& e : it->second)
+            for (const Incident& e : incident)
                 if (e.lo < level && level <= e.hi) {
                     if (k < 3) found[k] = &e;
                     ++k;
@@ -206,10 +223,16 @@ ShadowMesh fillShadow(std::span<const DirectedEdge> mergedEdges, int samples, Fi
     ShadowMesh mesh;
     std::vector<SweepSegment> merged = toSweepSegments(mergedEdges);
     const int n = std::max(samples, 1);
-    std::vector<Trapezoid> traps = trapezoids(merged, [](int w) { return w >= 1; });
     bool smooth = mode == FillMode::Smooth && n > 1;
     std::unique_ptr<RingField> field;
-    if (smooth) field = std::make_unique<RingField>(merged, mergedEdges, n);
+    std::vector<Trapezoid> traps;
+    if (smooth) {
+        TrapezoidCollector collector(merged, [](int w) { return w >= 1; });
+        field = std::make_unique<RingField>(merged, mergedEdges, n, &collector);
+        traps = collector.finish();
+    } else {
+        traps = trapezoids(merged, [](int w) { return w >= 1; });
+    }
     for (const Trapezoid& t : traps) {
         int c = std::clamp(t.winding, 0, n);
         bool umbra = c >= n;

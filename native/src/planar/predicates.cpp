@@ -2,6 +2,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "planar/predicates.h"
 
+#include <cmath>
+#include <limits>
+
 namespace ss::planar {
 
 int orient(const IPoint& a, const IPoint& b, const IPoint& c) {
@@ -9,7 +12,14 @@ int orient(const IPoint& a, const IPoint& b, const IPoint& c) {
     return sign(v);
 }
 
+// Floating-point filters: a double evaluation decides when it is farther from zero than its
+// error bound (with coordinates <= 2^21 every rounding error below is < 1e-9, the margins are
+// 100x that); only close calls pay for the exact 128-bit evaluation.
 int compareX(const RatX& a, const RatX& b) {
+    if (a.q == 1 && b.q == 1) return sign(a.p - b.p);
+    double d = a.toDouble() - b.toDouble();
+    if (d > 1e-7) return 1;
+    if (d < -1e-7) return -1;
     // |p| < 2^65, q <= 2^43: each product < 2^108.
     return sign(a.p * b.q - b.p * a.q);
 }
@@ -22,12 +32,28 @@ static i128 scaledY(const ISeg& s, const RatX& x) {
 RatY yAt(const ISeg& s, const RatX& x) { return RatY{scaledY(s, x), i128(s.dx()) * x.q}; }
 
 int compareAtX(const ISeg& s, const ISeg& t, const RatX& x) {
+    double xd = x.toDouble();
+    double ss = double(s.dy()) / double(s.dx()), st = double(t.dy()) / double(t.dx());
+    double d = (double(s.lo.y) + (xd - double(s.lo.x)) * ss) - (double(t.lo.y) + (xd - double(t.lo.x)) * st);
+    double eps = 1e-7 * (1.0 + std::fabs(ss) + std::fabs(st));
+    if (d > eps) return 1;
+    if (d < -eps) return -1;
     // scaledY < 2^88 times dx <= 2^21: < 2^109.
     return sign(scaledY(s, x) * t.dx() - scaledY(t, x) * s.dx());
 }
 
 int compareSlope(const ISeg& s, const ISeg& t) {
-    return sign(i128(s.dy()) * t.dx() - i128(t.dy()) * s.dx());
+    // |dy dx| <= 2^42: exact in 64 bits.
+    int64_t v = s.dy() * t.dx() - t.dy() * s.dx();
+    return (v > 0) - (v < 0);
+}
+
+double approxCrossingX(const ISeg& s, const ISeg& t) {
+    int64_t rx = s.dx(), ry = s.dy(), ex = t.dx(), ey = t.dy();
+    int64_t den = rx * ey - ry * ex;
+    if (den == 0) return std::numeric_limits<double>::quiet_NaN();
+    int64_t num = (t.lo.x - s.lo.x) * ey - (t.lo.y - s.lo.y) * ex;
+    return double(s.lo.x) + double(num) / double(den) * double(rx);
 }
 
 bool crossingX(const ISeg& s, const ISeg& t, RatX* out) {

@@ -55,6 +55,9 @@ int compareSlope(const ISeg& s, const ISeg& t);
 // The x where the lines of s and t cross; false when they are parallel. The caller knows both
 // segments are present at the crossing (it only asks about neighbours in the sweep order).
 bool crossingX(const ISeg& s, const ISeg& t, RatX* out);
+// The crossing x in doubles (error < 1e-6 grid units), NaN for parallel lines: lets the sweep
+// skip the exact crossing of neighbours that cannot cross inside the current slab.
+double approxCrossingX(const ISeg& s, const ISeg& t);
 // round(num / den) to the nearest integer, halves away from -infinity (den > 0).
 int64_t roundDiv(i128 num, i128 den);
 

@@ -3,6 +3,7 @@
 #include "planar/sweep_line.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace ss::planar {
@@ -34,8 +35,21 @@ int orderAt(const ISeg& s, const ISeg& t, const RatX& x) {
     return c != 0 ? c : compareSlope(s, t);
 }
 
-bool before(const SweepSegment* segs, int a, int b, const RatX& x) {
-    int c = orderAt(segs[a].seg, segs[b].seg, x);
+// The y of every active segment at the current x in doubles: most order decisions are far from
+// a tie and need no exact arithmetic (same error bound as predicates.cpp's filters).
+struct Filter {
+    std::vector<double> slope, y;
+    double eps(int a, int b) const { return 1e-7 * (1.0 + std::fabs(slope[a]) + std::fabs(slope[b])); }
+    // -1 / +1 when the doubles decide, 0 when the exact predicate must.
+    int order(int a, int b) const {
+        double d = y[a] - y[b], e = eps(a, b);
+        return d > e ? 1 : (d < -e ? -1 : 0);
+    }
+};
+
+bool before(const SweepSegment* segs, const Filter& f, int a, int b, const RatX& x) {
+    int c = f.order(a, b);
+    if (c == 0) c = orderAt(segs[a].seg, segs[b].seg, x);
     return c != 0 ? c < 0 : a < b;
 }
 
@@ -51,15 +65,25 @@ SweepStats sweep(std::span<const SweepSegment> segments, const SlabFn& onSlab) {
 
     std::vector<int> active;
     std::vector<SlabGroup> groups;
+    Filter filter;
+    filter.slope.resize(segments.size());
+    filter.y.resize(segments.size());
+    for (size_t i = 0; i < segments.size(); ++i)
+        filter.slope[i] = double(segs[i].seg.dy()) / double(segs[i].seg.dx());
     size_t next = 0;
     if (byStart.empty()) return stats;
     RatX cur = RatX::of(segs[byStart[0]].seg.lo.x);
     for (;;) {
         ++stats.events;
         // Segments ending here leave; segments starting here join.
-        active.erase(std::remove_if(active.begin(), active.end(),
-                                    [&](int i) { return compareX(RatX::of(segs[i].seg.hi.x), cur) <= 0; }),
-                     active.end());
+        const double curD = cur.toDouble();
+        auto endsByCur = [&](int i) {
+            double d = double(segs[i].seg.hi.x) - curD;
+            if (d > 1e-7) return false;
+            if (d < -1e-7) return true;
+            return compareX(RatX::of(segs[i].seg.hi.x), cur) <= 0;
+        };
+        active.erase(std::remove_if(active.begin(), active.end(), endsByCur), active.end());
         while (next < byStart.size() && compareX(RatX::of(segs[byStart[next]].seg.lo.x), cur) <= 0)
             active.push_back(byStart[next++]);
         if (active.empty()) {
@@ -67,11 +91,13 @@ SweepStats sweep(std::span<const SweepSegment> segments, const SlabFn& onSlab) {
             cur = RatX::of(segs[byStart[next]].seg.lo.x);
             continue;
         }
+        for (int i : active)
+            filter.y[i] = double(segs[i].seg.lo.y) + (curD - double(segs[i].seg.lo.x)) * filter.slope[i];
         // Insertion sort: the order just right of the previous event is nearly the order here.
         for (size_t i = 1; i < active.size(); ++i) {
             int v = active[i];
             size_t j = i;
-            while (j > 0 && before(segs, v, active[j - 1], cur)) {
+            while (j > 0 && before(segs, filter, v, active[j - 1], cur)) {
                 active[j] = active[j - 1];
                 --j;
             }
@@ -86,20 +112,27 @@ SweepStats sweep(std::span<const SweepSegment> segments, const SlabFn& onSlab) {
                 haveEnd = true;
             }
         };
-        if (next < byStart.size()) offer(RatX::of(segs[byStart[next]].seg.lo.x));
-        for (int i : active) offer(RatX::of(segs[i].seg.hi.x));
+        // Every active segment ends after cur: the nearest end is the smallest integer hi.x.
+        int64_t nearest = segs[active[0]].seg.hi.x;
+        for (int i : active) nearest = std::min(nearest, segs[i].seg.hi.x);
+        if (next < byStart.size()) nearest = std::min(nearest, segs[byStart[next]].seg.lo.x);
+        offer(RatX::of(nearest));
         groups.clear();
         for (size_t i = 0; i < active.size(); ++i) {
             const ISeg& s = segs[active[i]].seg;
-            if (!groups.empty() && orderAt(segs[groups.back().seg].seg, s, cur) == 0) {
+            if (!groups.empty() && filter.order(groups.back().seg, active[i]) == 0 &&
+                orderAt(segs[groups.back().seg].seg, s, cur) == 0) {
                 groups.back().delta += segs[active[i]].delta;
                 continue;
             }
             if (!groups.empty()) {
+                const ISeg& below = segs[groups.back().seg].seg;
+                // Cheap rejection first: a crossing well before cur or well after the slab's
+                // current end cannot end the slab.
+                double ax = approxCrossingX(below, s);
+                bool maybe = !std::isnan(ax) && ax > curD - 1e-3 && (!haveEnd || ax < end.toDouble() + 1e-3);
                 RatX x;
-                if (crossingX(segs[groups.back().seg].seg, s, &x) && compareX(x, cur) > 0) {
-                    offer(x);
-                }
+                if (maybe && crossingX(below, s, &x) && compareX(x, cur) > 0) offer(x);
             }
             groups.push_back(SlabGroup{active[i], segs[active[i]].delta});
         }

@@ -2,68 +2,78 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "planar/trapezoids.h"
 
-#include <unordered_map>
+#include <utility>
+
 
 namespace ss::planar {
 
-namespace {
-struct Open {
-    int bottom, top, winding, below, above;
-    RatX x0, x1;
-};
-uint64_t key(int bottom, int top) { return (uint64_t(uint32_t(bottom)) << 32) | uint32_t(top); }
-}  // namespace
+TrapezoidCollector::TrapezoidCollector(std::span<const SweepSegment> segments, RegionFn inside)
+    : segments_(segments), inside_(std::move(inside)), open_(segments.size()) {}
+
+void TrapezoidCollector::emit(Open& o) {
+    const ISeg& b = segments_[o.bottom].seg;
+    const ISeg& t = segments_[o.top].seg;
+    Trapezoid z;
+    z.x0 = o.x0.toDouble();
+    z.x1 = o.x1.toDouble();
+    z.yBottom0 = yAt(b, o.x0).toDouble();
+    z.yBottom1 = yAt(b, o.x1).toDouble();
+    z.yTop0 = yAt(t, o.x0).toDouble();
+    z.yTop1 = yAt(t, o.x1).toDouble();
+    z.winding = o.winding;
+    z.windingBelow = o.below;
+    z.windingAbove = o.above;
+    z.bottomSeg = o.bottom;
+    z.topSeg = o.top;
+    z.rx0 = o.x0;
+    z.rx1 = o.x1;
+    out_.push_back(z);
+    o.bottom = -1;
+}
+
+void TrapezoidCollector::onSlab(const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups) {
+    ++slab_;
+    // Coincident edges that cancel (delta 0) change nothing: trapezoids span across them.
+    live_.clear();
+    for (const SlabGroup& g : groups)
+        if (g.delta != 0) live_.push_back(g);
+    nextList_.clear();
+    int w = 0;
+    for (size_t i = 0; i + 1 < live_.size(); ++i) {
+        int below = w;
+        w += live_[i].delta;
+        if (!inside_(w)) continue;
+        int above = w + live_[i + 1].delta;
+        int bottom = live_[i].seg, top = live_[i + 1].seg;
+        Open& o = open_[bottom];
+        // Slabs with the same sides and windings merge into one trapezoid.
+        bool extends = o.bottom == bottom && o.slab == slab_ - 1 && o.top == top && o.winding == w &&
+                       o.below == below && o.above == above && compareX(o.x1, xl) == 0;
+        if (extends) {
+            o.x1 = xr;
+        } else {
+            if (o.bottom >= 0) emit(o);
+            o = Open{bottom, top, w, below, above, xl, xr, slab_};
+        }
+        o.slab = slab_;
+        nextList_.push_back(bottom);
+    }
+    for (int b : openList_)
+        if (open_[b].bottom >= 0 && open_[b].slab != slab_) emit(open_[b]);
+    openList_.swap(nextList_);
+}
+
+std::vector<Trapezoid> TrapezoidCollector::finish() {
+    for (int b : openList_)
+        if (open_[b].bottom >= 0) emit(open_[b]);
+    openList_.clear();
+    return std::move(out_);
+}
 
 std::vector<Trapezoid> trapezoids(std::span<const SweepSegment> segments, const RegionFn& inside) {
-    std::vector<Trapezoid> out;
-    auto emit = [&](const Open& o) {
-        const ISeg& b = segments[o.bottom].seg;
-        const ISeg& t = segments[o.top].seg;
-        Trapezoid z;
-        z.x0 = o.x0.toDouble();
-        z.x1 = o.x1.toDouble();
-        z.yBottom0 = yAt(b, o.x0).toDouble();
-        z.yBottom1 = yAt(b, o.x1).toDouble();
-        z.yTop0 = yAt(t, o.x0).toDouble();
-        z.yTop1 = yAt(t, o.x1).toDouble();
-        z.winding = o.winding;
-        z.windingBelow = o.below;
-        z.windingAbove = o.above;
-        z.bottomSeg = o.bottom;
-        z.topSeg = o.top;
-        z.rx0 = o.x0;
-        z.rx1 = o.x1;
-        out.push_back(z);
-    };
-    std::unordered_map<uint64_t, Open> open, next;
-    std::vector<SlabGroup> live;
-    sweep(segments, [&](const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups) {
-        next.clear();
-        // Coincident edges that cancel (delta 0) change nothing: trapezoids span across them.
-        live.clear();
-        for (const SlabGroup& g : groups)
-            if (g.delta != 0) live.push_back(g);
-        groups = live;
-        int w = 0;
-        for (size_t i = 0; i + 1 < groups.size(); ++i) {
-            int below = w;
-            w += groups[i].delta;
-            if (!inside(w)) continue;
-            int above = w + groups[i + 1].delta;
-            Open o{groups[i].seg, groups[i + 1].seg, w, below, above, xl, xr};
-            auto it = open.find(key(o.bottom, o.top));
-            if (it != open.end() && it->second.winding == w && it->second.below == below &&
-                it->second.above == above && compareX(it->second.x1, xl) == 0) {
-                o.x0 = it->second.x0;
-                open.erase(it);
-            }
-            next.emplace(key(o.bottom, o.top), o);
-        }
-        for (auto& [k, o] : open) emit(o);
-        open.swap(next);
-    });
-    for (auto& [k, o] : open) emit(o);
-    return out;
+    TrapezoidCollector c(segments, inside);
+    sweep(segments, [&](const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups) { c.onSlab(xl, xr, groups); });
+    return c.finish();
 }
 
 int triangulateCorners(const Trapezoid& t, int (*tris)[3]) {

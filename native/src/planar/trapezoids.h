@@ -24,6 +24,30 @@ struct Trapezoid {
 
 std::vector<Trapezoid> trapezoids(std::span<const SweepSegment> segments, const RegionFn& inside);
 
+// The same, fed slab by slab from a sweep someone else runs (so one sweep can serve several
+// consumers).
+class TrapezoidCollector {
+public:
+    TrapezoidCollector(std::span<const SweepSegment> segments, RegionFn inside);
+    void onSlab(const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups);
+    std::vector<Trapezoid> finish();
+
+private:
+    struct Open {
+        int bottom = -1, top = -1, winding = 0, below = 0, above = 0;
+        RatX x0, x1;
+        size_t slab = 0;  // the last slab that extended it
+    };
+    void emit(Open& o);
+    std::span<const SweepSegment> segments_;
+    RegionFn inside_;
+    std::vector<Trapezoid> out_;
+    std::vector<Open> open_;  // one open trapezoid per bottom segment
+    std::vector<int> openList_, nextList_;
+    std::vector<SlabGroup> live_;
+    size_t slab_ = 0;
+};
+
 // Corners: 0 bottom at x0, 1 bottom at x1, 2 top at x1, 3 top at x0. Two triangles per
 // trapezoid (one when a vertical side has zero length), counter-clockwise, as corner triples.
 int triangulateCorners(const Trapezoid& t, int (*tris)[3]);

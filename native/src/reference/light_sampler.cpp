@@ -96,8 +96,9 @@ LightSample LightSampler::sampleSphere(const glm::vec3& point, glm::vec2 u) cons
     float d = glm::length(v);
     s.toLight = v / d;
     s.distance = d;
-    float cosDisk = -glm::dot(diskNormal, s.toLight);
-    float w = cosDisk > 0.0f ? cosDisk / (d * d) : 0.0f;
+    // Cycles 3.0-3.4 evaluates the sample with its light normal set to -D, so the disk's own
+    // cosine is 1 in lamp_light_pdf: the weight is the inverse square alone.
+    float w = 1.0f / (d * d);
     if (type_ == LightType::Spot) w *= spotFactor(-s.toLight);
     s.weight = w;
     return s;

@@ -20,9 +20,10 @@ struct LightSample {
 // formula per shape is exact:
 // - area (disk/ellipse: concentric map; square/rectangle: the parallelogram of the half axes):
 //   uniform in area, weight = max(0, cos at the light) / d^2 (one-sided, emits along -Z);
-// - point/spot with radius r: as Cycles 3.x, a disk of radius r centred on the light and facing
-//   the shading point, uniform in area, weight = cos at that disk / d^2; r = 0 is the point
-//   itself; a shading point inside the sphere gets weight 0. Spots multiply by Cycles 3.x's
+// - point/spot with radius r: as Cycles 3.0-3.4 (Blender 3.4 is the target), a disk of radius r
+//   centred on the light and facing the shading point, uniform in area, weight = 1 / d^2 (Cycles
+//   3.5+ adds the disk's cosine; at r << d the two agree); r = 0 is the point itself; a
+//   shading point inside the sphere gets weight 0. Spots multiply by Cycles 3.x's
 //   spot_attenuation (cos to the axis, smoothstep over the blend, 0 outside the cone), evaluated
 //   along the direction from the sample to the shading point;
 // - sun: directions uniform in solid angle inside the cone of half-angle angle/2, weight 1.

@@ -68,9 +68,10 @@ Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings&
     const Camera& camera = scene.camera();
     const Light& light = scene.lights()[size_t(lightIndex)];
     const int samples = settings.samples > 0 ? settings.samples : kReferenceDefaultSamples;
-    if (samples > (1 << 24))
+    // One pixel's rays are gathered before tracing (~25 bytes each per thread): cap the memory.
+    if (samples > (1 << 20))
         fail(SS_ERROR_INVALID_ARGUMENT, "reference: " + std::to_string(samples) +
-                                            " samples per pixel is more than 2^24");
+                                            " samples per pixel is more than 2^20");
 
     settings.report(0.0f, "building the ray-tracing scene");
     std::shared_ptr<const TraceScene> trace =

@@ -1,0 +1,171 @@
+// How long penumbra_map's stages take at 512² and 1024² on spheres of 5k to 1M triangles.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/scene.h"
+#include "geometry/silhouette.h"
+#include "methods/penumbra_map.h"
+#include "pipeline/frame.h"
+#include "pipeline/renderer.h"
+#include "softshadow/softshadow.h"
+
+namespace ss {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// A UV sphere with 4 m² triangles (poles as fans), radius r at c, outward winding.
+Mesh uvSphere(int m, float r, glm::vec3 c) {
+    Mesh mesh;
+    mesh.name = "sphere";
+    const int nu = 2 * m, nv = m + 1;  // nv - 1 latitude bands
+    mesh.positions.push_back(c + glm::vec3(0, 0, r));
+    for (int j = 1; j < nv; ++j) {
+        float th = float(M_PI) * float(j) / float(nv);
+        for (int i = 0; i < nu; ++i) {
+            float ph = 2.0f * float(M_PI) * float(i) / float(nu);
+            mesh.positions.push_back(c + r * glm::vec3(std::sin(th) * std::cos(ph),
+                                                       std::sin(th) * std::sin(ph), std::cos(th)));
+        }
+    }
+    mesh.positions.push_back(c + glm::vec3(0, 0, -r));
+    const uint32_t south = uint32_t(mesh.positions.size() - 1);
+    auto at = [&](int j, int i) { return uint32_t(1 + (j - 1) * nu + (i % nu)); };
+    for (int i = 0; i < nu; ++i) mesh.triangles.push_back({0, at(1, i), at(1, i + 1)});
+    for (int j = 1; j + 1 < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            mesh.triangles.push_back({at(j, i), at(j + 1, i), at(j + 1, i + 1)});
+            mesh.triangles.push_back({at(j, i), at(j + 1, i + 1), at(j, i + 1)});
+        }
+    for (int i = 0; i < nu; ++i) mesh.triangles.push_back({south, at(nv - 1, i + 1), at(nv - 1, i)});
+    mesh.flags = SS_MESH_CAST;
+    return mesh;
+}
+
+Scene benchScene(int m, int resolution) {
+    Scene s;
+    Mesh ground;
+    ground.name = "ground";
+    ground.positions = {{-6, -6, 0}, {6, -6, 0}, {6, 6, 0}, {-6, 6, 0}};
+    ground.triangles = {{0, 1, 2}, {0, 2, 3}};
+    ground.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
+    s.addMesh(ground);
+    s.addMesh(uvSphere(m, 0.8f, {0, 0, 1.3f}));
+    Light l;
+    l.name = "Disk";
+    l.type = LightType::Disk;
+    l.lightToWorld = glm::translate(glm::mat4(1.0f), glm::vec3(1.2f, 0.8f, 4.0f));
+    l.size = l.sizeY = 1.5f;
+    s.addLight(l);
+    s.setCamera(makeLookAtCamera({0, -2.5f, 8}, {0, 0, 0}, {0, 1, 0}, glm::radians(40.0f), resolution,
+                                 resolution, 0.1f, 50.0f));
+    return s;
+}
+
+Renderer& renderer() {
+    static Renderer* r = new Renderer(SS_BACKEND_AUTO);  // joined by shutdownRenderThreads()
+    return *r;
+}
+
+// args: resolution (camera and maps), m (4 m² sphere triangles)
+void BM_PenumbraMapStages(benchmark::State& state) {
+    const int res = int(state.range(0));
+    const int m = int(state.range(1));
+    Scene scene = benchScene(m, res);
+    RenderSettings settings;
+    settings.options = {{"shadow_map_size", std::to_string(res)}, {"finish_stages", "1"}};
+
+    // CPU stage alone: silhouette from the light centre plus cones and sheets.
+    ShadowMap fitted = fitShadowMap(scene.lights()[0], scene.bounds(), res);
+    auto t0 = Clock::now();
+    ConesSheets g = buildPenumbraGeometry(scene, fitted, scene.lights()[0].equivalentRadius(), {});
+    double geometryMs = msSince(t0);
+
+    // Shared passes (camera G-buffer + shadow map), drawn once for every method of the frame.
+    RenderSettings shared = settings;
+    t0 = Clock::now();
+    renderer().render(scene, 0, "shadow_map", shared, nullptr);
+    double sharedMs = msSince(t0);
+
+    std::map<std::string, double> stageMs;
+    double firstMs = 0.0;
+    bool first = true;
+    for (auto _ : state) {
+        std::map<std::string, Clock::time_point> marks;
+        RenderSettings s = settings;
+        s.progress = [&](float, const char* stage) {
+            marks[stage] = Clock::now();
+            return true;
+        };
+        auto start = Clock::now();
+        renderer().render(scene, 0, "penumbra_map", s, nullptr);
+        auto end = Clock::now();
+        double total = std::chrono::duration<double, std::milli>(end - start).count();
+        state.SetIterationTime(total / 1000.0);
+        if (first) {
+            firstMs = total;  // includes prepare: geometry build and upload
+            first = false;
+            continue;
+        }
+        auto span = [&](const char* a, const char* b) {
+            return std::chrono::duration<double, std::milli>(marks[b] - marks[a]).count();
+        };
+        stageMs["pass2_ms"] += span("penumbra_map pass 2", "penumbra_map pass 3");
+        stageMs["pass3_ms"] += span("penumbra_map pass 3", "penumbra_map readback");
+        stageMs["readback_ms"] +=
+            std::chrono::duration<double, std::milli>(end - marks["penumbra_map readback"]).count();
+    }
+    double n = std::max<double>(1.0, double(state.iterations()) - 1.0);
+    state.counters["triangles"] = double(4 * m * m);
+    state.counters["cones"] = double(g.cones());
+    state.counters["sheets"] = double(g.sheets());
+    state.counters["geometry_ms"] = geometryMs;
+    state.counters["shared_passes_ms"] = sharedMs;
+    state.counters["first_render_ms"] = firstMs;
+    for (auto& [k, v] : stageMs) state.counters[k] = v / n;
+}
+
+// m = 35, 71, 158, 274, 500: 4.9k, 20k, 100k, 300k, 1M triangles.
+BENCHMARK(BM_PenumbraMapStages)
+    ->ArgsProduct({{512, 1024}, {35, 71, 158, 274, 500}})
+    ->UseManualTime()
+    ->Iterations(4)
+    ->Unit(benchmark::kMillisecond);
+
+// The whole render of a method on a warm frame (shared passes already drawn), to set
+// penumbra_map's stage times beside the hard shadow map and pcss measured in the same run.
+// args: method (0 shadow_map, 1 pcss, 2 penumbra_map), resolution, m
+void BM_PenumbraMapPeers(benchmark::State& state) {
+    static const char* names[] = {"shadow_map", "pcss", "penumbra_map"};
+    const char* method = names[state.range(0)];
+    const int res = int(state.range(1));
+    Scene scene = benchScene(int(state.range(2)), res);
+    RenderSettings settings;
+    settings.options = {{"shadow_map_size", std::to_string(res)}};
+    renderer().render(scene, 0, method, settings, nullptr);  // warm: shared passes, programs
+    for (auto _ : state) {
+        auto start = Clock::now();
+        renderer().render(scene, 0, method, settings, nullptr);
+        state.SetIterationTime(msSince(start) / 1000.0);
+    }
+    state.SetLabel(method);
+}
+
+BENCHMARK(BM_PenumbraMapPeers)
+    ->ArgsProduct({{0, 1, 2}, {512, 1024}, {158}})
+    ->UseManualTime()
+    ->Iterations(4)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace ss

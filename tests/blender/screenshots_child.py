@@ -1,0 +1,87 @@
+# How the user guide's screenshots are taken: a real Blender window under Xvfb (see make_screenshots.py).
+# SPDX-License-Identifier: GPL-3.0-or-later
+import os
+import time
+
+import bpy
+from mathutils import Quaternion
+
+OUT = os.environ["SOFTSHADOW_SHOTS"]
+state = {"step": 0, "t": time.time()}
+
+
+def _areas():
+    win = bpy.context.window_manager.windows[0]
+    return win, {a.type: a for a in sorted(win.screen.areas, key=lambda a: a.width * a.height)}
+
+
+def _shot(area, name):
+    win, _ = _areas()
+    region = next(r for r in area.regions if r.type == "WINDOW")
+    with bpy.context.temp_override(window=win, area=area, region=region):
+        bpy.ops.screen.screenshot_area(filepath=os.path.join(OUT, name))
+
+
+def step():
+    import softshadow
+    win, areas = _areas()
+    scene = bpy.context.scene
+    if "areas" not in state:  # kept: the 3D view becomes the node editor on the way
+        state["areas"] = (areas["VIEW_3D"], areas["PROPERTIES"])
+    view3d, props = state["areas"]
+    s = state["step"]
+    if s == 0:
+        bpy.ops.softshadow.render_passes()
+        bpy.ops.softshadow.setup_compositor()
+        key = scene.objects["Key"]
+        for obj in scene.objects:
+            obj.select_set(obj == key)
+        bpy.context.view_layer.objects.active = key
+        space = view3d.spaces.active
+        space.overlay.show_overlays = False
+        space.shading.type = "SOLID"
+        rv3d = space.region_3d
+        rv3d.view_perspective = "PERSP"
+        rv3d.view_rotation = Quaternion((0.94, 0.34, 0.0, 0.0))
+        rv3d.view_location = (0.5, 0, 0)
+        rv3d.view_distance = 14
+        scene.softshadow.preview = True
+        view3d.tag_redraw()
+    elif s == 1:
+        props.spaces.active.context = "DATA"
+        props.tag_redraw()
+    elif s == 2:
+        _shot(props, "light-panel.png")
+        props.spaces.active.context = "OUTPUT"
+    elif s == 3:
+        _shot(props, "output-panel.png")
+        if not softshadow.preview._state.done and time.time() - state["t"] < 60:
+            view3d.tag_redraw()
+            return 0.5
+    elif s == 4:
+        _shot(view3d, "viewport-preview.png")
+        view3d.type = "NODE_EDITOR"
+        view3d.ui_type = "CompositorNodeTree"
+    elif s == 5:
+        region = next(r for r in view3d.regions if r.type == "WINDOW")
+        with bpy.context.temp_override(window=win, area=view3d, region=region):
+            bpy.ops.node.view_all()
+    elif s == 6:
+        _shot(view3d, "compositor.png")
+        bpy.ops.wm.quit_blender()
+        return None
+    state["step"] += 1
+    return 1.5
+
+
+def guarded_step():
+    try:
+        return step()
+    except Exception:
+        import traceback
+        traceback.print_exc()
+        bpy.ops.wm.quit_blender()
+        return None
+
+
+bpy.app.timers.register(guarded_step, first_interval=2.0)

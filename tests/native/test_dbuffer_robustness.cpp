@@ -1,0 +1,240 @@
+// Checks dbuffer's volume cache, open and non-manifold occluders, other light shapes and options.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "io/metrics.h"
+#include "methods/dbuffer_geometry.h"
+#include "methods/method.h"
+#include "pipeline/renderer.h"
+#include "softshadow/softshadow.h"
+#include "test_scenes.h"
+
+namespace ss {
+namespace {
+
+Layers render(Renderer& r, const Scene& scene, const std::string& method, int samples = 0,
+              const std::map<std::string, std::string>& options = {}) {
+    RenderSettings s;
+    s.samples = samples;
+    s.options = options;
+    std::string used;
+    return r.render(scene, 0, method, s, &used);
+}
+
+const Image& layer(const Layers& l, const char* name) {
+    const Image* img = l.find(name);
+    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
+    return *img;
+}
+
+int referenceSamples() { return test::quickTests() ? 64 : 256; }
+
+// No NaN or Inf in any layer, V in [0, 1].
+void expectFinite(const Layers& l, const std::string& what) {
+    size_t bad = 0;
+    for (auto& [name, img] : l.items)
+        for (float v : img.pixels) bad += !std::isfinite(v) || (name == "V" && (v < 0.0f || v > 1.0f));
+    EXPECT_EQ(bad, 0u) << what;
+    EXPECT_EQ(l.items.size(), 8u) << what;
+}
+
+Metrics againstReference(Renderer& r, const Scene& scene, const std::string& what,
+                         const std::map<std::string, std::string>& options = {}) {
+    Layers db = render(r, scene, "dbuffer", 0, options);
+    Layers ref = render(r, scene, "reference", referenceSamples());
+    expectFinite(db, what);
+    Metrics m = compareVisibility(layer(db, "V"), layer(ref, "V"), ref.find("mask"));
+    std::printf("[dbuffer] %s: %s\n", what.c_str(), m.toString().c_str());
+    return m;
+}
+
+TEST(DbufferCache, VolumesAreReusedUntilTheSceneOrLightChanges) {
+    Scene scene = test::sceneBox();
+    size_t before = dbufferGeometryBuilds();
+    auto first = dbufferGeometry(scene, 0);
+    auto again = dbufferGeometry(scene, 0);
+    EXPECT_EQ(dbufferGeometryBuilds(), before + 1);
+    EXPECT_EQ(first.get(), again.get());
+    // Rendering twice through the renderer re-uses them too.
+    Renderer r(SS_BACKEND_AUTO);
+    render(r, scene, "dbuffer");
+    render(r, scene, "dbuffer");
+    EXPECT_EQ(dbufferGeometryBuilds(), before + 1);
+    // A moved light is a different scene state: rebuilt, and the volumes move with it.
+    test::SceneParams moved;
+    moved.lightShift = {0.5f, 0.0f};
+    Scene other = test::sceneBox(moved);
+    auto shifted = dbufferGeometry(other, 0);
+    EXPECT_EQ(dbufferGeometryBuilds(), before + 2);
+    EXPECT_NE(shifted->disk.centre, first->disk.centre);
+    // An added mesh bumps the revision: rebuilt, with more volume.
+    scene.addMesh(test::makeBox({1.0f, 1.0f, 0.5f}, {1.4f, 1.4f, 0.9f}, SS_MESH_CAST));
+    auto grown = dbufferGeometry(scene, 0);
+    EXPECT_EQ(dbufferGeometryBuilds(), before + 3);
+    EXPECT_GT(grown->volumes.umbra.size() + grown->volumes.penumbra.size(),
+              first->volumes.umbra.size() + first->volumes.penumbra.size());
+}
+
+Scene withOccluder(Mesh occluder) {
+    Scene s;
+    s.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    s.addMesh(std::move(occluder));
+    s.addLight(test::makeDiskLight({0.0f, 0.0f, 4.0f}, 1.5f));
+    s.setCamera(test::makeTopCamera());
+    return s;
+}
+
+// Measured RMSE: open plate 0.016, box with fin 0.032 (the fin is a thin occluder whose umbra
+// IoU is 0.56). Bounds allow reference noise and raster shifts.
+TEST(DbufferMeshes, OpenAndNonManifoldOccludersStaySane) {
+    Renderer r(SS_BACKEND_AUTO);
+    // An open square plate (4 open edges): every border edge is both silhouettes.
+    Mesh plate = test::makeGround(0.6f, 1.2f, SS_MESH_CAST);
+    EXPECT_EQ(plate.report.openEdges, 4u);
+    Metrics mp = againstReference(r, withOccluder(plate), "open plate");
+    EXPECT_LT(mp.rmse, 0.04) << mp.toString();
+    EXPECT_GT(mp.litIoU, 0.97) << mp.toString();
+    // A box with a fin on its top edge: that edge has three faces.
+    Mesh box = test::makeBox({-0.6f, -0.6f, 0.8f}, {0.6f, 0.6f, 1.2f}, SS_MESH_CAST);
+    uint32_t base = uint32_t(box.positions.size());
+    box.positions.push_back({0.0f, 0.6f, 1.8f});
+    // The top face's +y edge runs between the vertices with y = 0.6 and z = 1.2.
+    uint32_t a = 0, b = 0;
+    bool found = false;
+    for (uint32_t i = 0; i < base; ++i)
+        if (box.positions[i].y == 0.6f && box.positions[i].z == 1.2f) (found ? b : a) = i, found = true;
+    box.triangles.push_back({a, b, base});
+    box.finalize();
+    EXPECT_EQ(box.report.nonManifoldEdges, 1u);
+    Metrics mf = againstReference(r, withOccluder(box), "box with fin");
+    EXPECT_LT(mf.rmse, 0.05) << mf.toString();
+    EXPECT_GT(mf.litIoU, 0.97) << mf.toString();
+}
+
+// Occluders usually receive too: their own faces must not come out as garbage.
+TEST(DbufferMeshes, ReceivingOccludersStayClose) {
+    Renderer r(SS_BACKEND_AUTO);
+    Scene s;
+    s.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    s.addMesh(test::makeBox({-0.6f, -0.6f, 0.4f}, {0.6f, 0.6f, 1.2f}, SS_MESH_CAST | SS_MESH_RECEIVE));
+    s.addMesh(test::makeTorus({1.6f, 0.8f, 0.6f}, 0.5f, 0.2f, 32, 16, SS_MESH_CAST | SS_MESH_RECEIVE));
+    s.addLight(test::makeDiskLight({0.3f, 0.2f, 4.0f}, 1.5f));
+    s.setCamera(test::makeTopCamera());
+    Metrics m = againstReference(r, s, "receiving occluders");
+    EXPECT_LT(m.rmse, 0.06) << m.toString();
+    EXPECT_GT(m.litIoU, 0.95) << m.toString();
+}
+
+Light shaped(LightType type) {
+    Light l = test::makeDiskLight({0.0f, 0.0f, 4.0f}, 1.5f);
+    l.type = type;
+    if (type == LightType::Square || type == LightType::Rectangle) {
+        l.size = 1.33f;  // area-equal to the 1.5 disk
+        l.sizeY = type == LightType::Rectangle ? 0.9f : 1.33f;
+    }
+    if (type == LightType::Point || type == LightType::Spot) {
+        l.radius = 0.5f;
+        l.spotSize = 2.5f;
+    }
+    if (type == LightType::Sun) l.angle = 0.2f;
+    return l;
+}
+
+// Measured RMSE: square 0.017, rectangle 0.018, point 0.010, spot 0.010, sun 0.003 (256
+// reference samples); a 0.04 bound leaves room for 64-sample noise and raster shifts.
+TEST(DbufferLights, OtherShapesThroughTheirDiskAreClose) {
+    Renderer r(SS_BACKEND_AUTO);
+    for (LightType type : {LightType::Square, LightType::Rectangle, LightType::Point, LightType::Spot, LightType::Sun}) {
+        Scene s;
+        s.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+        s.addMesh(test::makeBox({-0.6f, -0.6f, 0.8f}, {0.6f, 0.6f, 1.2f}, SS_MESH_CAST));
+        s.addLight(shaped(type));
+        s.setCamera(test::makeTopCamera());
+        Metrics m = againstReference(r, s, lightTypeName(type));
+        EXPECT_LT(m.rmse, 0.04) << lightTypeName(type) << ": " << m.toString();
+        EXPECT_GT(m.litIoU, 0.97) << lightTypeName(type) << ": " << m.toString();
+    }
+}
+
+TEST(DbufferOptions, SmallOccluderProfileAndPaperUmbraRule) {
+    Renderer r(SS_BACKEND_AUTO);
+    Scene scene = test::sceneTorus();
+    Layers base = render(r, scene, "dbuffer");
+    Layers root = render(r, scene, "dbuffer", 0, {{"small_occluders", "true"}});
+    Layers paper = render(r, scene, "dbuffer", 0, {{"umbra_rule", "farthest"}});
+    expectFinite(root, "small_occluders");
+    expectFinite(paper, "umbra_rule=farthest");
+    // Same umbra and lit regions (t = 0 and t = 1 map to 0 and 1 either way); in the outer
+    // half of the penumbra sqrt(t) is the brighter profile (sqrt(t) > 3t^2 - 2t^3 for t < 0.5).
+    size_t brighter = 0, moved = 0;
+    for (size_t i = 0; i < layer(base, "V").pixels.size(); ++i) {
+        float v0 = layer(base, "V").pixels[i], v1 = layer(root, "V").pixels[i];
+        moved += (v0 == 0.0f) != (v1 == 0.0f) || (v0 == 1.0f) != (v1 == 1.0f);
+        brighter += v0 < 0.5f && v1 > v0 + 0.01f;
+    }
+    EXPECT_EQ(moved, 0u);
+    EXPECT_GT(brighter, 50u);
+    // A misspelt option names itself instead of silently falling back.
+    EXPECT_THROW(render(r, scene, "dbuffer", 0, {{"umbra_rule", "nearest"}}), Error);
+    EXPECT_THROW(render(r, scene, "dbuffer", 0, {{"profile", "linear"}}), Error);
+}
+
+}  // namespace
+}  // namespace ss
+
+namespace ss {
+namespace {
+
+// A timing probe for docs/methods/dbuffer.md, disabled by default (run it with
+// --gtest_also_run_disabled_tests and SS_DBUFFER_TIMING=1 for per-stage times). It asserts only
+// what does not depend on time: the 100k-triangle render is complete and finite.
+TEST(DbufferTiming, DISABLED_HundredThousandTrianglesAt1024) {
+    const int rings = 224, segments = 224;
+    Mesh m;
+    m.name = "sphere";
+    m.flags = SS_MESH_CAST;
+    m.positions.push_back({0, 0, 1.6f});
+    for (int i = 1; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            float th = float(M_PI) * i / rings, ph = 2.0f * float(M_PI) * j / segments;
+            m.positions.push_back({0.6f * std::sin(th) * std::cos(ph), 0.6f * std::sin(th) * std::sin(ph), 1.0f + 0.6f * std::cos(th)});
+        }
+    m.positions.push_back({0, 0, 0.4f});
+    uint32_t south = uint32_t(m.positions.size() - 1);
+    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * segments + (j % segments)); };
+    for (int j = 0; j < segments; ++j) m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
+    for (int i = 1; i < rings - 1; ++i)
+        for (int j = 0; j < segments; ++j) {
+            m.triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
+            m.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
+        }
+    for (int j = 0; j < segments; ++j) m.triangles.push_back({south, ring(rings - 1, j + 1), ring(rings - 1, j)});
+    m.finalize();
+    Scene s;
+    s.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    s.addMesh(std::move(m));
+    s.addLight(test::makeDiskLight({0.0f, 0.0f, 4.0f}, 1.5f));
+    s.setCamera(test::makeTopCamera(1024, 1024));
+    Renderer r(SS_BACKEND_AUTO);
+    for (int k = 0; k < 3; ++k) {
+        auto t0 = std::chrono::steady_clock::now();
+        Layers l = render(r, s, "dbuffer");
+        expectFinite(l, "100k triangles");
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        auto g = dbufferGeometry(s, 0);
+        std::printf("[dbuffer] %zu triangles at 1024^2: render %.1f ms (silhouettes %.1f ms, extrusion %.1f ms when built; %zu umbra + %zu penumbra volume vertices)\n",
+                    s.meshes()[1].triangles.size(), ms, g->silhouetteMs, g->extrusionMs, g->volumes.umbra.size(), g->volumes.penumbra.size());
+    }
+}
+
+}  // namespace
+}  // namespace ss
