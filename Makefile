@@ -4,8 +4,9 @@ SHELL := /bin/bash
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
-SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
-VERSION := $(shell sed -n 's/^project(softshadow VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
+UID_NOW := $(shell id -u)
+SUDO := $(if $(filter 0,$(UID_NOW)),,sudo)
+VERSION := $(shell sed -n 's/^project.softshadow VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
 
 # Every Debian package the build, tests, demo, benchmark and add-on need.
 DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-tools \

@@ -1,6 +1,7 @@
-// How long occlusion_textures' stages (slicing, pre-filter per type, shading) take at 512² and 1024² with 4.
+// How long occlusion_textures' stages (slicing, pre-filter per type, shading) take.
 // SPDX-License-Identifier: GPL-3.0-or-later
-// 8, 16 slices of 256² and 512², on a 100k-triangle sphere over a ground plane.
+// At 512² and 1024² with 4, 8, 16 slices of 256² and 512², on a 100k-triangle sphere over a
+// ground plane.
 #include <benchmark/benchmark.h>
 
 #include <chrono>

@@ -96,5 +96,60 @@ TEST(OcclusionTexturesFilters, MipmapWithinStatedToleranceOfSat) {
     std::printf("box filter RMS vs SAT: mipmap %.4f, nbuffer %.4f\n", rmsMip, rmsNb);
 }
 
+// The fitted frustum holds every vertex; the kernel of a point straight under the light centre
+// is centred in the texture with the size eq. 4 gives; the fade weights ramp over one slice.
+TEST(OcclusionTexturesSlicing, FrustumHoldsTheSceneAndKernelsFollowEquationFour) {
+    Scene scene;
+    Mesh ground;
+    ground.name = "ground";
+    ground.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
+    ground.positions = {{-8, -8, 0}, {8, -8, 0}, {8, 8, 0}, {-8, 8, 0}};
+    ground.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.addMesh(ground);
+    Mesh plate = ground;  // a caster at height 2 so the slices span depths 2 .. 4
+    plate.name = "plate";
+    plate.positions = {{-1, -1, 2}, {1, -1, 2}, {1, 1, 2}, {-1, 1, 2}};
+    scene.addMesh(plate);
+    Light light;
+    light.name = "Area";
+    light.type = LightType::Rectangle;
+    light.lightToWorld = glm::mat4(1.0f);
+    light.lightToWorld[3] = glm::vec4(0.0f, 0.0f, 4.0f, 1.0f);
+    light.size = 2.0f;
+    light.sizeY = 1.0f;
+    scene.addLight(light);
+    occlusion::KernelLight k = occlusion::kernelLight(light, scene.bounds());
+    EXPECT_FLOAT_EQ(k.halfX, 1.0f);
+    EXPECT_FLOAT_EQ(k.halfY, 0.5f);
+    occlusion::SliceSetup s = occlusion::fitSlices(scene, k, 8, 512);
+    EXPECT_EQ(s.width, 512);
+    EXPECT_EQ(s.height, 256);  // the light's aspect: square texels
+    for (const glm::vec3& p : scene.meshes()[0].positions) {
+        glm::vec2 uv = occlusion::sliceUv(s, k.toLocal(p));
+        EXPECT_GE(uv.x, -1e-4f);
+        EXPECT_LE(uv.x, 1.0f + 1e-4f);
+        EXPECT_GE(uv.y, -1e-4f);
+        EXPECT_LE(uv.y, 1.0f + 1e-4f);
+    }
+    ASSERT_EQ(s.count(), 8);
+    for (int i = 0; i < 8; ++i) EXPECT_LT(s.planes[size_t(i)], s.planes[size_t(i) + 1]);
+    // A point 4 below the light, slice 0 (lower plane z_o): kernel = (4 - z_o) / 4 x light size
+    // in world, and the frustum at z_o is 2 a (z_o + d) / d wide.
+    glm::vec3 P(0.0f, 0.0f, 4.0f);
+    float zo = s.planes[1];
+    occlusion::SliceLookup l = occlusion::lookupSlice(s, P, 0, occlusion::Fade::Below);
+    EXPECT_NEAR(l.uv.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(l.uv.y, 0.5f, 1e-6f);
+    float worldKernel = (4.0f - zo) / 4.0f * 2.0f, frustum = 2.0f * 1.0f * (zo + s.d) / s.d;
+    EXPECT_NEAR(l.kernelTexels.x, worldKernel / frustum * 512.0f, 1e-3f);
+    EXPECT_NEAR(l.kernelTexels.y, l.kernelTexels.x / 2.0f, 1e-3f);
+    // Fade: slice k counts 0 at its own lower plane, 1 one slice thickness further (below), or
+    // ramps inside itself (paper).
+    float dz = s.planes[2] - s.planes[1];
+    EXPECT_FLOAT_EQ(occlusion::lookupSlice(s, {0, 0, s.planes[1]}, 0, occlusion::Fade::Below).weight, 0.0f);
+    EXPECT_NEAR(occlusion::lookupSlice(s, {0, 0, s.planes[1] + 0.5f * dz}, 0, occlusion::Fade::Below).weight, 0.5f, 1e-4f);
+    EXPECT_NEAR(occlusion::lookupSlice(s, {0, 0, s.planes[0] + 0.25f * dz}, 0, occlusion::Fade::Paper).weight, 0.25f, 1e-4f);
+}
+
 }  // namespace
 }  // namespace ss

@@ -1,6 +1,6 @@
-// How a box-filtered occlusion texture is computed on the CPU (brute force, summed-area table, N-Buffers.
+// How a box-filtered occlusion texture is computed on the CPU (the GL pre-filters' references).
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Mipmaps): the references the GL pre-filters of occlusion_textures are tested against.
+// Brute force, summed-area table, N-Buffers and mipmaps, as occlusion_textures' tests use them.
 #pragma once
 #include <cstddef>
 #include <vector>

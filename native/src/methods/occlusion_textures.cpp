@@ -1,6 +1,6 @@
-// How the occlusion_textures method runs for one light: fit the slices, slice, pre-filter, shade.
+// How the occlusion_textures method runs for one light: fit, slice, pre-filter, shade, name layers.
 // SPDX-License-Identifier: GPL-3.0-or-later
-// And name the layers (paper 4: Eisemann and Décoret, occlusion textures).
+// Paper 4: Eisemann and Décoret, occlusion textures (docs/methods/occlusion_textures.md).
 #include <cmath>
 #include <string>
 

@@ -1,6 +1,7 @@
-// How occlusion_textures pre-filters with summed-area tables: two compute passes (running sums along rows.
+// How occlusion_textures pre-filters with summed-area tables (two compute passes).
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Then down columns) into a (W+1) x (H+1) RGBA32F table per group of four slices.
+// Running sums along rows, then down columns, into a (W+1) x (H+1) RGBA32F table per group of
+// four slices.
 #include "methods/occlusion_textures_gl.h"
 
 namespace ss::occlusion {
