@@ -13,20 +13,16 @@
 
 #include "core/error.h"
 #include "core/scene.h"
-#include "gl/render_thread.h"
 #include "io/scene_file.h"
-#include "methods/method.h"
-#include "pipeline/frame.h"
 #include "pipeline/renderer.h"
 #include "softshadow/softshadow.h"
+#include "stage_timing.h"
 
 namespace ss {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
+using bench::runOnce;
+using bench::Stages;
 
 // A torus of 2 nu nv triangles (nu = 316, nv = 158: 99,856) lying on z = c.z, outward winding.
 Mesh torus(int nu, int nv, float major, float minor, glm::vec3 c) {
@@ -75,66 +71,6 @@ Scene demoScene(int resolution) {
     c.width = c.height = resolution;
     s.setCamera(c);
     return s;
-}
-
-gl::RenderThread& glThread() {
-    static gl::RenderThread* t = new gl::RenderThread(SS_BACKEND_AUTO);
-    return *t;
-}
-
-struct Stages {
-    double meshUpload = 0, cameraPass = 0, shadowMap = 0, prepare = 0, render = 0, readback = 0;
-};
-
-// One cold frame: every shared pass drawn afresh, then the method's prepare and render. glFinish
-// after each GL stage, so the time lands on the stage that queued the work (llvmpipe defers).
-Stages runOnce(const Scene& scene, const std::string& method, Layers* keep = nullptr) {
-    Stages st;
-    std::unique_ptr<Method> m = createMethod(method);
-    RenderSettings settings;
-    if (!m->needsGl()) {
-        Frame frame(scene);
-        auto t = Clock::now();
-        m->prepare(frame, 0, settings);
-        st.prepare = msSince(t);
-        t = Clock::now();
-        Layers out = m->render(frame, 0, settings);
-        st.render = msSince(t);
-        if (keep) *keep = std::move(out);
-        return st;
-    }
-    glThread().run([&] {
-        Frame frame(scene);
-        const gl::Functions& g = frame.gl();
-        auto t = Clock::now();
-        frame.meshes();
-        g.Finish();
-        st.meshUpload = msSince(t);
-        t = Clock::now();
-        const CameraPass& cam = frame.cameraPass();
-        g.Finish();
-        st.cameraPass = msSince(t);
-        t = Clock::now();
-        frame.shadowMap(0);
-        g.Finish();
-        st.shadowMap = msSince(t);
-        t = Clock::now();
-        m->prepare(frame, 0, settings);
-        g.Finish();
-        st.prepare = msSince(t);
-        t = Clock::now();
-        Layers out = m->render(frame, 0, settings);
-        st.render = msSince(t);
-        if (keep) *keep = std::move(out);
-        // What one float layer at camera resolution costs to bring back (every method reads at
-        // least V; its own read-back is inside `render`).
-        t = Clock::now();
-        Image v = cam.framebuffer.readChannel(0, 3);
-        st.readback = msSince(t);
-        benchmark::DoNotOptimize(v);
-        m.reset();  // GL objects of the method die on their own thread
-    });
-    return st;
 }
 
 // args: scene (0 example, 1 torus 100k), resolution, method index in methodNames()

@@ -56,9 +56,29 @@ std::unique_ptr<Method> createMethod(const std::string& name) {
 }
 
 std::string chooseAutoMethod(const Scene& scene, int lightIndex) {
-    // Until the soft methods land, the only real-time method is the hard shadow map.
-    (void)scene, (void)lightIndex;
-    return "shadow_map";
+    // The rule (docs/methods/README.md): each light gets the method whose paper models its
+    // shape, unless the scene breaks that method's assumptions.
+    if (lightIndex < 0 || lightIndex >= int(scene.lights().size()))
+        fail(SS_ERROR_INVALID_ARGUMENT, "light index " + std::to_string(lightIndex) + " out of range");
+    const Light& light = scene.lights()[lightIndex];
+    bool castersClosed = true;
+    for (const Mesh& m : scene.meshes())
+        if (m.casts() && !m.report.closedManifold()) castersClosed = false;
+    switch (light.type) {
+        case LightType::Square:
+        case LightType::Rectangle:
+            // Occlusion textures are built for rectangular lights and need no closed meshes.
+            return "occlusion_textures";
+        case LightType::Disk:
+        case LightType::Ellipse:
+        case LightType::Point:
+        case LightType::Spot:
+            // Umbra/penumbra volumes give correct boundaries for disks, but their extrusion
+            // assumes closed 2-manifold casters; PCSS accepts any triangle soup.
+            return castersClosed ? "dbuffer" : "pcss";
+        case LightType::Sun: return "pcss";
+    }
+    return "pcss";
 }
 
 }  // namespace ss

@@ -1,0 +1,87 @@
+// How long each of our GL methods takes per frame, stage by stage, on the Blender benchmark
+// scenes (scene files listed in SS_BENCH_SCENES), and what it rendered (EXR per method).
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SS_BENCH_SCENES="name=path;name=path", SS_BENCH_OUT=folder: writes folder/<name>/<method>.exr.
+// Unset: registers nothing. Registration runs before main (a static initialiser), since
+// bench_main.cpp owns main.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/exr_file.h"
+#include "io/pass_names.h"
+#include "io/scene_file.h"
+#include "methods/method.h"
+#include "stage_timing.h"
+
+namespace ss {
+namespace {
+
+void runSceneFile(benchmark::State& state, const std::string& name, const std::string& path,
+                  const std::string& method, const std::string& outDir) {
+    Scene scene = loadSceneFile(path);
+    size_t triangles = 0;
+    for (const Mesh& m : scene.meshes()) triangles += m.triangles.size();
+    Layers layers;
+    try {
+        bench::runOnce(scene, method, &layers);  // warm-up: programs compiled
+    } catch (const std::exception& e) {
+        state.SkipWithError((method + ": " + e.what()).c_str());
+        for (auto _ : state) {
+        }
+        return;
+    }
+    bench::Stages sum;
+    for (auto _ : state) {
+        bench::Stages s = bench::runOnce(scene, method);
+        state.SetIterationTime(s.total() / 1000.0);
+        sum.meshUpload += s.meshUpload, sum.cameraPass += s.cameraPass, sum.shadowMap += s.shadowMap;
+        sum.prepare += s.prepare, sum.render += s.render, sum.readback += s.readback;
+    }
+    double n = std::max<double>(1.0, double(state.iterations()));
+    state.counters["triangles"] = double(triangles);
+    state.counters["mesh_upload_ms"] = sum.meshUpload / n;
+    state.counters["camera_pass_ms"] = sum.cameraPass / n;
+    state.counters["shadow_map_ms"] = sum.shadowMap / n;
+    state.counters["prepare_ms"] = sum.prepare / n;
+    state.counters["render_ms"] = sum.render / n;
+    state.counters["readback_ms"] = sum.readback / n;
+    state.SetLabel(name + " " + method);
+
+    std::filesystem::create_directories(std::filesystem::path(outDir) / name);
+    const std::string light = scene.lights()[0].name;
+    std::vector<ExrPassRef> passes;
+    for (const char* layer : {"V", "mask"})
+        if (const Image* img = layers.find(layer)) passes.push_back({passName(light, method, layer), img});
+    writeMultilayerExr((std::filesystem::path(outDir) / name / (method + ".exr")).string(), scene.viewLayer(),
+                       passes);
+}
+
+const bool registered = [] {
+    const char* list = std::getenv("SS_BENCH_SCENES");
+    const char* out = std::getenv("SS_BENCH_OUT");
+    if (!list || !out) return false;
+    std::stringstream ss(list);
+    std::string item;
+    while (std::getline(ss, item, ';')) {
+        size_t eq = item.find('=');
+        if (eq == std::string::npos) continue;
+        std::string name = item.substr(0, eq), path = item.substr(eq + 1);
+        for (const std::string& method : methodNames()) {
+            if (method == "reference") continue;  // CPU: run through the CLI at high samples
+            benchmark::RegisterBenchmark(("BM_SceneFile/" + name + "/" + method).c_str(),
+                                         [=](benchmark::State& st) { runSceneFile(st, name, path, method, out); })
+                ->UseManualTime()
+                ->Iterations(2)
+                ->Unit(benchmark::kMillisecond);
+        }
+    }
+    return true;
+}();
+
+}  // namespace
+}  // namespace ss

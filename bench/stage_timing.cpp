@@ -1,0 +1,79 @@
+// How one cold frame of a method is timed stage by stage: glFinish closes every GL stage.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "stage_timing.h"
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <memory>
+
+#include "gl/render_thread.h"
+#include "methods/method.h"
+#include "pipeline/frame.h"
+
+namespace ss::bench {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+gl::RenderThread& glThread() {
+    static gl::RenderThread* t = new gl::RenderThread(SS_BACKEND_AUTO);
+    return *t;
+}
+
+}  // namespace
+
+// One cold frame: every shared pass drawn afresh, then the method's prepare and render. glFinish
+// after each GL stage, so the time lands on the stage that queued the work (llvmpipe defers).
+Stages runOnce(const Scene& scene, const std::string& method, Layers* keep) {
+    Stages st;
+    std::unique_ptr<Method> m = createMethod(method);
+    RenderSettings settings;
+    if (!m->needsGl()) {
+        Frame frame(scene);
+        auto t = Clock::now();
+        m->prepare(frame, 0, settings);
+        st.prepare = msSince(t);
+        t = Clock::now();
+        Layers out = m->render(frame, 0, settings);
+        st.render = msSince(t);
+        if (keep) *keep = std::move(out);
+        return st;
+    }
+    glThread().run([&] {
+        Frame frame(scene);
+        const gl::Functions& g = frame.gl();
+        auto t = Clock::now();
+        frame.meshes();
+        g.Finish();
+        st.meshUpload = msSince(t);
+        t = Clock::now();
+        const CameraPass& cam = frame.cameraPass();
+        g.Finish();
+        st.cameraPass = msSince(t);
+        t = Clock::now();
+        frame.shadowMap(0);
+        g.Finish();
+        st.shadowMap = msSince(t);
+        t = Clock::now();
+        m->prepare(frame, 0, settings);
+        g.Finish();
+        st.prepare = msSince(t);
+        t = Clock::now();
+        Layers out = m->render(frame, 0, settings);
+        st.render = msSince(t);
+        if (keep) *keep = std::move(out);
+        // What one float layer at camera resolution costs to bring back (every method reads at
+        // least V; its own read-back is inside `render`).
+        t = Clock::now();
+        Image v = cam.framebuffer.readChannel(0, 3);
+        st.readback = msSince(t);
+        benchmark::DoNotOptimize(v);
+        m.reset();  // GL objects of the method die on their own thread
+    });
+    return st;
+}
+
+}  // namespace ss::bench

@@ -1,0 +1,20 @@
+// How one cold frame of a method is timed stage by stage (shared passes, prepare, render, readback).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <string>
+
+#include "core/image.h"
+#include "core/scene.h"
+
+namespace ss::bench {
+
+struct Stages {
+    double meshUpload = 0, cameraPass = 0, shadowMap = 0, prepare = 0, render = 0, readback = 0;
+    double total() const { return meshUpload + cameraPass + shadowMap + prepare + render; }
+};
+
+// Light 0 of `scene` with `method` on a fresh Frame (every shared pass drawn again), on one
+// long-lived render thread; `keep` receives the layers. Throws what the method throws.
+Stages runOnce(const Scene& scene, const std::string& method, Layers* keep = nullptr);
+
+}  // namespace ss::bench
