@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders the built-in example with `reference` and `shadow_map` into out/demo.exr with one PNG
+# Renders the built-in example with `reference`, `shadow_map` and every soft method into out/demo.exr with one PNG
 # preview per pass, then prints the summary and how far shadow_map is from reference.
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Usage: examples/run_demo.sh BUILD_DIR
@@ -15,8 +15,8 @@ mkdir -p "$OUT"
 echo "== softshadow info"
 "$BIN" info || echo "(no GL backend: GL methods will fail)"
 echo
-echo "== softshadow render examples/scenes/demo.json -m reference,shadow_map"
-"$BIN" render "$ROOT/examples/scenes/demo.json" -m reference,shadow_map \
+echo "== softshadow render examples/scenes/demo.json -m reference,shadow_map,pcss,dbuffer,penumbra_map,occlusion_textures,sweep"
+"$BIN" render "$ROOT/examples/scenes/demo.json" -m reference,shadow_map,pcss,dbuffer,penumbra_map,occlusion_textures,sweep \
     -o "$OUT/demo.exr" --png-dir "$OUT"
 echo
 echo "== softshadow compare out/demo.exr (each method against reference, over the mask)"

@@ -47,7 +47,9 @@ std::vector<Pair> pairAcrossMethods(const ExrContents& a, const ExrContents& b, 
     std::vector<Pair> out;
     for (const ExrPass& p : a.passes) {
         PassParts pp;
-        if (!splitPassName(p.pass, &pp) || pp.layer == "mask") continue;
+        // Across methods only the visibility passes are comparable: the other layers
+        // (masks, debug distances) mean different things per method.
+        if (!splitPassName(p.pass, &pp) || pp.layer != "V") continue;
         if (sameFile && pp.method != against) continue;
         for (const ExrPass& q : b.passes) {
             PassParts qp;

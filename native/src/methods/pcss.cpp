@@ -70,8 +70,8 @@ public:
         layers.add("mask", mask);
         if (settings.extraLayers) {
             addClassLayers(layers, v, mask);
-            layers.add("pcss_blocker_distance", std::move(ch.c[2]));
-            layers.add("pcss_kernel_texels", std::move(ch.c[3]));
+            layers.add("blocker_distance", std::move(ch.c[2]));
+            layers.add("kernel_texels", std::move(ch.c[3]));
         }
         frame.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
         return layers;

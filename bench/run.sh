@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# What `make bench` runs: per-stage native timings, the Blender scenes with EEVEE and Cycles, our
+# methods on the same scene files, errors against a converged reference, and bench/results/.
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Usage: bench/run.sh BUILD_DIR    BENCH_QUICK=1: a tiny subset (smoke test, a minute or two).
+# Every figure in bench/results/ comes from this one run. Big intermediates (EXR) stay in
+# BUILD_DIR/bench_work; the results folder gets JSON, Markdown, SVG and small PNGs only.
+set -euo pipefail
+BUILD_DIR=$(cd "${1:?usage: run.sh BUILD_DIR}" && pwd)
+HERE=$(cd "$(dirname "$0")" && pwd)
+ROOT=$(cd "$HERE/.." && pwd)
+QUICK=${BENCH_QUICK:-0}
+CLI="$BUILD_DIR/softshadow"
+BENCH="$BUILD_DIR/softshadow_bench"
+OUT="$HERE/results"
+WORK="$BUILD_DIR/bench_work"
+# Blender comparisons at a modest resolution (2 cores): 256x192; the native per-stage tables at
+# 512² and 1024². Truth: `reference` at TRUTH_SAMPLES light samples per pixel.
+WIDTH=256 HEIGHT=192 TRUTH_SAMPLES=1024
+if [ "$QUICK" = 1 ]; then WIDTH=128 HEIGHT=96 TRUTH_SAMPLES=256; fi
+BLENDER=${BLENDER:-blender}
+export SOFTSHADOW_LIB="$BUILD_DIR/libsoftshadow.so"
+
+for f in "$CLI" "$BENCH" "$SOFTSHADOW_LIB"; do
+  [ -e "$f" ] || { echo "bench: $f is missing: build first (make build)" >&2; exit 1; }
+done
+rm -rf "$WORK" && mkdir -p "$WORK" "$OUT"
+rm -f "$OUT"/*.png "$OUT"/*.svg "$OUT"/*.json "$OUT"/*.md
+t_start=$(date +%s)
+log() { echo "[bench $(( $(date +%s) - t_start ))s] $*"; }
+
+# 1. Native per-stage timings (example scene and a 100k torus at 512² and 1024²), plus the
+#    method engineers' own stage benchmarks.
+if [ "$QUICK" = 1 ]; then FILTER='BM_Foundation/scene:0/res:512/'; else FILTER='BM_Foundation|BM_PenumbraMap|BM_Occlusion'; fi
+log "native stage timings ($FILTER)"
+"$BENCH" --benchmark_filter="$FILTER" --benchmark_out="$OUT/foundation.json" \
+  --benchmark_out_format=json > "$WORK/foundation.txt" 2>&1 || { tail -n 30 "$WORK/foundation.txt"; exit 1; }
+
+# 2. The Blender scenes: scene files, EEVEE and Cycles visibility, their render times.
+log "Blender: scenes, EEVEE, Cycles at ${WIDTH}x${HEIGHT}"
+"$BLENDER" --background --factory-startup --python-exit-code 1 --python "$HERE/scenes.py" -- \
+  "$WORK/scenes" "$WIDTH" "$HEIGHT" "$QUICK" > "$WORK/blender.log" 2>&1 || { tail -n 40 "$WORK/blender.log"; exit 1; }
+grep -q BENCH-SCENES-OK "$WORK/blender.log" || { tail -n 40 "$WORK/blender.log"; exit 1; }
+grep '^BENCH ' "$WORK/blender.log" || true
+
+# 3. Per scene: the converged truth, `reference` at its default samples (timed by the CLI),
+#    EEVEE/Cycles EXRs renamed so `softshadow compare` pairs them with the truth's passes.
+SCENE_LIST=""
+for dir in "$WORK"/scenes/*/; do
+  name=$(basename "$dir")
+  light=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['lights'][0]['name'].replace('.', '_').replace(' ', '_'))" "$dir/scene.json")
+  log "$name: reference truth ($TRUTH_SAMPLES samples) and default reference"
+  "$CLI" render "$dir/scene.json" -m reference --samples "$TRUTH_SAMPLES" --no-extra -o "$dir/truth.exr" > "$dir/truth.txt"
+  "$CLI" render "$dir/scene.json" -m reference --no-extra -o "$dir/reference.exr" > "$dir/reference.txt"
+  for f in "$dir"/eevee_*.exr "$dir"/cycles_*.exr; do
+    [ -e "$f" ] || continue
+    # A Blender file's passes carry the truth's names: compare pairs passes by name.
+    oiiotool "$f" --ch R,G --chnames "ViewLayer.${light}_reference.V,ViewLayer.${light}_reference_mask.V" \
+      -d float -o "${f%.exr}.named.exr"
+  done
+  SCENE_LIST+="${SCENE_LIST:+;}$name=$dir/scene.json"
+done
+
+# 4. Our GL methods on the same scene files: per-stage times and their images.
+log "our methods on the Blender scenes"
+SS_BENCH_SCENES="$SCENE_LIST" SS_BENCH_OUT="$WORK/ours" "$BENCH" --benchmark_filter='BM_SceneFile' \
+  --benchmark_out="$OUT/scene_files.json" --benchmark_out_format=json > "$WORK/scene_files.txt" 2>&1 ||
+  { tail -n 30 "$WORK/scene_files.txt"; exit 1; }
+
+# 5. Errors against the truth, and image strips (method | truth | 4 x |error|).
+log "errors and image strips"
+for dir in "$WORK"/scenes/*/; do
+  name=$(basename "$dir")
+  mkdir -p "$WORK/errors/$name"
+  candidates=("$dir/reference.exr")
+  for f in "$WORK/ours/$name"/*.exr "$dir"/eevee_*.named.exr "$dir"/cycles_*.named.exr; do
+    [ -e "$f" ] && candidates+=("$f")
+  done
+  for f in "${candidates[@]}"; do
+    key=$(basename "$f" .exr); key=${key%.named}
+    "$CLI" compare "$f" "$dir/truth.exr" --json > "$WORK/errors/$name/$key.json" 2>"$WORK/errors/$name/$key.err" ||
+      echo "compare failed for $name/$key: $(cat "$WORK/errors/$name/$key.err")"
+  done
+done
+python3 "$HERE/strips.py" "$WORK" "$OUT" || echo "image strips failed (see above)"
+
+# 6. The report.
+log "report"
+python3 "$HERE/report.py" "$WORK" "$OUT" "$WIDTH" "$HEIGHT" "$TRUTH_SAMPLES" "$QUICK"
+log "done: $OUT/report.md, $OUT/foundation.md"

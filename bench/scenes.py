@@ -1,0 +1,320 @@
+# Which benchmark scenes exist, and how EEVEE and Cycles see their shadows (runs inside Blender).
+# SPDX-License-Identifier: GPL-3.0-or-later
+# blender -b --factory-startup --python bench/scenes.py -- OUT_DIR WIDTH HEIGHT QUICK(0|1)
+# For each scene: OUT_DIR/<scene>/scene.json (the add-on's exporter), and for each engine setting
+# OUT_DIR/<scene>/<engine>.exr (R = visibility V, G = mask; run.sh renames the channels) plus
+# OUT_DIR/<scene>/blender.json with the render times. Needs SOFTSHADOW_LIB.
+import json
+import math
+import os
+import random
+import sys
+import time
+
+import bpy
+import numpy as np
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+sys.path.insert(0, os.path.join(ROOT, "blender_addon"))
+import softshadow  # noqa: E402
+from softshadow import api  # noqa: E402
+
+EEVEE_SAMPLES = (16, 64)
+CYCLES_SAMPLES = (1, 4, 16, 64, 256)
+
+
+# ---------------------------------------------------------------- scene building
+def reset():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    if not hasattr(bpy.types.Scene, "softshadow"):
+        softshadow.register()
+    scene = bpy.context.scene
+    world = bpy.data.worlds.new("Black")
+    world.color = (0.0, 0.0, 0.0)
+    world.use_nodes = False
+    scene.world = world  # a black world: only the area light reaches Diffuse Direct
+    return scene
+
+
+def link(obj):
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def mesh_object(name, verts, faces):
+    me = bpy.data.meshes.new(name)
+    me.from_pydata([tuple(v) for v in verts], [], [tuple(f) for f in faces])
+    me.update()
+    return link(bpy.data.objects.new(name, me))
+
+
+def ground(size=8.0):
+    h = size / 2
+    return mesh_object("Ground", [(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)], [(0, 1, 2, 3)])
+
+
+def area_light(shape="DISK", size=1.5, size_y=None, location=(0.8, 0.5, 4.0), energy=500.0):
+    data = bpy.data.lights.new("Area", "AREA")
+    data.shape = shape
+    data.size = size
+    if size_y is not None:
+        data.size_y = size_y
+    data.energy = energy
+    obj = link(bpy.data.objects.new("Area", data))
+    obj.location = location  # emits down its local -Z
+    return obj
+
+
+def camera(location=(0.0, -5.5, 6.0), target=(0.0, 0.0, 0.5), lens=35.0):
+    data = bpy.data.cameras.new("Camera")
+    data.lens = lens
+    obj = link(bpy.data.objects.new("Camera", data))
+    obj.location = location
+    direction = np.subtract(target, location)
+    from mathutils import Vector
+    obj.rotation_euler = Vector(direction).to_track_quat("-Z", "Y").to_euler()
+    bpy.context.scene.camera = obj
+    return obj
+
+
+def subdivide(obj, levels):
+    if levels <= 0:
+        return obj
+    mod = obj.modifiers.new("Subdivision", "SUBSURF")
+    mod.levels = levels
+    mod.render_levels = levels
+    return obj
+
+
+def primitive(op, **kw):
+    op(**kw)
+    return bpy.context.active_object
+
+
+def suzanne(levels, location=(0, 0, 1.1), scale=0.9):
+    obj = primitive(bpy.ops.mesh.primitive_monkey_add, size=2.0 * scale, location=location)
+    obj.rotation_euler = (math.radians(-60), 0, 0)  # face tilted up to the light: concave parts cast
+    return subdivide(obj, levels)
+
+
+def build_convex():
+    ground()
+    primitive(bpy.ops.mesh.primitive_ico_sphere_add, subdivisions=4, radius=0.7, location=(0, 0, 1.2))
+
+
+def build_concave():
+    ground()
+    suzanne(2)
+
+
+def build_overlapping():
+    ground()
+    for i, (x, y, z, s) in enumerate([(-0.6, 0.0, 0.6, 0.5), (0.2, 0.3, 1.3, 0.45), (0.5, -0.4, 2.0, 0.35)]):
+        obj = primitive(bpy.ops.mesh.primitive_cube_add, size=2 * s, location=(x, y, z))
+        obj.rotation_euler = (0.0, 0.0, 0.4 * i)
+
+
+def build_torus():
+    ground()
+    primitive(bpy.ops.mesh.primitive_torus_add, major_radius=1.0, minor_radius=0.3, major_segments=64,
+              minor_segments=24, location=(0, 0, 1.0))
+
+
+def build_small_occluder():
+    ground()
+    primitive(bpy.ops.mesh.primitive_uv_sphere_add, radius=0.12, location=(0, 0, 1.2))
+
+
+def build_foliage():
+    ground()
+    rng = random.Random(7)
+    verts, faces = [], []
+    for _ in range(60):  # thin leaves: 0.3 x 0.08, random orientation, one flat quad each
+        c = np.array([rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(1.0, 2.0)])
+        a, b = rng.uniform(0, math.pi), rng.uniform(-0.6, 0.6)
+        u = np.array([math.cos(a), math.sin(a), b]) * 0.15
+        v = np.array([-math.sin(a), math.cos(a), 0.2]) * 0.04
+        k = len(verts)
+        verts += [c - u - v, c + u - v, c + u + v, c - u + v]
+        faces.append((k, k + 1, k + 2, k + 3))
+    mesh_object("Leaves", verts, faces)
+
+
+def build_curved_receiver():
+    n = 96  # a wavy receiver: z = 0.3 sin(x) cos(0.7 y) on a 96x96 grid
+    xs = np.linspace(-4, 4, n)
+    verts = [(x, y, 0.3 * math.sin(1.2 * x) * math.cos(0.7 * y)) for y in xs for x in xs]
+    faces = [(j * n + i, j * n + i + 1, (j + 1) * n + i + 1, (j + 1) * n + i)
+             for j in range(n - 1) for i in range(n - 1)]
+    mesh_object("Receiver", verts, faces)
+    primitive(bpy.ops.mesh.primitive_ico_sphere_add, subdivisions=3, radius=0.5, location=(0.2, 0, 1.4))
+
+
+def build_scaled(levels):
+    def build():
+        ground()
+        suzanne(levels)
+    return build
+
+
+SCENES = [
+    ("convex", build_convex, {}),
+    ("concave", build_concave, {}),
+    ("overlapping", build_overlapping, {}),
+    ("torus", build_torus, {}),
+    ("small_occluder", build_small_occluder, {"size": 3.0, "location": (0.0, 0.0, 3.0)}),
+    ("foliage", build_foliage, {"shape": "RECTANGLE", "size": 1.5, "size_y": 1.0}),
+    ("curved_receiver", build_curved_receiver, {}),
+] + [("scaled_%d" % lv, build_scaled(lv), {}) for lv in (1, 2, 3, 4, 5)]
+
+
+def triangle_count(scene):
+    graph = bpy.context.evaluated_depsgraph_get()
+    total = 0
+    for obj in scene.objects:
+        if obj.type == "MESH":
+            ev = obj.evaluated_get(graph)
+            me = ev.to_mesh()
+            me.calc_loop_triangles()
+            total += len(me.loop_triangles)
+            ev.to_mesh_clear()
+    return total
+
+
+# ---------------------------------------------------------------- rendering
+def setup_compositor(scene):
+    """Render Layers' Diffuse Direct -> Viewer: the only render output Python can read in -b."""
+    scene.view_layers[0].use_pass_diffuse_direct = True
+    scene.use_nodes = True
+    tree = scene.node_tree
+    tree.nodes.clear()
+    rl = tree.nodes.new("CompositorNodeRLayers")
+    viewer = tree.nodes.new("CompositorNodeViewer")
+    comp = tree.nodes.new("CompositorNodeComposite")
+    tree.links.new(rl.outputs["DiffDir"], viewer.inputs[0])
+    tree.links.new(rl.outputs["DiffDir"], comp.inputs[0])
+
+
+def diffuse_direct(scene, tmp_path):
+    """Renders, returns (seconds, float32 HxW Diffuse Direct luminance, row 0 = top). The pass
+    goes Render Layers -> Composite -> Render Result -> EXR -> pixels (the Viewer image is not
+    refreshed in --background)."""
+    t0 = time.perf_counter()
+    bpy.ops.render.render(write_still=False)
+    seconds = time.perf_counter() - t0
+    settings = scene.render.image_settings
+    settings.file_format = "OPEN_EXR"
+    settings.color_depth = "32"
+    settings.exr_codec = "ZIP"
+    bpy.data.images["Render Result"].save_render(tmp_path, scene=scene)
+    img = bpy.data.images.load(tmp_path)
+    w, h = img.size
+    px = np.empty(w * h * img.channels, dtype=np.float32)
+    img.pixels.foreach_get(px)
+    px = px.reshape(h, w, img.channels)[::-1]  # Blender's rows start at the bottom
+    bpy.data.images.remove(img)
+    os.remove(tmp_path)
+    return seconds, px[:, :, :3].mean(axis=2)
+
+
+def set_shadows(scene, on):
+    for obj in scene.objects:
+        if obj.type == "LIGHT":
+            obj.data.use_shadow = on  # EEVEE
+            obj.data.cycles.cast_shadow = on  # Cycles
+
+
+def visibility(shadowed, unshadowed):
+    """The contract: V = E(shadows) / E(no shadows), 1 and mask 0 where the light does not reach."""
+    reach = unshadowed > 1e-6 * max(float(unshadowed.max()), 1e-30)
+    v = np.ones_like(shadowed)
+    v[reach] = np.clip(shadowed[reach] / unshadowed[reach], 0.0, 1.0)
+    return v, reach.astype(np.float32)
+
+
+def save_rg(path, v, mask):
+    """R = V, G = mask as a float EXR (Blender's own image saving; row 0 = top in `v`)."""
+    h, w = v.shape
+    img = bpy.data.images.new("bench_out", w, h, alpha=True, float_buffer=True)
+    px = np.zeros((h, w, 4), dtype=np.float32)
+    px[:, :, 0] = v
+    px[:, :, 1] = mask
+    px[:, :, 3] = 1.0
+    img.pixels.foreach_set(px[::-1].ravel())
+    img.filepath_raw = path
+    img.file_format = "OPEN_EXR"
+    settings = bpy.context.scene.render.image_settings
+    settings.file_format = "OPEN_EXR"
+    settings.color_depth = "32"
+    settings.exr_codec = "ZIP"
+    img.save_render(path, scene=bpy.context.scene)
+    bpy.data.images.remove(img)
+
+
+def render_engine(scene, engine, samples, out_dir, name):
+    if engine == "eevee":
+        scene.render.engine = "BLENDER_EEVEE"
+        scene.eevee.use_soft_shadows = True
+        scene.eevee.taa_render_samples = samples
+        scene.eevee.shadow_cube_size = "2048"
+        scene.eevee.use_gtao = False
+        scene.eevee.use_ssr = False
+    else:
+        scene.render.engine = "CYCLES"
+        c = scene.cycles
+        c.device = "CPU"
+        c.samples = samples
+        c.use_adaptive_sampling = False
+        c.use_denoising = False
+        c.max_bounces = 0  # direct light only: Diffuse Direct is all we read
+        c.seed = 1
+        c.filter_width = 0.01  # sample at the pixel centre, as the contract does
+    set_shadows(scene, False)
+    tmp = os.path.join(out_dir, "_pass.exr")
+    _, unshadowed = diffuse_direct(scene, tmp)
+    set_shadows(scene, True)
+    seconds, shadowed = diffuse_direct(scene, tmp)
+    v, mask = visibility(shadowed, unshadowed)
+    save_rg(os.path.join(out_dir, name + ".exr"), v, mask)
+    return seconds
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1:]
+    out_root, width, height, quick = argv[0], int(argv[1]), int(argv[2]), argv[3] == "1"
+    scenes = SCENES
+    eevee, cycles = EEVEE_SAMPLES, CYCLES_SAMPLES
+    if quick:
+        scenes = [s for s in SCENES if s[0] in ("convex", "scaled_1")]
+        eevee, cycles = (16,), (1, 16)
+    only = os.environ.get("BENCH_SCENES")
+    if only:
+        scenes = [s for s in scenes if s[0] in only.split(",")]
+    for name, build, light_kw in scenes:
+        scene = reset()
+        build()
+        area_light(**light_kw)
+        camera()
+        scene.render.resolution_x, scene.render.resolution_y = width, height
+        scene.render.resolution_percentage = 100
+        scene.render.filter_size = 0.0  # EEVEE: no pixel filter, pixel centres as the contract
+        setup_compositor(scene)
+        out_dir = os.path.join(out_root, name)
+        os.makedirs(out_dir, exist_ok=True)
+        problems = api.export_scene_file(scene, os.path.join(out_dir, "scene.json"))
+        scene.softshadow.enabled = False  # the add-on's own passes must not ride on Blender's timings
+        setup_compositor(scene)
+        info = {"scene": name, "triangles": triangle_count(scene), "width": width, "height": height,
+                "problems": problems, "renders": {}}
+        for s in eevee:
+            info["renders"]["eevee_%d" % s] = render_engine(scene, "eevee", s, out_dir, "eevee_%d" % s)
+            print("BENCH %s eevee %d: %.2f s" % (name, s, info["renders"]["eevee_%d" % s]), flush=True)
+        for s in cycles:
+            info["renders"]["cycles_%d" % s] = render_engine(scene, "cycles", s, out_dir, "cycles_%d" % s)
+            print("BENCH %s cycles %d: %.2f s" % (name, s, info["renders"]["cycles_%d" % s]), flush=True)
+        with open(os.path.join(out_dir, "blender.json"), "w") as f:
+            json.dump(info, f, indent=1)
+    print("BENCH-SCENES-OK", flush=True)
+
+
+main()

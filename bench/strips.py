@@ -1,0 +1,56 @@
+# How each benchmark scene's image strip is drawn: rows of method | truth | 4 x |error| (oiiotool).
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The error cell is masked by the truth's mask, as the metrics are.
+# python3 bench/strips.py WORK OUT  ->  OUT/strip_<scene>.png (grey, 128x96 per cell), and
+# OUT/strip_<scene>.txt listing the rows top to bottom.
+import glob
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+CELL_W, CELL_H = 128, 96
+BLENDER_ROWS = ("eevee_16", "eevee_64", "cycles_16")
+
+
+def oiio(*args):
+    subprocess.run(["oiiotool", *args], check=True, stdout=subprocess.DEVNULL)
+
+
+def main():
+    work, out = sys.argv[1], sys.argv[2]
+    for scene_dir in sorted(glob.glob(os.path.join(work, "scenes", "*", ""))):
+        scene = os.path.basename(os.path.dirname(scene_dir))
+        with open(os.path.join(scene_dir, "scene.json")) as f:
+            light = json.load(f)["lights"][0]["name"].replace(".", "_").replace(" ", "_")
+        truth = os.path.join(scene_dir, "truth.exr")
+        rows = []  # (label, file, V channel)
+        for path in sorted(glob.glob(os.path.join(work, "ours", scene, "*.exr"))):
+            method = os.path.basename(path)[:-4]
+            rows.append((method, path, "ViewLayer.%s_%s.V" % (light, method)))
+        rows.append(("reference (default samples)", os.path.join(scene_dir, "reference.exr"),
+                     "ViewLayer.%s_reference.V" % light))
+        for key in BLENDER_ROWS:
+            path = os.path.join(scene_dir, key + ".named.exr")
+            if os.path.exists(path):
+                rows.append((key, path, "ViewLayer.%s_reference.V" % light))
+        with tempfile.TemporaryDirectory() as tmp:
+            t = os.path.join(tmp, "t.exr")
+            m = os.path.join(tmp, "m.exr")
+            oiio(truth, "--ch", "Y=ViewLayer.%s_reference.V" % light, "-o", t)
+            oiio(truth, "--ch", "Y=ViewLayer.%s_reference_mask.V" % light, "-o", m)
+            row_files = []
+            for i, (_, path, channel) in enumerate(rows):
+                a, d, r = (os.path.join(tmp, "%s%d.exr" % (k, i)) for k in "adr")
+                oiio(path, "--ch", "Y=" + channel, "-o", a)
+                oiio(a, t, "--absdiff", "--mulc", "4", m, "--mul", "--clamp:min=0:max=1", "-o", d)
+                oiio(a, t, d, "--mosaic", "3x1", "--resize", "%dx%d" % (3 * CELL_W, CELL_H), "-o", r)
+                row_files.append(r)
+            png = os.path.join(out, "strip_%s.png" % scene)
+            oiio(*row_files, "--mosaic", "1x%d" % len(row_files), "-d", "uint8", "-o", png)
+        with open(os.path.join(out, "strip_%s.txt" % scene), "w") as f:
+            f.write("\n".join(label for label, _, _ in rows) + "\n")
+
+
+main()
