@@ -19,7 +19,7 @@ WORK="$BUILD_DIR/bench_work"
 WIDTH=256 HEIGHT=192 TRUTH_SAMPLES=1024
 if [ "$QUICK" = 1 ]; then WIDTH=128 HEIGHT=96 TRUTH_SAMPLES=256; fi
 BLENDER=${BLENDER:-blender}
-export SOFTSHADOW_LIB="$BUILD_DIR/libsoftshadow.so"
+export SOFTSHADOW_LIB="$BUILD_DIR/libsoftshadow.so" SOFTSHADOW_BUILD="$BUILD_DIR"
 
 for f in "$CLI" "$BENCH" "$SOFTSHADOW_LIB"; do
   [ -e "$f" ] || { echo "bench: $f is missing: build first (make build)" >&2; exit 1; }

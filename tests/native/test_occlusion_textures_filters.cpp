@@ -7,7 +7,7 @@
 #include <random>
 
 #include "filters/box_filter.h"
-#include "methods/occlusion_textures_slicing.h"
+#include "methods/occlusion_textures/slicing.h"
 
 namespace ss {
 namespace {

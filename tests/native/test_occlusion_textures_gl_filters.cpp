@@ -9,7 +9,7 @@
 
 #include "filters/box_filter.h"
 #include "gl/render_thread.h"
-#include "methods/occlusion_textures_gl.h"
+#include "methods/occlusion_textures/gl.h"
 
 namespace ss {
 namespace {

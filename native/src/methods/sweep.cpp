@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "core/error.h"
 #include "methods/method.h"
@@ -40,10 +41,13 @@ public:
         std::string raster = settings.text("raster", "gl");
         if (raster != "gl" && raster != "cpu")
             fail(SS_ERROR_INVALID_ARGUMENT, "sweep: setting 'raster' = '" + raster + "' is not gl or cpu");
-        std::optional<ShadowLookup> lookup;
+        // Clusters: one lookup per cluster's mesh, their weighted intensities added.
+        std::vector<ShadowLookup> lookups;
         Image drawn;
         if (raster == "gl") drawn = rasterSweepShadow(frame, shadow);
-        else lookup.emplace(shadow.mesh);
+        else if (shadow.parts.empty()) lookups.emplace_back(shadow.mesh);
+        else
+            for (const planar::ShadowMesh& part : shadow.parts) lookups.emplace_back(part);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 size_t i = cam.index(x, y);
@@ -53,11 +57,12 @@ public:
                 if (!lightReaches(light, P, cam.normal(x, y))) continue;
                 mask.at(x, y) = 1.0f;
                 float intensity;
-                if (lookup) {
+                if (!lookups.empty()) {
                     glm::dvec2 q = shadow.plane.toPlane(glm::dvec3(P));
                     double gx = (q.x - shadow.plane.cu) * shadow.snap.scale();
                     double gy = (q.y - shadow.plane.cv) * shadow.snap.scale();
-                    intensity = lookup->intensity(gx, gy);
+                    intensity = 0.0f;
+                    for (const ShadowLookup& l : lookups) intensity += l.intensity(gx, gy);
                 } else {
                     intensity = drawn.at(x, y);
                     if (!std::isfinite(intensity)) intensity = 0.0f;
@@ -81,7 +86,7 @@ public:
 private:
     struct Key {
         uint64_t scene = 0, revision = 0;
-        int light = -1, samples = 0;
+        int light = -1, samples = 0, clusters = 1;
         uint32_t seed = 0;
         double border = 0;
         planar::FillMode fill{};
@@ -91,7 +96,7 @@ private:
 
     const SweepShadow& shadowFor(const Scene& scene, int lightIndex, const RenderSettings& settings) {
         SweepOptions o = sweepOptions(settings);
-        Key k{scene.id(), scene.revision(), lightIndex, o.samples, o.seed, o.borderShare, o.fill, o.receiver};
+        Key k{scene.id(), scene.revision(), lightIndex, o.samples, o.clusters, o.seed, o.borderShare, o.fill, o.receiver};
         if (!cached_ || !(key_ == k)) {
             settings.report(0.0f, "sweep: geometry");
             cached_ = computeSweepShadow(scene, lightIndex, o);

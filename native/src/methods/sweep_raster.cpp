@@ -24,6 +24,9 @@ struct RasterVertex {
 // Plain overwrite: trapezoids tile the shadow, so no two triangles cover a pixel centre.
 constexpr gl::RenderState kShadowMesh{"sweep_shadow_mesh", false, GL_ALWAYS, false, true, false,
                                       GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
+// Light clusters: their meshes overlap and their (already weighted) intensities add up.
+constexpr gl::RenderState kShadowMeshClusters{"sweep_shadow_mesh_clusters", false, GL_ALWAYS, false, true, true,
+                                              GL_FUNC_ADD, GL_ONE, GL_ONE, GL_NONE};
 
 }  // namespace
 
@@ -32,7 +35,7 @@ Image rasterSweepShadow(Frame& frame, const SweepShadow& shadow) {
     const CameraPass& cam = frame.cameraPass();
     gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F});
     out.bind();
-    gl::apply(kShadowMesh);
+    gl::apply(shadow.parts.empty() ? kShadowMesh : kShadowMeshClusters);
     out.clearColor(0, glm::vec4(0.0f));
     std::vector<RasterVertex> verts;
     verts.reserve(shadow.mesh.indices.size());

@@ -21,20 +21,40 @@ struct SweepOptions {
     double borderShare = 0.25;
     planar::FillMode fill = planar::FillMode::Smooth;
     std::string receiver;  // mesh name; empty = the largest planar receiver
+    // Square/rectangle lights split into this many equal convex strips along their longer side,
+    // each shadowed on its own and merged without interpolation (paper 2, section 6).
+    int clusters = 1;
 };
 
 // Reads RenderSettings: samples (0 = 16), seed, options "receiver", "fill" (smooth|steps),
-// "border" (share of samples on the light's border, 0..1). Throws ss::Error on bad values.
+// "border" (share of samples on the light's border, 0..1), "clusters" (1..64). Throws ss::Error
+// on bad values.
 SweepOptions sweepOptions(const RenderSettings& settings);
 
 struct SweepTimings {
     double silhouettesMs = 0, sweepMs = 0, mergeMs = 0, fillMs = 0;
 };
 
+// A convex part of the light (the whole light when there is one cluster): its share of the
+// light's emitted power and the light it stands for.
+struct LightCluster {
+    Light light;
+    double weight = 1.0;
+};
+
+// The light cut into `clusters` equal strips along its longer side (square/rectangle lights);
+// one cluster returns the light itself. Throws SS_ERROR_UNSUPPORTED for other shapes.
+std::vector<LightCluster> splitLight(const Light& light, int clusters);
+
 struct SweepShadow {
     ReceiverPlane plane;
     planar::Snap snap{0, 0, 1};
-    planar::ShadowMesh mesh;        // grid coordinates
+    // Grid coordinates. With one cluster the triangles tile the shadow (no overlaps). With
+    // several, this is every cluster's mesh, intensities already multiplied by its weight,
+    // concatenated: the triangles of different clusters overlap and their intensities ADD
+    // (V = 1 - sum_k w_k I_k, no interpolation between clusters); `parts` holds them apart.
+    planar::ShadowMesh mesh;
+    std::vector<planar::ShadowMesh> parts;  // empty with one cluster
     int samplesUsed = 0;            // samples above the receiver plane
     ProjectionStats projection;
     SweepTimings timings;

@@ -1,28 +1,58 @@
-// How the E_L > 0 test is evaluated on the CPU (the GLSL twin is common/visibility_contract.glsl).
+// How E_L > 0 is tested on the CPU: a line-for-line copy of shaders/common/visibility_contract.glsl.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "pipeline/visibility_contract.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ss {
 
 bool lightReaches(const Light& light, const glm::vec3& P, const glm::vec3& N) {
-    if (light.type == LightType::Sun)
-        return glm::dot(N, -light.direction()) > -std::sin(light.sunHalfAngle());
-    glm::vec3 toLight = light.position() - P;
+    // The uniforms the GLSL twin reads (Frame::setLightUniforms), derived the same way.
+    const glm::vec3 position = light.position(), direction = light.direction();
+    const float radius = light.radius;
+    const float cosHalfSpot = std::cos(0.5f * light.spotSize);
+    const float sinHalfSun = std::sin(light.sunHalfAngle());
+
+    if (light.type == LightType::Sun) {
+        // Some of the sun's cone is above the horizon when the angle between N and the
+        // direction to the sun is below 90 degrees plus the sun's angular radius.
+        return glm::dot(N, -direction) > -sinHalfSun;
+    }
+    glm::vec3 toLight = position - P;
     if (light.isArea()) {
-        if (glm::dot(-toLight, light.direction()) <= 0.0f) return false;
+        // One-sided emitter: P must be strictly in front of the light's plane (then every point
+        // of the light emits towards P, so this and the horizon test are independent).
+        if (glm::dot(-toLight, direction) <= 0.0f) return false;
+        // Highest point of the light above P's tangent plane: centre plus the support of the
+        // shape (ellipse: Euclidean norm of the axis projections, rectangle: sum of absolutes).
         float nx = glm::dot(N, light.halfAxisX());
         float ny = glm::dot(N, light.halfAxisY());
         bool round = light.type == LightType::Disk || light.type == LightType::Ellipse;
         float reach = round ? std::sqrt(nx * nx + ny * ny) : std::abs(nx) + std::abs(ny);
         return glm::dot(N, toLight) + reach > 0.0f;
     }
+    // Point/spot: a disk of the light's radius centred on it and facing P (its normal is
+    // toLight / d). Inside the sphere the reference gives every sample weight 0.
     float d = glm::length(toLight);
-    if (light.type == LightType::Spot &&
-        glm::dot(-toLight, light.direction()) < std::cos(0.5f * light.spotSize) * d)
-        return false;
-    return glm::dot(N, toLight) + light.radius > 0.0f;
+    if (!(d > radius)) return false;
+    // Horizon: the disk's highest point above P's tangent plane is the centre's height plus
+    // radius times the sine of the angle between N and the disk's normal.
+    float up = glm::dot(N, toLight);
+    float cosN = up / d;
+    if (!(up + radius * std::sqrt(std::max(0.0f, 1.0f - cosN * cosN)) > 0.0f)) return false;
+    if (light.type == LightType::Spot) {
+        // Seen from P the facing disk is a circular cone of half-angle alpha = atan(r / d)
+        // around -toLight (directions from the disk to P), so some point of the disk sends
+        // light to P inside the spot's cone (half-angle h) iff the angle theta between the axis
+        // and -toLight is below h + alpha. h <= 90 deg and alpha < 45 deg, so h + alpha < 180 deg
+        // and the test is cos(theta) > cos(h + alpha) = cos h cos alpha - sin h sin alpha.
+        float hyp = std::sqrt(d * d + radius * radius);
+        float cosTheta = glm::dot(-toLight, direction) / d;
+        float sinHalfSpot = std::sqrt(std::max(0.0f, 1.0f - cosHalfSpot * cosHalfSpot));
+        if (!(cosTheta > (cosHalfSpot * d - sinHalfSpot * radius) / hyp)) return false;
+    }
+    return true;
 }
 
 }  // namespace ss

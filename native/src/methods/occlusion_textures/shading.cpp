@@ -5,7 +5,7 @@
 #include <string>
 
 #include "gl/framebuffer.h"
-#include "methods/occlusion_textures_passes.h"
+#include "methods/occlusion_textures/passes.h"
 #include "pipeline/frame.h"
 
 namespace ss::occlusion {

@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Running sums along rows, then down columns, into a (W+1) x (H+1) RGBA32F table per group of
 // four slices.
-#include "methods/occlusion_textures_gl.h"
+#include "methods/occlusion_textures/gl.h"
 
 namespace ss::occlusion {
 

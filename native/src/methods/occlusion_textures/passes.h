@@ -3,8 +3,8 @@
 // And shading the camera G-buffer from the pre-filtered slices.
 #pragma once
 #include "core/image.h"
-#include "methods/occlusion_textures_gl.h"
-#include "methods/occlusion_textures_slicing.h"
+#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/slicing.h"
 
 namespace ss {
 class Frame;

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "methods/occlusion_textures_gl.h"
+#include "methods/occlusion_textures/gl.h"
 
 namespace ss::occlusion {
 

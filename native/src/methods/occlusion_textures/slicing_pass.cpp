@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // One MAX-blended draw of the casters into up to four RGBA targets, four slices per target.
 #include "gl/framebuffer.h"
-#include "methods/occlusion_textures_passes.h"
+#include "methods/occlusion_textures/passes.h"
 #include "pipeline/frame.h"
 
 namespace ss::occlusion {

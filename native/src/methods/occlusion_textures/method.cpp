@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "io/metrics.h"
 #include "methods/method.h"
-#include "methods/occlusion_textures_passes.h"
+#include "methods/occlusion_textures/passes.h"
 #include "pipeline/frame.h"
 
 namespace ss {

@@ -1,6 +1,6 @@
 // How occlusion_textures fits its kernel light, slicing camera and slice planes to a scene.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/occlusion_textures_slicing.h"
+#include "methods/occlusion_textures/slicing.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 // texture.
 #include <algorithm>
 
-#include "methods/occlusion_textures_gl.h"
+#include "methods/occlusion_textures/gl.h"
 
 namespace ss::occlusion {
 
