@@ -27,10 +27,15 @@ gl::RenderThread& glThread() {
 
 // One cold frame: every shared pass drawn afresh, then the method's prepare and render. glFinish
 // after each GL stage, so the time lands on the stage that queued the work (llvmpipe defers).
-Stages runOnce(const Scene& scene, const std::string& method, Layers* keep) {
+Stages runOnce(const Scene& scene, const std::string& method, Layers* keep, double budgetSeconds) {
     Stages st;
     std::unique_ptr<Method> m = createMethod(method);
     RenderSettings settings;
+    if (budgetSeconds > 0.0) {
+        auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(budgetSeconds));
+        settings.progress = [deadline](float, const char*) { return Clock::now() < deadline; };
+    }
     if (!m->needsGl()) {
         Frame frame(scene);
         auto t = Clock::now();

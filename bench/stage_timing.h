@@ -14,7 +14,9 @@ struct Stages {
 };
 
 // Light 0 of `scene` with `method` on a fresh Frame (every shared pass drawn again), on one
-// long-lived render thread; `keep` receives the layers. Throws what the method throws.
-Stages runOnce(const Scene& scene, const std::string& method, Layers* keep = nullptr);
+// long-lived render thread; `keep` receives the layers. Throws what the method throws, and
+// ss::Error(SS_ERROR_CANCELLED) when the method reports progress after `budgetSeconds` (0: none).
+Stages runOnce(const Scene& scene, const std::string& method, Layers* keep = nullptr,
+               double budgetSeconds = 0.0);
 
 }  // namespace ss::bench

@@ -4,10 +4,41 @@
 #define SS_COMMON_VISIBILITY_CONTRACT_GLSL
 #include "common/light.glsl"
 
+// Directions w seen from P: is there one with w.u >= cosA (on the disk facing P), w.s >= cosH
+// (inside the spot's cone) and w.N > 0 (above P's horizon)? The caller has already found both
+// caps to overlap; the highest point (largest w.N) of their lens is N itself, the highest point
+// of one rim lying inside the other cap, or a corner where the rims cross.
+bool lensAboveHorizon(vec3 u, float cosA, float sinA, vec3 s, float cosH, float sinH, vec3 N) {
+    if (dot(N, u) >= cosA && dot(N, s) >= cosH) return true;
+    vec3 tD = N - dot(N, u) * u;
+    float lenD = length(tD);
+    if (lenD > 1e-7) {
+        vec3 w = cosA * u + sinA * (tD / lenD);
+        if (dot(w, s) >= cosH && dot(N, w) > 0.0) return true;
+    }
+    vec3 tS = N - dot(N, s) * s;
+    float lenS = length(tS);
+    if (lenS > 1e-7) {
+        vec3 w = cosH * s + sinH * (tS / lenS);
+        if (dot(w, u) >= cosA && dot(N, w) > 0.0) return true;
+    }
+    // Corners w = x u + y s + z m / |m|, m = u x s, on both rims: w.u = cosA, w.s = cosH.
+    vec3 m = cross(u, s);
+    float mm = dot(m, m);
+    if (mm > 1e-12) {
+        float g = dot(u, s);
+        float x = (cosA - cosH * g) / mm, y = (cosH - cosA * g) / mm;
+        float z2 = (mm - cosA * cosA - cosH * cosH + 2.0 * cosA * cosH * g) / mm;
+        if (z2 >= 0.0 && x * dot(N, u) + y * dot(N, s) + sqrt(z2) * abs(dot(N, m)) / sqrt(mm) > 0.0)
+            return true;
+    }
+    return false;
+}
+
 // P: world point, N: its unit geometric normal (facing the camera). True exactly when the
 // `reference` method's light samples can carry weight to P above its horizon; the rule per light
 // shape is written out at ss::lightReaches() (pipeline/visibility_contract.h), whose code is a
-// line-for-line copy of this function: keep the two identical.
+// line-for-line copy of these two functions: keep them identical.
 bool lightReaches(vec3 P, vec3 N) {
     if (uLight.type == LIGHT_SUN) {
         // Some of the sun's cone is above the horizon when the angle between N and the
@@ -48,6 +79,10 @@ bool lightReaches(vec3 P, vec3 N) {
         float cosHalfSpot = uLight.cosHalfSpot;
         float sinHalfSpot = sqrt(max(0.0, 1.0 - cosHalfSpot * cosHalfSpot));
         if (!(cosTheta > (cosHalfSpot * d - sinHalfSpot * radius) / hyp)) return false;
+        // Both hold, but one sample must satisfy both: the disk's part inside the cone must
+        // rise above the horizon (matters where the cone's rim and the horizon cut the disk).
+        return lensAboveHorizon(toLight / d, d / hyp, radius / hyp, -uLight.direction, cosHalfSpot,
+                                sinHalfSpot, N);
     }
     return true;
 }

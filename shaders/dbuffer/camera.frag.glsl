@@ -58,7 +58,11 @@ void main() {
         // branch of eq. 3).
         float b = db.z, a = db.w;
         oDistances = vec4(o < 1e29 ? o : 0.0, db.x, b, a);
-        if (b <= 0.0 || d <= b) {
+        // The penumbra quads start on the occluder's own surface at its penumbra silhouette, so
+        // on the lit occluder next to that silhouette a texel's quad fragment lies within a
+        // texel (slope-scaled) in front of the receiver: the same receiver bias as the hard
+        // test keeps the occluder lit there (it was speckled with V ~ 0.5).
+        if (b <= 0.0 || d <= b + bias) {
             t = 1.0;
         } else {
             t = clamp(1.0 - sectionShare(d, b, a), 0.5, 1.0);

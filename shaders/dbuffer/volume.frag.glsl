@@ -14,10 +14,12 @@ uniform vec3 uNormal;     // disk normal, pointing into the scene
 uniform float uRadius;    // disk radius r
 uniform float uFar;       // distances are divided by it for the depth test
 // Umbra pass with the "first exit" rule: only surfaces beyond the first caster along the ray
-// (the shared shadow map, same view and size) count, and the nearest of them wins. uBias keeps
-// the caster's own surface out.
+// (the shared shadow map, same view and size) count, and the nearest of them wins.
+// uExitEpsilon (relative) keeps the caster's own surface out (a silhouette face that is the
+// nearest caster is drawn at the same texels and distance up to rounding) and nothing else: the
+// exit of a ray that grazes the occluder lies just behind it (see dbuffer.cpp).
 uniform int uBeyondOccluder;
-uniform float uBias;
+uniform float uExitEpsilon;
 
 const int KIND_QUAD = 0;
 const int KIND_FAN = 1;
@@ -35,7 +37,7 @@ void main() {
     gl_FragDepth = clamp(dist / uFar, 0.0, 1.0);
     if (uBeyondOccluder != 0) {
         float o = texelFetch(uShadowDistance, ivec2(gl_FragCoord.xy), 0).r;
-        if (!(shadowDistanceOf(vWorld) > o + uBias * shadowTexelWorldSize(o))) discard;
+        if (!(shadowDistanceOf(vWorld) > o * (1.0 + uExitEpsilon))) discard;
     }
 
     if (vKind == KIND_SILHOUETTE_FACE) {

@@ -16,7 +16,9 @@ TEST(SweepCapi, ShadowMeshOfTheBox) {
     ss_render_options o;
     ss_render_options_default(&o);
     o.samples = 16;
-    o.settings = "fill=steps";
+    // Equal weights: the integral is then the samples' mean hard-shadow area (irradiance
+    // weights, the default, make it the weighted mean; see test_sweep_weights.cpp).
+    o.settings = "fill=steps;weights=equal";
     ss_sweep_mesh* mesh = nullptr;
     ASSERT_EQ(ss_sweep_shadow_mesh(scene, 0, &o, &mesh), SS_OK) << ss_last_error();
     const float *xyz = nullptr, *intensity = nullptr;

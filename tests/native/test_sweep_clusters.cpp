@@ -90,7 +90,7 @@ TEST(SweepClusters, SplitLightTilesTheRectangle) {
     EXPECT_THROW(sweepOptions(bad), Error);
 }
 
-// With fill=steps each cluster's mesh integrates to (its samples' mean hard-shadow area); the
+// With fill=steps and equal weights each cluster's mesh integrates to (its samples' mean hard-shadow area); the
 // merged mesh's weighted integral is then the mean over all samples, the same quantity the
 // unsplit light gives. The box's shadow area moves by < 2 % over the light (top face 1.44
 // scaled by (4/2.8)^2 = 2.94 for the centre; offsets of up to 1 in x move its sides, not its
@@ -128,8 +128,8 @@ TEST(SweepClusters, CapiMeshIntegralMatchesUnsplit) {
         return sum;
     };
     int32_t used1 = 0, used4 = 0;
-    double whole = integral("fill=steps", &used1);
-    double split = integral("fill=steps;clusters=4", &used4);
+    double whole = integral("fill=steps;weights=equal", &used1);
+    double split = integral("fill=steps;weights=equal;clusters=4", &used4);
     std::printf("mesh integral: whole %.4f, 4 clusters %.4f\n", whole, split);
     EXPECT_EQ(used1, 32);
     EXPECT_EQ(used4, 32);  // 8 per strip
@@ -141,7 +141,8 @@ TEST(SweepClusters, CapiMeshIntegralMatchesUnsplit) {
 
 // The camera pass: a rectangle split into 2 and 4 strips, each strip with its share of the 32
 // samples, agrees with the whole light and with the reference. Measured (160x120): RMSE between
-// split and whole <= 0.011, against reference 256 samples 0.009-0.013 for all three. Bounds:
+// split and whole 0.0115 (2) and 0.0112 (4), against reference 256 samples 0.0066 (whole),
+// 0.0076 (2), 0.0093 (4). Bounds:
 // split vs whole < 0.025 (two 32-sample estimates with different sample sets; the merge adds
 // no interpolation error of its own), each against reference < 0.03 as in SweepQuality.
 TEST(SweepClusters, SplitRectangleAgreesWithWholeLight) {

@@ -151,7 +151,9 @@ SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
 /* The `sweep` method's shadow mesh for one light (CPU geometry, no GL context needed), so a host
  * can bring it in as geometry: triangles on the receiver plane, world-space vertices with a shadow
  * intensity each (0 lit .. 1 umbra; V = 1 - intensity, Gouraud-interpolated). Options as for
- * ss_render ("receiver=<mesh name>;fill=smooth|steps;border=0.25"); extra_layers is ignored. */
+ * ss_render ("receiver=<mesh name>;fill=smooth|steps;border=0.25;weights=irradiance|equal;
+ * clusters=1"); extra_layers is ignored. With clusters > 1 (square/rectangle lights cut into
+ * convex strips) the clusters' triangles overlap and their intensities ADD (already weighted). */
 typedef struct ss_sweep_mesh ss_sweep_mesh;
 SS_API ss_status ss_sweep_shadow_mesh(const ss_scene* scene, int32_t light_index,
                                       const ss_render_options* options, ss_sweep_mesh** out);

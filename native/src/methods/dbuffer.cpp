@@ -28,6 +28,16 @@ constexpr gl::RenderState kFarthest{"dbuffer_farthest", true, GL_GREATER, true, 
 constexpr gl::RenderState kNearest{"dbuffer_nearest", true, GL_LESS, true, true, false,
                                    GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
 
+// How far beyond the first caster, relative to its distance, an umbra fragment must lie to count
+// as the ray's exit from the umbra (first-exit rule). The D-buffer is drawn with the shared map's
+// matrix and resolution, so a caster triangle drawn again as a silhouette face lands on the same
+// texels at the same distance up to float rounding (~1e-6 relative); 1e-5 is well above that.
+// It must stay far below a texel (~6e-4 of the distance at 2048² on the demo scene): where a ray
+// grazes the occluder next to its silhouette the real exit (a silhouette face on the far side)
+// lies a millimetre or less behind the caster, and the former threshold of 1.5 texels discarded
+// it, leaving "no exit" = umbra: V = 0 dots along the centre's hard-shadow boundary.
+constexpr float kExitEpsilon = 1e-5f;
+
 // One volume soup on the GPU.
 struct GpuSoup {
     gl::BufferHandle buffer;
@@ -126,7 +136,7 @@ public:
         bool firstExit = rule == "first_exit";
         gl::apply(firstExit ? kNearest : kFarthest);
         vol.set("uBeyondOccluder", firstExit ? 1 : 0);
-        vol.set("uBias", settings.number("bias_texels", 1.5f));
+        vol.set("uExitEpsilon", kExitEpsilon);
         dbuf.clearDepth(firstExit ? 1.0f : 0.0f);
         g.ColorMask(GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE);
         draw(umbra);

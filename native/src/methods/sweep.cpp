@@ -91,12 +91,14 @@ private:
         double border = 0;
         planar::FillMode fill{};
         std::string receiver;
+        bool weights = true;
         bool operator==(const Key&) const = default;
     };
 
     const SweepShadow& shadowFor(const Scene& scene, int lightIndex, const RenderSettings& settings) {
         SweepOptions o = sweepOptions(settings);
-        Key k{scene.id(), scene.revision(), lightIndex, o.samples, o.clusters, o.seed, o.borderShare, o.fill, o.receiver};
+        Key k{scene.id(), scene.revision(), lightIndex, o.samples, o.clusters, o.seed, o.borderShare, o.fill, o.receiver,
+              o.irradianceWeights};
         if (!cached_ || !(key_ == k)) {
             settings.report(0.0f, "sweep: geometry");
             cached_ = computeSweepShadow(scene, lightIndex, o);

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "methods/sweep_weights.h"
 #include "planar/outline.h"
 #include "planar/rings.h"
 #include "sampling/light_samples.h"
@@ -37,6 +38,10 @@ SweepOptions sweepOptions(const RenderSettings& settings) {
     if (!(clusters >= 1 && clusters <= 64) || clusters != std::floor(clusters))
         fail(SS_ERROR_INVALID_ARGUMENT, "sweep: setting 'clusters' must be a whole number in [1, 64]");
     o.clusters = int(clusters);
+    std::string weights = settings.text("weights", "irradiance");
+    if (weights == "irradiance") o.irradianceWeights = true;
+    else if (weights == "equal") o.irradianceWeights = false;
+    else fail(SS_ERROR_INVALID_ARGUMENT, "sweep: setting 'weights' = '" + weights + "' is not irradiance or equal");
     return o;
 }
 
@@ -71,6 +76,7 @@ planar::ShadowMesh clusterShadow(const Scene& scene, const std::vector<int>& occ
                                  int* used) {
     std::vector<LightSample> samples = placeLightSamples(light, so);
     std::vector<std::vector<planar::DirectedEdge>> outlines;
+    std::vector<LightSample> usedSamples;
     std::vector<planar::DirectedEdge> edges;
     for (const LightSample& s : samples) {
         edges.clear();
@@ -78,6 +84,7 @@ planar::ShadowMesh clusterShadow(const Scene& scene, const std::vector<int>& occ
         if (!projectSample(scene, occluders, out->plane, out->snap, s, &edges, &out->projection)) continue;
         out->timings.silhouettesMs += msSince(t0);
         auto t1 = Clock::now();
+        usedSamples.push_back(s);
         outlines.push_back(planar::hardOutline(edges));
         out->timings.sweepMs += msSince(t1);
     }
@@ -89,6 +96,11 @@ planar::ShadowMesh clusterShadow(const Scene& scene, const std::vector<int>& occ
     auto t3 = Clock::now();
     planar::ShadowMesh mesh = planar::fillShadow(merged, *used, options.fill);
     out->timings.fillMs += msSince(t3);
+    if (options.irradianceWeights && *used > 1) {
+        auto t4 = Clock::now();
+        weighShadowMesh(mesh, outlines, usedSamples, light, out->plane, out->snap, options.fill);
+        out->timings.weightsMs += msSince(t4);
+    }
     return mesh;
 }
 

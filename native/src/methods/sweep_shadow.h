@@ -24,15 +24,19 @@ struct SweepOptions {
     // Square/rectangle lights split into this many equal convex strips along their longer side,
     // each shadowed on its own and merged without interpolation (paper 2, section 6).
     int clusters = 1;
+    // Each sample weighed by the irradiance it sends to each shadow-mesh corner (the contract);
+    // false: every sample counts the same (the paper).
+    bool irradianceWeights = true;
 };
 
 // Reads RenderSettings: samples (0 = 16), seed, options "receiver", "fill" (smooth|steps),
-// "border" (share of samples on the light's border, 0..1), "clusters" (1..64). Throws ss::Error
+// "border" (share of samples on the light's border, 0..1), "clusters" (1..64), "weights" (irradiance|equal). Throws ss::Error
 // on bad values.
 SweepOptions sweepOptions(const RenderSettings& settings);
 
 struct SweepTimings {
     double silhouettesMs = 0, sweepMs = 0, mergeMs = 0, fillMs = 0;
+    double weightsMs = 0;  // irradiance weights (not part of fillMs)
 };
 
 // A convex part of the light (the whole light when there is one cluster): its share of the

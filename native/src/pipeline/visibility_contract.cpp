@@ -7,6 +7,44 @@
 
 namespace ss {
 
+namespace {
+
+// Directions w seen from P: is there one with w.u >= cosA (on the disk facing P), w.s >= cosH
+// (inside the spot's cone) and w.N > 0 (above P's horizon)? The caller has already found both
+// caps to overlap; the highest point (largest w.N) of their lens is N itself, the highest point
+// of one rim lying inside the other cap, or a corner where the rims cross.
+bool lensAboveHorizon(glm::vec3 u, float cosA, float sinA, glm::vec3 s, float cosH, float sinH,
+                      glm::vec3 N) {
+    if (glm::dot(N, u) >= cosA && glm::dot(N, s) >= cosH) return true;
+    glm::vec3 tD = N - glm::dot(N, u) * u;
+    float lenD = glm::length(tD);
+    if (lenD > 1e-7f) {
+        glm::vec3 w = cosA * u + sinA * (tD / lenD);
+        if (glm::dot(w, s) >= cosH && glm::dot(N, w) > 0.0f) return true;
+    }
+    glm::vec3 tS = N - glm::dot(N, s) * s;
+    float lenS = glm::length(tS);
+    if (lenS > 1e-7f) {
+        glm::vec3 w = cosH * s + sinH * (tS / lenS);
+        if (glm::dot(w, u) >= cosA && glm::dot(N, w) > 0.0f) return true;
+    }
+    // Corners w = x u + y s + z m / |m|, m = u x s, on both rims: w.u = cosA, w.s = cosH.
+    glm::vec3 m = glm::cross(u, s);
+    float mm = glm::dot(m, m);
+    if (mm > 1e-12f) {
+        float g = glm::dot(u, s);
+        float x = (cosA - cosH * g) / mm, y = (cosH - cosA * g) / mm;
+        float z2 = (mm - cosA * cosA - cosH * cosH + 2.0f * cosA * cosH * g) / mm;
+        if (z2 >= 0.0f && x * glm::dot(N, u) + y * glm::dot(N, s) +
+                                  std::sqrt(z2) * std::abs(glm::dot(N, m)) / std::sqrt(mm) >
+                              0.0f)
+            return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 bool lightReaches(const Light& light, const glm::vec3& P, const glm::vec3& N) {
     // The uniforms the GLSL twin reads (Frame::setLightUniforms), derived the same way.
     const glm::vec3 position = light.position(), direction = light.direction();
@@ -51,6 +89,10 @@ bool lightReaches(const Light& light, const glm::vec3& P, const glm::vec3& N) {
         float cosTheta = glm::dot(-toLight, direction) / d;
         float sinHalfSpot = std::sqrt(std::max(0.0f, 1.0f - cosHalfSpot * cosHalfSpot));
         if (!(cosTheta > (cosHalfSpot * d - sinHalfSpot * radius) / hyp)) return false;
+        // Both hold, but one sample must satisfy both: the disk's part inside the cone must
+        // rise above the horizon (matters where the cone's rim and the horizon cut the disk).
+        return lensAboveHorizon(toLight / d, d / hyp, radius / hyp, -direction, cosHalfSpot,
+                                sinHalfSpot, N);
     }
     return true;
 }

@@ -16,9 +16,8 @@ namespace ss {
 //   needs some point of that disk to see P inside its cone (Cycles' blend smoothstep is > 0 up
 //   to the cone's edge, so the blend does not shrink the region);
 // - sun: some direction of the sun's cone above P's tangent plane.
-// The spot's cone and horizon conditions are tested separately: where each holds on a different
-// part of the disk (P both at the cone's rim and with the light sinking below its horizon) the
-// mask says 1 while no single sample has weight; V is 1 there either way.
+// A spot needs one point of the disk to satisfy both (cone and horizon), tested exactly on the
+// lens where the disk and the cone overlap as seen from P.
 // Same code as lightReaches() in shaders/common/visibility_contract.glsl; keep the two identical.
 bool lightReaches(const Light& light, const glm::vec3& P, const glm::vec3& N);
 
