@@ -1,5 +1,6 @@
 // How the C API builds, loads, saves and describes scenes.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <cstring>
 #include <cmath>
 
 #include "capi/capi_internal.h"
@@ -90,10 +91,15 @@ SS_API ss_status ss_scene_add_light(ss_scene* scene, const ss_light_desc* light,
         require(light->name, "ss_scene_add_light", "light->name");
         ss::Light l;
         l.name = light->name;
-        if (int(light->type) < int(SS_LIGHT_DISK) || int(light->type) > int(SS_LIGHT_SUN))
+        // Read the enum's bits as an integer: a C caller may pass any value, and loading an
+        // out-of-range value as the enum type is undefined behaviour in C++.
+        int32_t rawType = 0;
+        static_assert(sizeof(light->type) == sizeof(rawType));
+        std::memcpy(&rawType, &light->type, sizeof rawType);
+        if (rawType < int32_t(SS_LIGHT_DISK) || rawType > int32_t(SS_LIGHT_SUN))
             ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_scene_add_light: light '" + l.name +
-                                                    "' has unknown type " + std::to_string(int(light->type)));
-        l.type = ss::LightType(int(light->type));  // the enums share their order
+                                                    "' has unknown type " + std::to_string(rawType));
+        l.type = ss::LightType(rawType);  // the enums share their order
         l.lightToWorld = toMat4(light->light_to_world);
         l.size = light->size;
         l.sizeY = light->size_y;

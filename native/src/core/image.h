@@ -1,6 +1,7 @@
 // How a single-channel float image aligned with the camera is stored (row 0 = top row).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <deque>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,7 +22,8 @@ struct Image {
 // The named outputs of one (light, method) render, in the order they were produced.
 // Contract names: "V", "mask", "umbra", "penumbra"; methods add their own debug layers.
 struct Layers {
-    std::vector<std::pair<std::string, Image>> items;
+    // A deque so the reference add() returns stays valid while more layers are added.
+    std::deque<std::pair<std::string, Image>> items;
 
     Image& add(const std::string& name, Image image) {
         items.emplace_back(name, std::move(image));

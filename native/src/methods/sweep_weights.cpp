@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <unordered_map>
+#include <utility>
 
 namespace ss {
 
@@ -39,10 +42,11 @@ public:
         for (size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
         start_ = count;
         items_.resize(count.back());
-        for (uint32_t i = 0; i < edges_.size(); ++i) {
+        for (const planar::DirectedEdge& e : edges_) {
             size_t lo, hi;
-            range(edges_[i], &lo, &hi);
-            for (size_t k = lo; k <= hi; ++k) items_[count[k]++] = i;
+            range(e, &lo, &hi);
+            const Item item{double(e.a.x), double(e.a.y), double(e.b.x), double(e.b.y), e.weight};
+            for (size_t k = lo; k <= hi; ++k) items_[count[k]++] = item;
         }
     }
 
@@ -52,12 +56,11 @@ public:
         size_t k = band(y);
         int w = 0;
         for (uint32_t i = start_[k]; i < start_[k + 1]; ++i) {
-            const planar::DirectedEdge& e = edges_[items_[i]];
-            double ax = double(e.a.x), ay = double(e.a.y), bx = double(e.b.x), by = double(e.b.y);
-            if ((ay <= y) == (by <= y)) continue;
-            double side = (bx - ax) * (y - ay) - (by - ay) * (x - ax);
-            if (by > ay && side > 0) w += e.weight;
-            else if (by <= ay && side < 0) w -= e.weight;
+            const Item& e = items_[i];
+            if ((e.ay <= y) == (e.by <= y)) continue;
+            double side = (e.bx - e.ax) * (y - e.ay) - (e.by - e.ay) * (x - e.ax);
+            if (e.by > e.ay && side > 0) w += e.weight;
+            else if (e.by <= e.ay && side < 0) w -= e.weight;
         }
         return w;
     }
@@ -69,7 +72,13 @@ private:
     std::vector<planar::DirectedEdge> edges_;
     double x0_ = 0, x1_ = 0, y0_ = 0, y1_ = 0, height_ = 1;
     size_t bands_ = 1;
-    std::vector<uint32_t> start_, items_;
+    // Each band's edges stored in place (as doubles), so a query reads one contiguous run.
+    struct Item {
+        double ax, ay, bx, by;
+        int weight;
+    };
+    std::vector<uint32_t> start_;
+    std::vector<Item> items_;
 };
 
 }  // namespace
@@ -110,6 +119,28 @@ void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<plana
     for (size_t s = 0; s < n; ++s) bands.emplace_back(outlines[s]);
     const glm::dvec3 emitDir(light.direction());
     const glm::dvec3* emits = light.isArea() ? &emitDir : nullptr;
+    // The fill emits every triangle's corners separately; a corner's n weights are computed once
+    // per distinct position (about a sixth of the corners) and kept in `weights`.
+    struct PosHash {
+        size_t operator()(const std::pair<double, double>& k) const {
+            return std::hash<double>()(k.first) * 0x9E3779B97F4A7C15ull ^ std::hash<double>()(k.second);
+        }
+    };
+    std::unordered_map<std::pair<double, double>, uint32_t, PosHash> corner;
+    std::vector<double> weights;
+    auto weightsAt = [&](const planar::ShadowVertex& c) -> const double* {
+        auto [it, inserted] = corner.emplace(std::pair{c.x, c.y}, uint32_t(weights.size() / (n + 1)));
+        if (inserted) {
+            glm::dvec3 p = plane.toWorld(snap.toU(c.x), snap.toV(c.y));
+            double all = 0;
+            for (size_t s = 0; s < n; ++s) {
+                weights.push_back(weightTowards(emits, samples[s], p, plane.normal));
+                all += weights.back();
+            }
+            weights.push_back(all);
+        }
+        return weights.data() + size_t(it->second) * (n + 1);
+    };
     std::vector<planar::ShadowVertex> out;
     out.reserve(mesh.indices.size());
     std::vector<char> inShadow(n);
@@ -127,13 +158,10 @@ void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<plana
             planar::ShadowVertex o = *c;
             // The umbra (every sample) keeps 1 and the lit part 0 whatever the weights.
             if (count > 0 && size_t(count) < n) {
-                glm::dvec3 p = plane.toWorld(snap.toU(c->x), snap.toV(c->y));
-                double all = 0, shadowed = 0;
-                for (size_t s = 0; s < n; ++s) {
-                    double w = weightTowards(emits, samples[s], p, plane.normal);
-                    all += w;
-                    if (inShadow[s]) shadowed += w;
-                }
+                const double* w = weightsAt(*c);
+                double all = w[n], shadowed = 0;
+                for (size_t s = 0; s < n; ++s)
+                    if (inShadow[s]) shadowed += w[s];
                 // A corner every sample is below the horizon of keeps its count-based value.
                 double share = all > 0 ? shadowed / all : double(count) / double(n);
                 double value = fill == planar::FillMode::Steps ? share
