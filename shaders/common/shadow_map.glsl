@@ -30,4 +30,16 @@ bool shadowMapUv(vec3 P, out vec2 uv) {
     return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
 }
 
+// Normal offset (Holbert, "Saying goodbye to shadow acne", 2011): the point a receiver looks up
+// moves off its surface along the normal by kNormalOffsetTexels texel footprints x sin(theta).
+// Slope bias alone leaves acne at the terminator of faceted curved surfaces, where the texel
+// holds a neighbouring facet far steeper than the receiver's own.
+const float kNormalOffsetTexels = 3.0;
+
+vec3 shadowLookupPoint(vec3 P, vec3 N, vec3 toLight) {
+    float cosT = clamp(abs(dot(N, toLight)), 0.0, 1.0);
+    float sinT = sqrt(1.0 - cosT * cosT);
+    return P + N * (shadowTexelWorldSize(shadowDistanceOf(P)) * kNormalOffsetTexels * sinT);
+}
+
 #endif

@@ -29,14 +29,15 @@ void main() {
     if (!s.receives || !lightReaches(s.position, s.normal)) return;
     oResult.y = 1.0;
     vec2 uv;
-    if (!shadowMapUv(s.position, uv)) return;
+    vec3 toC = normalize(uCentre - s.position);
+    vec3 lookup = shadowLookupPoint(s.position, s.normal, toC);
+    if (!shadowMapUv(lookup, uv)) return;
     ivec2 texel = clamp(ivec2(uv * uShadowSize), ivec2(0), ivec2(int(uShadowSize) - 1));
     float o = texelFetch(uShadowDistance, texel, 0).r;
     vec4 db = texelFetch(uDBuffer, texel, 0);
     float d = length(s.position - uCentre);
-    float ds = shadowDistanceOf(s.position);
+    float ds = shadowDistanceOf(lookup);
     // Slope-scaled bias: a texel covers more depth on surfaces seen at a grazing angle.
-    vec3 toC = normalize(uCentre - s.position);
     float cosA = clamp(abs(dot(s.normal, toC)), 0.05, 1.0);
     float tanA = sqrt(1.0 - cosA * cosA) / cosA;
     float bias = shadowTexelWorldSize(ds) * uBiasTexels * (1.0 + min(tanA, 10.0));

@@ -35,9 +35,11 @@ void main() {
     if (!s.receives || !lightReaches(s.position, s.normal)) return;
     oResult.y = 1.0;
     vec2 uv;
-    if (!shadowMapUv(s.position, uv)) return;  // outside the map: nothing casts onto it
-    float dP = shadowDistanceOf(s.position);
-    ReceiverPlane rp = receiverPlane(s.position, s.normal);
+    vec3 toLight = uShadowOrthographic != 0 ? -uShadowAxis : normalize(uShadowOrigin - s.position);
+    vec3 P = shadowLookupPoint(s.position, s.normal, toLight);
+    if (!shadowMapUv(P, uv)) return;  // outside the map: nothing casts onto it
+    float dP = shadowDistanceOf(P);
+    ReceiverPlane rp = receiverPlane(P, s.normal);
     // Interleaved gradient noise turns the pattern per pixel: banding becomes fine noise.
     float phi = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
 

@@ -28,20 +28,20 @@ ReceiverPlane receiverPlane(vec3 P, vec3 N) {
 }
 
 // The map's stored quantity for the receiver plane along the ray through uv. Where the ray
-// grazes the plane (beyond ~85 degrees, the plane guess is worthless there) or meets it behind
-// the light, the answer is `fallback`.
+// grazes the plane (beyond ~85 degrees) the plane is taken as tilted no further than that: the
+// exact answer runs to infinity there and makes a curved receiver's own neighbouring facets
+// shadow it (acne along terminators). Where the ray meets the plane behind the light, the
+// answer is `fallback`.
 float receiverDistanceAt(ReceiverPlane rp, vec2 uv, float fallback) {
     vec2 ndc = uv * 2.0 - 1.0;
     if (uShadowOrthographic != 0) {
         // Ray origin O + B0 x + B1 y, direction = axis; the stored quantity is t itself.
-        if (abs(rp.dots.z) < 0.08) return fallback;
-        float t = (rp.k - rp.dots.x * ndc.x - rp.dots.y * ndc.y) / rp.dots.z;
+        float t = (rp.k - rp.dots.x * ndc.x - rp.dots.y * ndc.y) / min(rp.dots.z, -0.08);
         return t > 0.0 ? t : fallback;
     }
     float len = sqrt(rp.scale2 * dot(ndc, ndc) + 1.0);  // |B (x, y, 1)|
     float dn = rp.dots.x * ndc.x + rp.dots.y * ndc.y + rp.dots.z;
-    if (abs(dn) < 0.08 * len) return fallback;
-    float t = rp.k * len / dn;
+    float t = rp.k * len / min(dn, -0.08 * len);
     return t > 0.0 ? t : fallback;
 }
 

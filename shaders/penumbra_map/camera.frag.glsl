@@ -13,16 +13,20 @@ void main() {
     Surface s = loadSurface(ivec2(gl_FragCoord.xy));
     oResult = vec4(1.0, 0.0, 0.0, 1.0);
     if (!s.covered) return;
+    // The penumbra map is read where the point itself falls (its texel holds the point's own
+    // surface); the hard-shadow test uses the normal-offset point against acne.
     vec2 uv;
     bool inMap = shadowMapUv(s.position, uv);
-    ivec2 texel = shadowTexel(uv);
-    float pm = inMap ? texelFetch(uPenumbraMap, texel, 0).r : 1.0;
+    float pm = inMap ? texelFetch(uPenumbraMap, shadowTexel(uv), 0).r : 1.0;
     oResult.w = pm;
     if (!s.receives || !lightReaches(s.position, s.normal)) return;
     oResult.y = 1.0;
-    if (!inMap) return;
-    float dP = shadowDistanceOf(s.position);
-    if (blockedAtTexel(receiverPlane(s.position, s.normal), texel, dP)) {
+    vec3 toLight = uShadowOrthographic != 0 ? -uShadowAxis : normalize(uShadowOrigin - s.position);
+    vec3 P = shadowLookupPoint(s.position, s.normal, toLight);
+    vec2 uvP;
+    if (!inMap || !shadowMapUv(P, uvP)) return;
+    float dP = shadowDistanceOf(P);
+    if (blockedAtTexel(receiverPlane(P, s.normal), shadowTexel(uvP), dP)) {
         oResult.x = 0.0;
         oResult.z = 1.0;
         return;

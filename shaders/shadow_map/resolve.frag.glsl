@@ -19,14 +19,16 @@ void main() {
     }
     float V = 1.0;
     vec2 uv;
-    if (shadowMapUv(s.position, uv)) {
+    vec3 toLight = uShadowOrthographic != 0 ? -uShadowAxis : normalize(uShadowOrigin - s.position);
+    vec3 P = shadowLookupPoint(s.position, s.normal, toLight);
+    if (shadowMapUv(P, uv)) {
         ivec2 texel = clamp(ivec2(uv * uShadowSize), ivec2(0), ivec2(int(uShadowSize) - 1));
         float stored = texelFetch(uShadowDistance, texel, 0).r;
-        vec3 toLight = uShadowOrthographic != 0 ? -uShadowAxis : normalize(uShadowOrigin - s.position);
+        d = shadowDistanceOf(P);
         float cosT = max(abs(dot(s.normal, toLight)), 0.05);
         float tanT = min(sqrt(max(1.0 - cosT * cosT, 0.0)) / cosT, 20.0);
         float bias = shadowTexelWorldSize(d) * (uConstantBias + uSlopeBias * tanT);
         V = stored < d - bias ? 0.0 : 1.0;
     }
-    oResult = vec4(V, 1.0, d, 0.0);
+    oResult = vec4(V, 1.0, shadowDistanceOf(s.position), 0.0);
 }

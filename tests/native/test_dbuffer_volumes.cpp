@@ -8,6 +8,7 @@
 
 #include "geometry/volumes.h"
 #include "softshadow/softshadow.h"
+#include "test_scenes.h"
 
 namespace ss {
 namespace {
@@ -32,25 +33,9 @@ Mesh box(glm::vec3 lo, glm::vec3 hi) {
 }
 
 Mesh uvSphere(int rings, int segments) {
-    std::vector<glm::vec3> p;
-    std::vector<glm::uvec3> t;
-    p.push_back({0, 0, 1});
-    for (int i = 1; i < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-            float th = float(M_PI) * i / rings, ph = 2.0f * float(M_PI) * j / segments;
-            p.push_back({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)});
-        }
-    p.push_back({0, 0, -1});
-    uint32_t south = uint32_t(p.size() - 1);
-    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * segments + (j % segments)); };
-    for (int j = 0; j < segments; ++j) t.push_back({0, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i < rings - 1; ++i)
-        for (int j = 0; j < segments; ++j) {
-            t.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-            t.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-        }
-    for (int j = 0; j < segments; ++j) t.push_back({south, ring(rings - 1, j + 1), ring(rings - 1, j)});
-    return finalizedMesh(p, t);
+    Mesh m = test::makeUvSphere({0, 0, 0}, 1.0f, rings, segments, SS_MESH_CAST | SS_MESH_RECEIVE);
+    m.name = "test";
+    return m;
 }
 
 using Key = std::tuple<float, float, float>;

@@ -10,6 +10,7 @@
 
 #include "geometry/silhouette.h"
 #include "softshadow/softshadow.h"
+#include "test_scenes.h"
 
 namespace ss {
 namespace {
@@ -51,27 +52,9 @@ Mesh tetrahedron() {
 // Faces of tetrahedron(): 0 bottom (z=0), 1 y=0, 2 x=0, 3 slanted.
 
 Mesh uvSphere(int rings, int segments) {
-    std::vector<glm::vec3> p;
-    std::vector<glm::uvec3> t;
-    p.push_back({0, 0, 1});
-    for (int i = 1; i < rings; ++i) {
-        float th = float(M_PI) * i / rings;
-        for (int j = 0; j < segments; ++j) {
-            float ph = 2.0f * float(M_PI) * j / segments;
-            p.push_back({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)});
-        }
-    }
-    p.push_back({0, 0, -1});
-    uint32_t south = uint32_t(p.size() - 1);
-    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * segments + (j % segments)); };
-    for (int j = 0; j < segments; ++j) t.push_back({0, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i < rings - 1; ++i)
-        for (int j = 0; j < segments; ++j) {
-            t.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-            t.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-        }
-    for (int j = 0; j < segments; ++j) t.push_back({south, ring(rings - 1, j + 1), ring(rings - 1, j)});
-    return finalized(p, t);
+    Mesh m = test::makeUvSphere({0, 0, 0}, 1.0f, rings, segments, SS_MESH_CAST | SS_MESH_RECEIVE);
+    m.name = "test";
+    return m;
 }
 
 EdgeSet undirected(const std::vector<SilhouetteEdge>& edges) {

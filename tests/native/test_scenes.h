@@ -22,6 +22,8 @@ Mesh makePrism(const std::vector<glm::vec2>& polygon, size_t fanVertex, float z0
                uint32_t flags);
 Mesh makeTorus(const glm::vec3& centre, float majorRadius, float minorRadius, int majorSegments,
                int minorSegments, uint32_t flags);
+// A UV sphere with flat facets: `rings` bands from pole to pole, `segments` around; outward CCW.
+Mesh makeUvSphere(const glm::vec3& centre, float radius, int rings, int segments, uint32_t flags);
 // The receiver: an upward-facing square at height z (two triangles, open edges).
 Mesh makeGround(float halfSize, float z, uint32_t flags);
 

@@ -110,7 +110,9 @@ TEST(ShadowMapCameraPass, WorldPointsLandOnThePixelThatReportsThem) {
                 glm::vec3 n = img.normal(x, y);
                 EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
                 EXPECT_GT(glm::dot(n, eye - img.position(x, y)), 0.0f);
-                if (img.ids[img.index(x, y)].x == float(kGround)) EXPECT_GT(n.z, 0.9999f);
+                if (img.ids[img.index(x, y)].x == float(kGround)) {
+                    EXPECT_GT(n.z, 0.9999f);
+                }
             }
     });
 }

@@ -43,7 +43,11 @@ typedef enum ss_status {
 typedef enum ss_backend {
     SS_BACKEND_AUTO = 0,  /* EGL surfaceless first, then OSMesa */
     SS_BACKEND_EGL = 1,
-    SS_BACKEND_OSMESA = 2
+    SS_BACKEND_OSMESA = 2,
+    /* Reserved: pin the enum to 32 bits and make every int32 a valid value, so a bad value
+       from a C caller is reported as an error rather than being undefined behaviour. */
+    SS_BACKEND_RESERVED_MIN_ = -0x7fffffff - 1,
+    SS_BACKEND_RESERVED_MAX_ = 0x7fffffff
 } ss_backend;
 
 typedef enum ss_light_type {
@@ -53,7 +57,10 @@ typedef enum ss_light_type {
     SS_LIGHT_RECTANGLE = 3, /* area light, size x size_y */
     SS_LIGHT_POINT = 4,     /* sphere of radius `radius` */
     SS_LIGHT_SPOT = 5,      /* sphere of radius `radius`, cone spot_size (full angle, rad) */
-    SS_LIGHT_SUN = 6        /* directional, angular diameter `angle` (rad) */
+    SS_LIGHT_SUN = 6,       /* directional, angular diameter `angle` (rad) */
+    /* Reserved, as for ss_backend. */
+    SS_LIGHT_RESERVED_MIN_ = -0x7fffffff - 1,
+    SS_LIGHT_RESERVED_MAX_ = 0x7fffffff
 } ss_light_type;
 
 /* Mesh flags. */

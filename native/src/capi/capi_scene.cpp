@@ -91,11 +91,9 @@ SS_API ss_status ss_scene_add_light(ss_scene* scene, const ss_light_desc* light,
         require(light->name, "ss_scene_add_light", "light->name");
         ss::Light l;
         l.name = light->name;
-        // Read the enum's bits as an integer: a C caller may pass any value, and loading an
-        // out-of-range value as the enum type is undefined behaviour in C++.
-        int32_t rawType = 0;
-        static_assert(sizeof(light->type) == sizeof(rawType));
-        std::memcpy(&rawType, &light->type, sizeof rawType);
+        // The header's reserved values make every int32 a valid ss_light_type, so this check
+        // sees whatever a C caller passed.
+        const auto rawType = int32_t(light->type);
         if (rawType < int32_t(SS_LIGHT_DISK) || rawType > int32_t(SS_LIGHT_SUN))
             ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_scene_add_light: light '" + l.name +
                                                     "' has unknown type " + std::to_string(rawType));

@@ -21,6 +21,7 @@ const char* backendName(ss_backend backend) {
         case SS_BACKEND_AUTO: return "auto";
         case SS_BACKEND_EGL: return "egl";
         case SS_BACKEND_OSMESA: return "osmesa";
+        default: break;
     }
     fail(SS_ERROR_INVALID_ARGUMENT,
          "unknown GL backend " + std::to_string(int(backend)) + " (known: auto, egl, osmesa)");
