@@ -278,6 +278,7 @@ def render_engine(scene, engine, samples, out_dir, name):
         scene.eevee.taa_render_samples = 1
         diffuse_direct(scene, tmp)
         scene.eevee.taa_render_samples = samples
+        set_shadows(scene, False)  # the warm-up left them on; the next render is the unshadowed one
     _, unshadowed = diffuse_direct(scene, tmp)
     set_shadows(scene, True)
     seconds, shadowed = diffuse_direct(scene, tmp)
