@@ -44,4 +44,9 @@ vec4 boxFilter(int g, vec2 centre, vec2 size) {
     }
     return sum / float(probes);
 }
+// One channel, as the combination reads it (the SAT variant gathers that channel only).
+float boxFilterChannel0(int g, vec2 centre, vec2 size) { return boxFilter(g, centre, size).x; }
+float boxFilterChannel1(int g, vec2 centre, vec2 size) { return boxFilter(g, centre, size).y; }
+float boxFilterChannel2(int g, vec2 centre, vec2 size) { return boxFilter(g, centre, size).z; }
+float boxFilterChannel3(int g, vec2 centre, vec2 size) { return boxFilter(g, centre, size).w; }
 #endif

@@ -15,6 +15,8 @@ namespace {
 //                 texel from the receiver point, and on a surface tilted by theta from the
 //                 light direction the distance changes by tan(theta) per unit of that offset.
 // tan(theta) is capped at 20 (theta ~ 87 deg) so grazing receivers are not lit straight through.
+// The shader also looks up from the normal-offset point (shadowLookupPoint): the slope term sees
+// the receiver's own face, not the steeper neighbouring facet a terminator texel holds.
 // Settings "bias" and "slope_bias" override both; "shadow_map_size" the map (default 2048).
 constexpr float kConstantBias = 1.0f;
 constexpr float kSlopeBias = 1.0f;

@@ -21,7 +21,8 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     gl::ProgramDesc desc;
     desc.vertex = "common/fullscreen.vert.glsl";
     desc.fragment = "occlusion_textures/shade.frag.glsl";
-    desc.defines = {filterDefine(filtered.filter)};
+    // The slice count as a constant: see combine.glsl (one program variant per count in use).
+    desc.defines = {filterDefine(filtered.filter), "SS_OT_SLICES=" + std::to_string(setup.count())};
     const gl::Program& program = gl::program(desc);
     program.use();
     int unit = frame.bindCameraPass(program, 0);
