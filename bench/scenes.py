@@ -295,9 +295,9 @@ def main():
     if quick:
         scenes = [s for s in SCENES if s[0] in ("convex", "scaled_1")]
         eevee, cycles = (16,), (1, 16)
-    only = os.environ.get("BENCH_SCENES")
+    only = os.environ.get("BENCH_SCENES")  # names from the whole list, quick or not
     if only:
-        scenes = [s for s in scenes if s[0] in only.split(",")]
+        scenes = [s for s in SCENES if s[0] in only.split(",")]
     for name, build, light_kw in scenes:
         scene = reset()
         build()

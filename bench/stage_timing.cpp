@@ -31,6 +31,9 @@ Stages runOnce(const Scene& scene, const std::string& method, Layers* keep, doub
     Stages st;
     std::unique_ptr<Method> m = createMethod(method);
     RenderSettings settings;
+    // V and mask only: what a preview or a compositing pass needs; the debug layers' read-backs
+    // would weigh on the methods that have many (dbuffer's four distances cost ~30 ms at 1024²).
+    settings.extraLayers = false;
     if (budgetSeconds > 0.0) {
         auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                            std::chrono::duration<double>(budgetSeconds));

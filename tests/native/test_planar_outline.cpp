@@ -269,3 +269,26 @@ TEST(PlanarOutline, TriangulationCoversOnceNoOverlap) {
         }
     }
 }
+
+namespace {
+
+// Two triangles sharing an edge, as an open mesh arrives (face by face): the shared edge comes in
+// both directions and must cancel, leaving the square's four sides; a repeated edge adds up.
+TEST(SweepSegments, CoincidentEdgesMergeAndCancel) {
+    std::vector<DirectedEdge> edges;
+    addTriangle({0, 0}, {10, 0}, {10, 10}, &edges);
+    addTriangle({0, 0}, {10, 10}, {0, 10}, &edges);
+    std::vector<SweepSegment> segs = toSweepSegments(edges);
+    // 6 edges: 2 vertical (dropped), the diagonal twice with opposite deltas (cancelled).
+    ASSERT_EQ(segs.size(), 2u);
+    for (const SweepSegment& s : segs) EXPECT_EQ(s.seg.dy(), 0);
+    EXPECT_EQ(segs[0].delta + segs[1].delta, 0);
+    EXPECT_NEAR(regionArea(linkChains(hardOutline(edges))), 100.0, 1e-9);
+
+    std::vector<DirectedEdge> twice = {{{0, 0}, {10, 5}, 1}, {{0, 0}, {10, 5}, 1}};
+    segs = toSweepSegments(twice);
+    ASSERT_EQ(segs.size(), 1u);
+    EXPECT_EQ(std::abs(segs[0].delta), 2);
+}
+
+}  // namespace

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 
 namespace ss::planar {
 
@@ -24,6 +25,21 @@ std::vector<SweepSegment> toSweepSegments(std::span<const DirectedEdge> edges) {
         }
         out.push_back(s);
     }
+    // Coincident segments become one with their deltas summed, and those that cancel go: an open
+    // mesh is projected face by face, so each interior edge arrives twice, in opposite directions.
+    // Left in, such pairs tie at every event they span and the exact predicates decide each tie
+    // (on a 16k-triangle open Suzanne 99% of all order tests; the hard outlines took 2 s).
+    auto key = [](const SweepSegment& s) { return std::tie(s.seg.lo.x, s.seg.lo.y, s.seg.hi.x, s.seg.hi.y); };
+    std::sort(out.begin(), out.end(), [&](const SweepSegment& a, const SweepSegment& b) { return key(a) < key(b); });
+    size_t kept = 0;
+    for (size_t i = 0; i < out.size();) {
+        SweepSegment merged = out[i];
+        size_t j = i + 1;
+        for (; j < out.size() && key(out[j]) == key(merged); ++j) merged.delta += out[j].delta;
+        if (merged.delta != 0) out[kept++] = merged;
+        i = j;
+    }
+    out.resize(kept);
     return out;
 }
 

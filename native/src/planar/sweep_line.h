@@ -24,7 +24,8 @@ struct SweepSegment {
 };
 
 // Converts directed edges to sweep segments; vertical and zero-length edges are dropped
-// because they change no winding number in any slab.
+// because they change no winding number in any slab, and coincident segments are merged (their
+// deltas summed, dropped when they cancel).
 std::vector<SweepSegment> toSweepSegments(std::span<const DirectedEdge> edges);
 
 // Coincident segments inside a slab form one group; `seg` is the group's first segment index.
