@@ -1,7 +1,6 @@
 // How long occlusion_textures' stages (slicing, pre-filter per type, shading) take.
 // SPDX-License-Identifier: GPL-3.0-or-later
-// At 512² and 1024² with 4, 8, 16 slices of 256² and 512², on a 100k-triangle sphere over a
-// ground plane.
+// At 512² and 1024² with 4 and 16 slices of 512², on a 100k-triangle sphere over a ground plane.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -14,42 +13,17 @@
 #include "core/scene.h"
 #include "pipeline/renderer.h"
 #include "softshadow/softshadow.h"
+#include "bench_meshes.h"
 
 namespace ss {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// A latitude-longitude sphere of 2 n (n - 1) quads as triangles (n = 224: ~100k triangles).
-Mesh sphere(int n, float r, glm::vec3 c) {
-    Mesh m;
-    m.name = "sphere";
-    m.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i < 2 * n; ++i) {
-            float th = float(M_PI) * float(j) / float(n), ph = float(M_PI) * float(i) / float(n);
-            m.positions.push_back(c + r * glm::vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
-        }
-    auto at = [&](int j, int i) { return uint32_t(j * 2 * n + (i % (2 * n))); };
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < 2 * n; ++i) {
-            m.triangles.push_back({at(j, i), at(j + 1, i), at(j + 1, i + 1)});
-            m.triangles.push_back({at(j, i), at(j + 1, i + 1), at(j, i + 1)});
-        }
-    m.finalize();
-    return m;
-}
-
 Scene benchScene(int resolution) {
     Scene s;
-    Mesh ground;
-    ground.name = "ground";
-    ground.positions = {{-6, -6, 0}, {6, -6, 0}, {6, 6, 0}, {-6, 6, 0}};
-    ground.triangles = {{0, 1, 2}, {0, 2, 3}};
-    ground.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
-    ground.finalize();
-    s.addMesh(ground);
-    s.addMesh(sphere(224, 0.8f, {0, 0, 1.3f}));
+    s.addMesh(bench::groundSquare(6.0f));
+    s.addMesh(bench::uvSphere(158, 0.8f, {0, 0, 1.3f}, SS_MESH_CAST | SS_MESH_RECEIVE));  // 100k
     Light l;
     l.name = "Area";
     l.type = LightType::Rectangle;

@@ -2,7 +2,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -187,54 +186,6 @@ TEST(DbufferOptions, SmallOccluderProfileAndPaperUmbraRule) {
     // A misspelt option names itself instead of silently falling back.
     EXPECT_THROW(render(r, scene, "dbuffer", 0, {{"umbra_rule", "nearest"}}), Error);
     EXPECT_THROW(render(r, scene, "dbuffer", 0, {{"profile", "linear"}}), Error);
-}
-
-}  // namespace
-}  // namespace ss
-
-namespace ss {
-namespace {
-
-// A timing probe for docs/methods/dbuffer.md, disabled by default (run it with
-// --gtest_also_run_disabled_tests and SS_DBUFFER_TIMING=1 for per-stage times). It asserts only
-// what does not depend on time: the 100k-triangle render is complete and finite.
-TEST(DbufferTiming, DISABLED_HundredThousandTrianglesAt1024) {
-    const int rings = 224, segments = 224;
-    Mesh m;
-    m.name = "sphere";
-    m.flags = SS_MESH_CAST;
-    m.positions.push_back({0, 0, 1.6f});
-    for (int i = 1; i < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-            float th = float(M_PI) * i / rings, ph = 2.0f * float(M_PI) * j / segments;
-            m.positions.push_back({0.6f * std::sin(th) * std::cos(ph), 0.6f * std::sin(th) * std::sin(ph), 1.0f + 0.6f * std::cos(th)});
-        }
-    m.positions.push_back({0, 0, 0.4f});
-    uint32_t south = uint32_t(m.positions.size() - 1);
-    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * segments + (j % segments)); };
-    for (int j = 0; j < segments; ++j) m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i < rings - 1; ++i)
-        for (int j = 0; j < segments; ++j) {
-            m.triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-            m.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-        }
-    for (int j = 0; j < segments; ++j) m.triangles.push_back({south, ring(rings - 1, j + 1), ring(rings - 1, j)});
-    m.finalize();
-    Scene s;
-    s.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
-    s.addMesh(std::move(m));
-    s.addLight(test::makeDiskLight({0.0f, 0.0f, 4.0f}, 1.5f));
-    s.setCamera(test::makeTopCamera(1024, 1024));
-    Renderer r(SS_BACKEND_AUTO);
-    for (int k = 0; k < 3; ++k) {
-        auto t0 = std::chrono::steady_clock::now();
-        Layers l = render(r, s, "dbuffer");
-        expectFinite(l, "100k triangles");
-        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        auto g = dbufferGeometry(s, 0);
-        std::printf("[dbuffer] %zu triangles at 1024^2: render %.1f ms (silhouettes %.1f ms, extrusion %.1f ms when built; %zu umbra + %zu penumbra volume vertices)\n",
-                    s.meshes()[1].triangles.size(), ms, g->silhouetteMs, g->extrusionMs, g->volumes.umbra.size(), g->volumes.penumbra.size());
-    }
 }
 
 }  // namespace

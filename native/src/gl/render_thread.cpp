@@ -1,6 +1,7 @@
 // How the render thread owns its context, runs jobs one at a time and is joined at shutdown.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "gl/render_thread.h"
+#include "gl/scratch_targets.h"
 
 #include <condition_variable>
 #include <exception>
@@ -131,6 +132,7 @@ RenderThread::RenderThread(ss_backend backend) : state_(std::make_shared<State>(
             s->jobDone = true;
             s->cv.notify_all();
         }
+        releaseThreadScratchTargets();
         releaseThreadPrograms();
         setCurrent(nullptr);
         ctx->releaseCurrent();

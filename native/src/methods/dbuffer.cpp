@@ -1,9 +1,7 @@
 // How the dbuffer method renders: volumes into the D-buffer from the light centre, then eq. 3 per pixel.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include <chrono>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -12,6 +10,7 @@
 #include "gl/framebuffer.h"
 #include "gl/program.h"
 #include "gl/render_state.h"
+#include "gl/scratch_targets.h"
 #include "methods/dbuffer_geometry.h"
 #include "methods/method.h"
 #include "pipeline/frame.h"
@@ -95,15 +94,10 @@ public:
         geometry_ = dbufferGeometry(frame.scene(), lightIndex);
         const DbufferGeometry& geo = *geometry_;
         const gl::Functions& g = frame.gl();
-        // SS_DBUFFER_TIMING=1 prints per-stage milliseconds (glFinish between stages).
-        static const bool timing = std::getenv("SS_DBUFFER_TIMING") != nullptr;
-        auto clock = std::chrono::steady_clock::now();
-        auto lap = [&](const char* stage) {
-            if (!timing) return;
-            g.Finish();
-            auto now = std::chrono::steady_clock::now();
-            std::fprintf(stderr, "dbuffer %s: %.1f ms\n", stage, std::chrono::duration<double, std::milli>(now - clock).count());
-            clock = now;
+        // finish_stages (benchmark): glFinish at each stage so the progress marks time the GPU.
+        const bool finishStages = settings.flag("finish_stages", false);
+        auto lap = [&](const char*) {
+            if (finishStages) g.Finish();
         };
         lap("volumes (cache)");
         const CameraPass& cam = frame.cameraPass();
@@ -113,7 +107,8 @@ public:
 
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
         settings.report(0.3f, "D-buffer pass");
-        gl::Framebuffer dbuf(map.size, map.size, {GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
+        gl::Framebuffer& dbuf =
+            gl::scratchFramebuffer("dbuffer.distances", map.size, map.size, {GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
         dbuf.bind();
         gl::apply(kFarthest);  // colour writes on before clearing (clears honour the colour mask)
         g.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -151,7 +146,7 @@ public:
 
         // Camera pass: eq. 3 and eq. 4 per pixel.
         settings.report(0.7f, "camera pass");
-        gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F});
+        gl::Framebuffer& out = gl::scratchFramebuffer("dbuffer.camera", cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F});
         out.bind();
         gl::apply(gl::states::overwrite);  // writes every pixel: no clear needed
         const gl::Program& shade = gl::program("common/fullscreen.vert.glsl", "dbuffer/camera.frag.glsl");
@@ -178,11 +173,15 @@ public:
             for (size_t i = 0; i < rgba.size() && i < img.pixels.size(); ++i) img.pixels[i] = rgba[i][channel];
             return img;
         };
-        std::vector<glm::vec4> result = out.readRgba(0);
         Layers layers;
-        layers.add("V", split(result, 0));
-        layers.add("mask", split(result, 1));
-        if (settings.extraLayers) {
+        if (!settings.extraLayers) {
+            // Two channels read alone: half the bytes of the whole attachment.
+            layers.add("V", out.readChannel(0, 0));
+            layers.add("mask", out.readChannel(0, 1));
+        } else {
+            std::vector<glm::vec4> result = out.readRgba(0);
+            layers.add("V", split(result, 0));
+            layers.add("mask", split(result, 1));
             std::vector<glm::vec4> dist = out.readRgba(1);
             layers.add("umbra", split(result, 2));
             layers.add("penumbra", split(result, 3));

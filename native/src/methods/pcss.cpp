@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "gl/framebuffer.h"
 #include "gl/render_state.h"
+#include "gl/scratch_targets.h"
 #include "methods/method.h"
 #include "methods/pcss_common.h"
 #include "pipeline/frame.h"
@@ -40,9 +41,7 @@ public:
         const CameraPass& cam = frame.cameraPass();
         settings.report(0.3f, "pcss filter");
 
-        if (!out_ || out_->width() != cam.width || out_->height() != cam.height)
-            out_ = std::make_unique<gl::Framebuffer>(cam.width, cam.height, std::vector<GLenum>{GL_RGBA32F});
-        const gl::Framebuffer& out = *out_;
+        const gl::Framebuffer& out = gl::scratchFramebuffer("pcss.camera", cam.width, cam.height, {GL_RGBA32F});
         out.bind();
         out.clearColor(0, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
         gl::apply(gl::states::overwrite);
@@ -79,7 +78,6 @@ public:
 
 private:
     // The output target, kept between renders of the same frame.
-    std::unique_ptr<gl::Framebuffer> out_;
 };
 
 }  // namespace

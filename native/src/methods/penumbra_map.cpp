@@ -10,6 +10,7 @@
 #include "geometry/silhouette.h"
 #include "gl/framebuffer.h"
 #include "gl/render_state.h"
+#include "gl/scratch_targets.h"
 #include "methods/method.h"
 #include "methods/penumbra_map.h"
 #include "methods/pcss_common.h"
@@ -114,10 +115,8 @@ public:
 
         // Pass 2: the penumbra map, cleared to lit; darkest fragment wins through LESS.
         settings.report(0.3f, "penumbra_map pass 2");
-        if (!pm_ || pm_->width() != map.size)
-            pm_ = std::make_unique<gl::Framebuffer>(map.size, map.size, std::vector<GLenum>{GL_R32F},
-                                                    GL_DEPTH_COMPONENT32F);
-        const gl::Framebuffer& pm = *pm_;
+        const gl::Framebuffer& pm =
+            gl::scratchFramebuffer("penumbra_map.map", map.size, map.size, {GL_R32F}, GL_DEPTH_COMPONENT32F);
         pm.bind();
         pm.clearColor(0, glm::vec4(1.0f));
         pm.clearDepth(1.0f);
@@ -138,9 +137,7 @@ public:
 
         // Pass 3: the camera lookup.
         settings.report(0.7f, "penumbra_map pass 3");
-        if (!out_ || out_->width() != cam.width || out_->height() != cam.height)
-            out_ = std::make_unique<gl::Framebuffer>(cam.width, cam.height, std::vector<GLenum>{GL_RGBA32F});
-        const gl::Framebuffer& out = *out_;
+        const gl::Framebuffer& out = gl::scratchFramebuffer("penumbra_map.camera", cam.width, cam.height, {GL_RGBA32F});
         out.bind();
         out.clearColor(0, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
         gl::apply(gl::states::overwrite);
@@ -178,7 +175,6 @@ public:
 private:
     GpuConesSheets geometry_;
     // Render targets kept between renders of the same frame (allocation is not free on llvmpipe).
-    std::unique_ptr<gl::Framebuffer> pm_, out_;
 };
 
 }  // namespace

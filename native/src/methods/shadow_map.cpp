@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "core/error.h"
 #include "gl/render_state.h"
+#include "gl/scratch_targets.h"
 #include "methods/method.h"
 #include "pipeline/frame.h"
 
@@ -33,7 +34,7 @@ public:
         const ShadowMap& map = frame.shadowMap(lightIndex, int(settings.number("shadow_map_size", 0.0f)));
         settings.report(0.5f, "resolve");
 
-        gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F});
+        gl::Framebuffer& out = gl::scratchFramebuffer("shadow_map.camera", cam.width, cam.height, {GL_RGBA32F});
         out.bind();
         gl::apply(gl::states::overwrite);
         const gl::Program& p = gl::program("common/fullscreen.vert.glsl", "shadow_map/resolve.frag.glsl");

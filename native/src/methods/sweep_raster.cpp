@@ -8,6 +8,7 @@
 #include "gl/objects.h"
 #include "gl/program.h"
 #include "gl/render_state.h"
+#include "gl/scratch_targets.h"
 
 namespace ss {
 
@@ -33,7 +34,7 @@ constexpr gl::RenderState kShadowMeshClusters{"sweep_shadow_mesh_clusters", fals
 Image rasterSweepShadow(Frame& frame, const SweepShadow& shadow) {
     const gl::Functions& g = frame.gl();
     const CameraPass& cam = frame.cameraPass();
-    gl::Framebuffer out(cam.width, cam.height, {GL_RGBA32F});
+    gl::Framebuffer& out = gl::scratchFramebuffer("sweep.camera", cam.width, cam.height, {GL_RGBA32F});
     out.bind();
     gl::apply(shadow.parts.empty() ? kShadowMesh : kShadowMeshClusters);
     out.clearColor(0, glm::vec4(0.0f));

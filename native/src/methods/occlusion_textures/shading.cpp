@@ -5,6 +5,7 @@
 #include <string>
 
 #include "gl/framebuffer.h"
+#include "gl/scratch_targets.h"
 #include "methods/occlusion_textures/passes.h"
 #include "pipeline/frame.h"
 
@@ -16,7 +17,7 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     const CameraPass& camera = frame.cameraPass();
     int groups = sliceLayers ? (setup.count() + 3) / 4 : 0;
     std::vector<GLenum> formats(size_t(1 + groups), GL_RGBA32F);
-    gl::Framebuffer target(camera.width, camera.height, formats);
+    gl::Framebuffer& target = gl::scratchFramebuffer("occlusion_textures.shading", camera.width, camera.height, formats);
 
     gl::ProgramDesc desc;
     desc.vertex = "common/fullscreen.vert.glsl";
