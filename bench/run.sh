@@ -31,7 +31,7 @@ log() { echo "[bench $(( $(date +%s) - t_start ))s] $*"; }
 
 # 1. Native per-stage timings (example scene and a 100k torus at 512² and 1024²), plus the
 #    method engineers' own stage benchmarks.
-if [ "$QUICK" = 1 ]; then FILTER='BM_Foundation/scene:0/res:512/'; else FILTER='BM_Foundation|BM_PenumbraMap|BM_Occlusion'; fi
+if [ "$QUICK" = 1 ]; then FILTER='BM_Foundation/scene:0/res:512/'; else FILTER='BM_Foundation|BM_PenumbraMap|BM_Occlusion|BM_Dbuffer|BM_Sweep'; fi
 log "native stage timings ($FILTER)"
 "$BENCH" --benchmark_filter="$FILTER" --benchmark_out="$OUT/foundation.json" \
   --benchmark_out_format=json > "$WORK/foundation.txt" 2>&1 || { tail -n 30 "$WORK/foundation.txt"; exit 1; }

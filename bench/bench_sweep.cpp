@@ -1,0 +1,69 @@
+// How long sweep's geometry stages take for 3, 16 and 64 light samples on 5k to 500k triangles.
+// SPDX-License-Identifier: GPL-3.0-or-later
+// One core, CPU only: silhouettes (potential silhouette edges projected per sample), the
+// per-sample sweeps (hard outlines), the merge into rings, the fill (triangulation), and the
+// irradiance weights; the camera pass that draws the shadow mesh is timed by BM_Foundation.
+// The paper's case is ~5,000 vertices (10k triangles) with 3 samples at 10 fps on a 1 GHz CPU.
+#include <benchmark/benchmark.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "bench_meshes.h"
+#include "core/scene.h"
+#include "methods/sweep_shadow.h"
+#include "softshadow/softshadow.h"
+
+namespace ss {
+namespace {
+
+Scene benchScene(int m) {
+    Scene s;
+    s.addMesh(bench::groundSquare(6.0f));
+    s.addMesh(bench::uvSphere(m, 0.8f, {0, 0, 1.3f}, SS_MESH_CAST | SS_MESH_RECEIVE));
+    Light l;
+    l.name = "Disk";
+    l.type = LightType::Disk;
+    l.lightToWorld = glm::translate(glm::mat4(1.0f), glm::vec3(1.2f, 0.8f, 4.0f));
+    l.size = l.sizeY = 1.5f;
+    s.addLight(l);
+    s.setCamera(makeLookAtCamera({0, -2.5f, 8}, {0, 0, 0}, {0, 1, 0}, glm::radians(40.0f), 512, 512, 0.1f, 50.0f));
+    return s;
+}
+
+// args: samples, m (4 m² sphere triangles), irradiance weights (0 equal, 1 irradiance)
+void BM_SweepStages(benchmark::State& state) {
+    Scene scene = benchScene(int(state.range(1)));
+    SweepOptions options;
+    options.samples = int(state.range(0));
+    options.irradianceWeights = state.range(2) != 0;
+    SweepTimings sum;
+    size_t triangles = 0;
+    for (auto _ : state) {
+        SweepShadow shadow = computeSweepShadow(scene, 0, options);
+        const SweepTimings& t = shadow.timings;
+        state.SetIterationTime((t.silhouettesMs + t.sweepMs + t.mergeMs + t.fillMs + t.weightsMs) / 1000.0);
+        sum.silhouettesMs += t.silhouettesMs, sum.sweepMs += t.sweepMs, sum.mergeMs += t.mergeMs;
+        sum.fillMs += t.fillMs, sum.weightsMs += t.weightsMs;
+        triangles = shadow.mesh.indices.size() / 3;
+    }
+    const double n = double(state.iterations());
+    state.counters["triangles"] = double(4 * state.range(1) * state.range(1));
+    state.counters["vertices"] = double(scene.meshes()[1].positions.size());
+    state.counters["silhouettes_ms"] = sum.silhouettesMs / n;
+    state.counters["sweep_ms"] = sum.sweepMs / n;
+    state.counters["merge_ms"] = sum.mergeMs / n;
+    state.counters["fill_ms"] = sum.fillMs / n;
+    state.counters["weights_ms"] = sum.weightsMs / n;
+    state.counters["shadow_triangles"] = double(triangles);
+    state.SetLabel(options.irradianceWeights ? "irradiance weights" : "equal weights");
+}
+
+// m = 35, 50, 112, 354: 4.9k, 10k (the paper's and the target's 5k vertices), 50k, 500k triangles.
+BENCHMARK(BM_SweepStages)
+    ->ArgsProduct({{3, 16, 64}, {35, 50, 112, 354}, {0, 1}})
+    ->UseManualTime()
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace ss
