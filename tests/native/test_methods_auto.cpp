@@ -14,7 +14,8 @@ namespace {
 
 Scene withLightType(LightType type, bool openCaster = false) {
     Scene s;
-    s.addMesh(test::makeGround(4.0f, 0.0f, SS_MESH_RECEIVE));
+    // The ground casts too, as every Blender object does by default: a flat open caster.
+    s.addMesh(test::makeGround(4.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
     Mesh box = test::makeBox({-0.5f, -0.5f, 0.8f}, {0.5f, 0.5f, 1.2f}, SS_MESH_CAST | SS_MESH_RECEIVE);
     if (openCaster) box.triangles.pop_back();
     s.addMesh(box);

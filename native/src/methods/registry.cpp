@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "methods/method.h"
+#include "methods/sweep_receiver.h"
 
 namespace ss {
 
@@ -61,9 +62,12 @@ std::string chooseAutoMethod(const Scene& scene, int lightIndex) {
     if (lightIndex < 0 || lightIndex >= int(scene.lights().size()))
         fail(SS_ERROR_INVALID_ARGUMENT, "light index " + std::to_string(lightIndex) + " out of range");
     const Light& light = scene.lights()[lightIndex];
+    // A flat open caster (a floor, a wall: Blender lets every object cast by default) is not a
+    // problem for the volumes: it has no silhouette inside itself and its border's volumes
+    // point away from the light, behind it. Any other open or non-manifold caster is.
     bool castersClosed = true;
     for (const Mesh& m : scene.meshes())
-        if (m.casts() && !m.report.closedManifold()) castersClosed = false;
+        if (m.casts() && !m.report.closedManifold() && !isPlanarMesh(m)) castersClosed = false;
     switch (light.type) {
         case LightType::Square:
         case LightType::Rectangle:
