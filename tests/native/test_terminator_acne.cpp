@@ -2,6 +2,7 @@
 // method that looks up the light-centre shadow map? A lone convex sphere cannot shadow itself:
 // wherever the reference sees the whole light, a method must not report shadow.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <cstdio>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -33,12 +34,13 @@ TEST_P(TerminatorAcne, FullyLitPixelsStayLit) {
     const Layers ref = test::renderReference(scene);
     const Layers got = test::renderWith(scene, GetParam());
     const Image &rv = *ref.find("V"), &rm = *ref.find("mask"), &v = *got.find("V"), &m = *got.find("mask");
-    int lit = 0, dark = 0;
+    int lit = 0, dark = 0, dimmed = 0;
     for (int y = 0; y < rv.height; ++y)
         for (int x = 0; x < rv.width; ++x) {
             if (rm.at(x, y) < 0.5f || m.at(x, y) < 0.5f || rv.at(x, y) < 0.999f) continue;
             ++lit;
             if (v.at(x, y) < 0.5f) ++dark;
+            if (v.at(x, y) < 0.9f) ++dimmed;
         }
     test::dumpPng("terminator_" + GetParam(), v);
     ASSERT_GT(lit, rv.width * rv.height / 4) << "the scene must be mostly lit";
@@ -47,8 +49,15 @@ TEST_P(TerminatorAcne, FullyLitPixelsStayLit) {
     // penumbra_map may keep a few more than the others: its map is read at the point's own
     // texel, where the tips of the cones at the sphere's silhouette vertices can shade the
     // sphere just past its silhouette (the paper's cones start at Z_V).
+    std::printf("%s: %d dark, %d dimmed of %d\n", GetParam().c_str(), dark, dimmed, lit);
     const double bound = GetParam() == "penumbra_map" ? 0.01 : 0.002;
     EXPECT_LT(double(dark) / lit, bound) << dark << " of " << lit << " fully lit pixels are dark";
+    // pcss also weighs its samples by the irradiance their light points send (nothing from
+    // below P's horizon): unweighted, 2.4% of these pixels came out below 0.9 (V ~ 0.6 along the
+    // terminator, the sphere "blocking" light the point cannot see anyway). dbuffer keeps some
+    // there (0.7%, docs/methods/dbuffer.md, known limits).
+    if (GetParam() == "pcss" || GetParam() == "shadow_map")
+        EXPECT_LT(double(dimmed) / lit, 0.002) << dimmed << " of " << lit << " fully lit pixels are below 0.9";
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, TerminatorAcne,
