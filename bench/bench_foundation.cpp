@@ -11,6 +11,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "bench_scenes.h"
 #include "core/error.h"
 #include "core/scene.h"
 #include "io/scene_file.h"
@@ -46,12 +47,7 @@ Mesh torus(int nu, int nv, float major, float minor, glm::vec3 c) {
 
 Scene torusScene(int resolution) {
     Scene s;
-    Mesh ground;
-    ground.name = "ground";
-    ground.positions = {{-6, -6, 0}, {6, -6, 0}, {6, 6, 0}, {-6, 6, 0}};
-    ground.triangles = {{0, 1, 2}, {0, 2, 3}};
-    ground.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
-    s.addMesh(ground);
+    s.addMesh(bench::groundSquare(6.0f));
     s.addMesh(torus(316, 158, 1.0f, 0.35f, {0, 0, 1.2f}));
     Light l;
     l.name = "Disk";

@@ -3,19 +3,15 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
-#include <cmath>
 #include <map>
 #include <string>
 
-#include <glm/gtc/matrix_transform.hpp>
-
+#include "bench_scenes.h"
 #include "core/scene.h"
 #include "geometry/silhouette.h"
 #include "methods/penumbra_map.h"
 #include "pipeline/frame.h"
-#include "pipeline/renderer.h"
 #include "softshadow/softshadow.h"
-#include "bench_meshes.h"
 
 namespace ss {
 namespace {
@@ -26,23 +22,7 @@ double msSince(Clock::time_point t) {
 }
 
 Scene benchScene(int m, int resolution) {
-    Scene s;
-    s.addMesh(bench::groundSquare(6.0f));
-    s.addMesh(bench::uvSphere(m, 0.8f, {0, 0, 1.3f}, SS_MESH_CAST));
-    Light l;
-    l.name = "Disk";
-    l.type = LightType::Disk;
-    l.lightToWorld = glm::translate(glm::mat4(1.0f), glm::vec3(1.2f, 0.8f, 4.0f));
-    l.size = l.sizeY = 1.5f;
-    s.addLight(l);
-    s.setCamera(makeLookAtCamera({0, -2.5f, 8}, {0, 0, 0}, {0, 1, 0}, glm::radians(40.0f), resolution,
-                                 resolution, 0.1f, 50.0f));
-    return s;
-}
-
-Renderer& renderer() {
-    static Renderer* r = new Renderer(SS_BACKEND_AUTO);  // joined by shutdownRenderThreads()
-    return *r;
+    return bench::sphereOverGround(m, SS_MESH_CAST, LightType::Disk, resolution);
 }
 
 // args: resolution (camera and maps), m (4 m² sphere triangles)
@@ -62,21 +42,16 @@ void BM_PenumbraMapStages(benchmark::State& state) {
     // Shared passes (camera G-buffer + shadow map), drawn once for every method of the frame.
     RenderSettings shared = settings;
     t0 = Clock::now();
-    renderer().render(scene, 0, "shadow_map", shared, nullptr);
+    bench::sharedRenderer().render(scene, 0, "shadow_map", shared, nullptr);
     double sharedMs = msSince(t0);
 
     std::map<std::string, double> stageMs;
     double firstMs = 0.0;
     bool first = true;
+    bench::StageClock clock;
     for (auto _ : state) {
-        std::map<std::string, Clock::time_point> marks;
-        RenderSettings s = settings;
-        s.progress = [&](float, const char* stage) {
-            marks[stage] = Clock::now();
-            return true;
-        };
         auto start = Clock::now();
-        renderer().render(scene, 0, "penumbra_map", s, nullptr);
+        bench::sharedRenderer().render(scene, 0, "penumbra_map", clock.watch(settings), nullptr);
         auto end = Clock::now();
         double total = std::chrono::duration<double, std::milli>(end - start).count();
         state.SetIterationTime(total / 1000.0);
@@ -85,13 +60,10 @@ void BM_PenumbraMapStages(benchmark::State& state) {
             first = false;
             continue;
         }
-        auto span = [&](const char* a, const char* b) {
-            return std::chrono::duration<double, std::milli>(marks[b] - marks[a]).count();
-        };
-        stageMs["pass2_ms"] += span("penumbra_map pass 2", "penumbra_map pass 3");
-        stageMs["pass3_ms"] += span("penumbra_map pass 3", "penumbra_map readback");
+        stageMs["pass2_ms"] += clock.ms("penumbra_map pass 2", "penumbra_map pass 3");
+        stageMs["pass3_ms"] += clock.ms("penumbra_map pass 3", "penumbra_map readback");
         stageMs["readback_ms"] +=
-            std::chrono::duration<double, std::milli>(end - marks["penumbra_map readback"]).count();
+            std::chrono::duration<double, std::milli>(end - clock.marks.at("penumbra_map readback")).count();
     }
     double n = std::max<double>(1.0, double(state.iterations()) - 1.0);
     state.counters["triangles"] = double(4 * m * m);
@@ -120,10 +92,10 @@ void BM_PenumbraMapPeers(benchmark::State& state) {
     Scene scene = benchScene(int(state.range(2)), res);
     RenderSettings settings;
     settings.options = {{"shadow_map_size", std::to_string(res)}};
-    renderer().render(scene, 0, method, settings, nullptr);  // warm: shared passes, programs
+    bench::sharedRenderer().render(scene, 0, method, settings, nullptr);  // warm: shared passes, programs
     for (auto _ : state) {
         auto start = Clock::now();
-        renderer().render(scene, 0, method, settings, nullptr);
+        bench::sharedRenderer().render(scene, 0, method, settings, nullptr);
         state.SetIterationTime(msSince(start) / 1000.0);
     }
     state.SetLabel(method);

@@ -6,33 +6,16 @@
 // The paper's case is ~5,000 vertices (10k triangles) with 3 samples at 10 fps on a 1 GHz CPU.
 #include <benchmark/benchmark.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-
-#include "bench_meshes.h"
-#include "core/scene.h"
+#include "bench_scenes.h"
 #include "methods/sweep_shadow.h"
 #include "softshadow/softshadow.h"
 
 namespace ss {
 namespace {
 
-Scene benchScene(int m) {
-    Scene s;
-    s.addMesh(bench::groundSquare(6.0f));
-    s.addMesh(bench::uvSphere(m, 0.8f, {0, 0, 1.3f}, SS_MESH_CAST | SS_MESH_RECEIVE));
-    Light l;
-    l.name = "Disk";
-    l.type = LightType::Disk;
-    l.lightToWorld = glm::translate(glm::mat4(1.0f), glm::vec3(1.2f, 0.8f, 4.0f));
-    l.size = l.sizeY = 1.5f;
-    s.addLight(l);
-    s.setCamera(makeLookAtCamera({0, -2.5f, 8}, {0, 0, 0}, {0, 1, 0}, glm::radians(40.0f), 512, 512, 0.1f, 50.0f));
-    return s;
-}
-
 // args: samples, m (4 m² sphere triangles), irradiance weights (0 equal, 1 irradiance)
 void BM_SweepStages(benchmark::State& state) {
-    Scene scene = benchScene(int(state.range(1)));
+    Scene scene = bench::sphereOverGround(int(state.range(1)), SS_MESH_CAST | SS_MESH_RECEIVE, LightType::Disk, 512);
     SweepOptions options;
     options.samples = int(state.range(0));
     options.irradianceWeights = state.range(2) != 0;

@@ -1,8 +1,10 @@
-// How the stage benchmarks' meshes are built (bench_meshes.h).
+// How the stage benchmarks' scenes, renderer and stage clock are made (bench_scenes.h).
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "bench_meshes.h"
+#include "bench_scenes.h"
 
 #include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "softshadow/softshadow.h"
 
@@ -44,6 +46,43 @@ Mesh groundSquare(float half) {
     ground.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
     ground.finalize();
     return ground;
+}
+
+Scene sphereOverGround(int m, uint32_t sphereFlags, LightType light, int resolution) {
+    Scene s;
+    s.addMesh(groundSquare(6.0f));
+    s.addMesh(uvSphere(m, 0.8f, {0, 0, 1.3f}, sphereFlags));
+    Light l;
+    l.type = light;
+    l.name = light == LightType::Disk ? "Disk" : "Area";
+    l.lightToWorld = glm::translate(glm::mat4(1.0f), glm::vec3(1.2f, 0.8f, 4.0f));
+    l.size = 1.5f;
+    l.sizeY = light == LightType::Disk ? 1.5f : 1.0f;
+    s.addLight(l);
+    s.setCamera(makeLookAtCamera({0, -2.5f, 8}, {0, 0, 0}, {0, 1, 0}, glm::radians(40.0f), resolution, resolution,
+                                 0.1f, 50.0f));
+    return s;
+}
+
+Renderer& sharedRenderer() {
+    static Renderer* r = new Renderer(SS_BACKEND_AUTO);  // joined by shutdownRenderThreads()
+    return *r;
+}
+
+RenderSettings StageClock::watch(const RenderSettings& settings) {
+    RenderSettings s = settings;
+    marks.clear();
+    s.progress = [this](float, const char* stage) {
+        marks[stage] = Clock::now();
+        return true;
+    };
+    return s;
+}
+
+double StageClock::ms(const std::string& from, const std::string& to) const {
+    auto a = marks.find(from), b = marks.find(to);
+    if (a == marks.end() || b == marks.end()) return 0.0;
+    return std::chrono::duration<double, std::milli>(b->second - a->second).count();
 }
 
 }  // namespace ss::bench
