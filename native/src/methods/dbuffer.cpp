@@ -96,14 +96,14 @@ public:
         const gl::Functions& g = frame.gl();
         // finish_stages (benchmark): glFinish at each stage so the progress marks time the GPU.
         const bool finishStages = settings.flag("finish_stages", false);
-        auto lap = [&](const char*) {
+        auto finishStage = [&] {
             if (finishStages) g.Finish();
         };
-        lap("volumes (cache)");
+        finishStage();
         const CameraPass& cam = frame.cameraPass();
-        lap("shared camera pass");
+        finishStage();
         const ShadowMap& map = frame.shadowMap(lightIndex, int(settings.number("shadow_map_size", 0.0f)));
-        lap("shared shadow map");
+        finishStage();
 
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
         settings.report(0.3f, "D-buffer pass");
@@ -142,7 +142,7 @@ public:
         draw(penumbra);
         g.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         g.check("drawing the D-buffer");
-        lap("D-buffer pass");
+        finishStage();
 
         // Camera pass: eq. 3 and eq. 4 per pixel.
         settings.report(0.7f, "camera pass");
@@ -165,7 +165,7 @@ public:
         frame.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("drawing the dbuffer camera pass");
-        lap("camera pass");
+        finishStage();
 
         // One read-back per attachment (top row first), split into channels here.
         auto split = [&](const std::vector<glm::vec4>& rgba, int channel) {
@@ -191,7 +191,7 @@ public:
             layers.add("dist_silhouette", split(dist, 3));
         }
         for (auto& [name, img] : layers.items) sanitize(img, name == "V" ? 1.0f : 0.0f);
-        lap("read-back");
+        finishStage();
         settings.report(1.0f, "done");
         return layers;
     }
