@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "gl/texture_pool.h"
 
 namespace ss::gl {
 
@@ -21,14 +22,32 @@ Texture::Texture(int width, int height, GLenum internalFormat, GLenum filter)
     if (width <= 0 || height <= 0 || width > maxSize || height > maxSize)
         fail(SS_ERROR_GL, "texture size " + std::to_string(width) + "x" + std::to_string(height) +
                               " is outside 1.." + std::to_string(maxSize));
-    GLuint id = 0;
-    gl.CreateTextures(GL_TEXTURE_2D, 1, &id);
-    handle_ = Handle<deleteTexture>(id);
-    gl.TextureStorage2D(id, 1, internalFormat, width, height);
+    GLuint id = takePooledTexture(width, height, internalFormat);
+    if (id) {
+        handle_ = Handle<deleteTexture>(id);
+        setCompare(false);  // what a previous owner may have set; filter and wrap follow
+    } else {
+        gl.CreateTextures(GL_TEXTURE_2D, 1, &id);
+        handle_ = Handle<deleteTexture>(id);
+        gl.TextureStorage2D(id, 1, internalFormat, width, height);
+    }
     gl.TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl.TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     setFilter(filter);
     gl.check("creating a texture");
+}
+
+Texture::~Texture() {
+    if (handle_ && current()) poolTexture(handle_.release(), width_, height_, format_);
+}
+
+Texture& Texture::operator=(Texture&& o) noexcept {
+    if (this != &o) {
+        if (handle_ && current()) poolTexture(handle_.release(), width_, height_, format_);
+        handle_ = std::move(o.handle_);
+        width_ = o.width_, height_ = o.height_, format_ = o.format_;
+    }
+    return *this;
 }
 
 void Texture::setFilter(GLenum filter) const {

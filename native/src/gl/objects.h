@@ -28,6 +28,12 @@ public:
     Handle& operator=(const Handle&) = delete;
     GLuint id() const { return id_; }
     explicit operator bool() const { return id_ != 0; }
+    // Gives up the name without deleting it.
+    GLuint release() {
+        GLuint id = id_;
+        id_ = 0;
+        return id;
+    }
     void reset() {
         if (id_ && current()) Delete(id_);
         id_ = 0;
@@ -52,7 +58,12 @@ public:
     Texture() = default;
     // internalFormat: GL_RGBA32F, GL_RG32F, GL_R32F, GL_DEPTH_COMPONENT32F, GL_R32UI, ...
     // filter: GL_NEAREST or GL_LINEAR (32F linear filtering works on llvmpipe).
+    // The storage may be a released texture's of the same size and format (gl/texture_pool.h):
+    // its contents are undefined, as GL leaves new storage.
     Texture(int width, int height, GLenum internalFormat, GLenum filter = GL_NEAREST);
+    ~Texture();
+    Texture(Texture&&) noexcept = default;
+    Texture& operator=(Texture&& o) noexcept;
     GLuint id() const { return handle_.id(); }
     int width() const { return width_; }
     int height() const { return height_; }

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "gl/render_thread.h"
 #include "gl/scratch_targets.h"
+#include "gl/texture_pool.h"
 
 #include <condition_variable>
 #include <exception>
@@ -134,6 +135,7 @@ RenderThread::RenderThread(ss_backend backend) : state_(std::make_shared<State>(
         }
         releaseThreadScratchTargets();
         releaseThreadPrograms();
+        releaseThreadTexturePool();  // last: the targets above return their textures to it
         setCurrent(nullptr);
         ctx->releaseCurrent();
         ctx.reset();
