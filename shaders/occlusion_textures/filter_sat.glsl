@@ -58,10 +58,4 @@ SS_SAT_BOX_CHANNEL(0)
 SS_SAT_BOX_CHANNEL(1)
 SS_SAT_BOX_CHANNEL(2)
 SS_SAT_BOX_CHANNEL(3)
-
-// All four channels (the filter probe's comparison with a brute-force box).
-vec4 boxFilter(int g, vec2 centre, vec2 size) {
-    return vec4(boxFilterChannel0(g, centre, size), boxFilterChannel1(g, centre, size),
-                boxFilterChannel2(g, centre, size), boxFilterChannel3(g, centre, size));
-}
 #endif
