@@ -247,8 +247,10 @@ def reading_notes(work, scenes):
           "- `penumbra_map` draws the whole penumbra outside the hard shadow and darkens it along the paper's "
           "intensity curve, so its RMSE is above `shadow_map`'s by construction (docs/methods/penumbra_map.md); "
           "its lit IoU is where it gains.",
-          "- `occlusion_textures` and `pcss` run at their defaults (8 slices of 512², SAT; 16 blocker and 32 PCF "
-          "samples); `sweep` at 16 light samples, irradiance weights."]
+          "- Our methods run at their defaults (`occlusion_textures` 8 slices of 512², SAT; `pcss` 16 blocker and "
+          "32 PCF samples; `sweep` 16 light samples, irradiance weights) and, as `occlusion_textures-16`, "
+          "`pcss-64` and `sweep-64`, at the next setting a user would try (16 slices; 32 + 64 samples; 64 light "
+          "samples). The image strips show the defaults."]
     for s in scenes:
         opened = open_casters(os.path.join(work, "scenes", s["name"], "scene.json"))
         if opened:

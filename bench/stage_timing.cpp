@@ -27,10 +27,13 @@ gl::RenderThread& glThread() {
 
 // One cold frame: every shared pass drawn afresh, then the method's prepare and render. glFinish
 // after each GL stage, so the time lands on the stage that queued the work (llvmpipe defers).
-Stages runOnce(const Scene& scene, const std::string& method, Layers* keep, double budgetSeconds) {
+Stages runOnce(const Scene& scene, const std::string& method, Layers* keep, double budgetSeconds,
+               const std::map<std::string, std::string>& options, int samples) {
     Stages st;
     std::unique_ptr<Method> m = createMethod(method);
     RenderSettings settings;
+    settings.options = options;
+    settings.samples = samples;
     // V and mask only: what a preview or a compositing pass needs; the debug layers' read-backs
     // would weigh on the methods that have many (dbuffer's four distances cost ~30 ms at 1024²).
     settings.extraLayers = false;

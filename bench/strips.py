@@ -27,6 +27,8 @@ def main():
         rows = []  # (label, file, V channel)
         for path in sorted(glob.glob(os.path.join(work, "ours", scene, "*.exr"))):
             method = os.path.basename(path)[:-4]
+            if "-" in method:
+                continue  # a non-default setting (method-tag): the tables and plots have it
             rows.append((method, path, "ViewLayer.%s_%s.V" % (light, method)))
         rows.append(("reference (default samples)", os.path.join(scene_dir, "reference.exr"),
                      "ViewLayer.%s_reference.V" % light))
