@@ -4,7 +4,6 @@
 // ground plane.
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <map>
 #include <string>
 
@@ -29,9 +28,7 @@ void BM_OcclusionTexturesStages(benchmark::State& state) {
     std::map<std::string, double> ms;
     bench::StageClock clock;
     for (auto _ : state) {
-        auto start = bench::StageClock::Clock::now();
-        bench::sharedRenderer().render(scene, 0, "occlusion_textures", clock.watch(settings), nullptr);
-        state.SetIterationTime(std::chrono::duration<double>(bench::StageClock::Clock::now() - start).count());
+        state.SetIterationTime(clock.render(scene, "occlusion_textures", settings));
         ms["slicing_ms"] += clock.ms("slicing", "pre-filtering");
         ms["prefilter_ms"] += clock.ms("pre-filtering", "shading");
         ms["shading_ms"] += clock.ms("shading", "done");  // includes the read-back

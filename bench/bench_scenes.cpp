@@ -79,6 +79,12 @@ RenderSettings StageClock::watch(const RenderSettings& settings) {
     return s;
 }
 
+double StageClock::render(const Scene& scene, const std::string& method, const RenderSettings& settings) {
+    auto start = Clock::now();
+    sharedRenderer().render(scene, 0, method, watch(settings), nullptr);
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
 double StageClock::ms(const std::string& from, const std::string& to) const {
     auto a = marks.find(from), b = marks.find(to);
     if (a == marks.end() || b == marks.end()) return 0.0;

@@ -37,6 +37,8 @@ struct StageClock {
     using Clock = std::chrono::steady_clock;
     std::map<std::string, Clock::time_point> marks;
     RenderSettings watch(const RenderSettings& settings);
+    // Renders light 0 of `scene` with `method` on the shared renderer, marks recorded; seconds.
+    double render(const Scene& scene, const std::string& method, const RenderSettings& settings);
     // Milliseconds from the mark `from` to the mark `to`.
     double ms(const std::string& from, const std::string& to) const;
 };

@@ -4,8 +4,7 @@
 uniform mat4 worldToLight;  // light-local: x, y in the light plane (kernel light axes), z depth
 uniform vec2 lightHalf;     // half sizes of the kernel rectangle
 uniform float copDistance;  // d: the slicing camera's centre of projection sits d behind the light
-uniform float planes[17];   // sliceCount + 1 depths, increasing
-uniform int sliceCount;
+uniform float planes[17];   // SS_OT_SLICES + 1 depths, increasing (combine.glsl)
 uniform vec2 sliceSize;     // occlusion texture size in texels
 uniform int fadeRule;       // 0: fade in across the next slice (default), 1: the paper's rule
 

@@ -34,7 +34,6 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     program.set("copDistance", setup.d);
     for (int k = 0; k <= setup.count(); ++k)
         program.set(("planes[" + std::to_string(k) + "]").c_str(), setup.planes[size_t(k)]);
-    program.set("sliceCount", setup.count());
     program.set("sliceSize", glm::vec2(float(setup.width), float(setup.height)));
     program.set("fadeRule", fade == Fade::Paper ? 1 : 0);
 
