@@ -40,6 +40,13 @@ ConesSheets buildPenumbraGeometry(const Scene& scene, const ShadowMap& map, floa
     return all;
 }
 
+PenumbraIntensity intensityRule(const RenderSettings& settings) {
+    const std::string rule = settings.text("intensity", "coverage");
+    if (rule == "coverage") return PenumbraIntensity::Coverage;
+    if (rule == "paper") return PenumbraIntensity::Paper;
+    fail(SS_ERROR_INVALID_ARGUMENT, "penumbra_map: intensity must be coverage or paper, not '" + rule + "'");
+}
+
 namespace {
 
 // Cones and sheets on the GPU, kept while the light index and its parameters stay the same
@@ -71,6 +78,7 @@ public:
         cs.coneSegments = int(settings.number("cone_segments", 16.0f));
         if (cs.coneSegments < 3 || cs.coneSegments > 256)
             fail(SS_ERROR_INVALID_ARGUMENT, "penumbra_map: cone_segments must be in 3..256");
+        (void)intensityRule(settings);  // a bad value fails before any GL work
         const float radius = penumbraMapLightRadius(light);
         GpuConesSheets& g = geometry_;
         const Scene& scene = frame.scene();
@@ -127,6 +135,7 @@ public:
             const gl::Program& p = gl::program("penumbra_map/cones.vert.glsl", "penumbra_map/cones.frag.glsl");
             p.use();
             frame.bindShadowMap(p, map, 0);
+            p.set("uIntensityRule", int(intensityRule(settings)));
             api.BindVertexArray(geometry_.vao.id());
             api.DrawElements(GL_TRIANGLES, geometry_.indexCount, GL_UNSIGNED_INT, nullptr);
             api.BindVertexArray(0);
