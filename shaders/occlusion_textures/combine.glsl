@@ -2,15 +2,52 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Visibility = product over slices of (1 - w_k I_k) (paper eq. 5), I_k the box-filtered occlusion
 // of slice k under the light's footprint. Needs lookup_common.glsl and one filter_*.glsl
-// (boxFilterChannel0..3) included before it.
+// included before it. Points already in full umbra (V < 1e-4) skip later slices (their debug
+// value is 0).
 
 // SS_OT_SLICES, the slice count, is a define of the program variant (shading.cpp): llvmpipe runs
-// both sides of an `if` under a lane mask, so with a uniform count every one of the 16 possible
-// slices cost its lookups; with a constant the compiler drops the absent ones. Group and channel
-// are literals in each copy so every sampler-array access is constant (llvmpipe turns a
-// dynamically indexed sampler array into a switch around every fetch) and the SAT filter can
-// gather that channel alone. Points already in full umbra (V < 1e-4) skip later slices (their
-// debug value is 0).
+// both sides of an `if` under a lane mask, so a slice behind an `if` costs its lookups whether
+// or not any pixel needs it. Only a loop stops early, once every lane has left it.
+#if defined(FILTER_SAT)
+// The SAT picks a slice by index, so the lookups sit in one loop over the slices that can shadow
+// the point: weight > 0 and the kernel reaching the slice's occupied texels (ALU only, exact:
+// any other slice's box filters to 0). Most pixels need few; the loop runs as many times as the
+// busiest pixel of its SIMD block needs (and at least once).
+uniform bool skipEmptySlices;  // false only to check that skipping changes nothing (tests)
+
+// Bit k: slice k can shadow the point.
+uint slicesToRead(vec3 local) {
+    uint pending = 0u;
+    for (int k = 0; k < SS_OT_SLICES; ++k) {
+        SliceLookup s = lookupSlice(local, k);
+        if (s.weight > 1e-4 && (!skipEmptySlices || boxMeetsSlice(k, s.centre, s.size))) pending |= 1u << uint(k);
+    }
+    return pending;
+}
+
+// occlusion[g][c] receives w_k I_k of slice k = 4 g + c (the debug layers).
+float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
+    for (int g = 0; g < 4; ++g) occlusion[g] = vec4(0.0);
+    vec3 local = (worldToLight * vec4(world, 1.0)).xyz;
+    uint pending = slicesToRead(local);
+    float visibility = 1.0;
+    while (pending != 0u && visibility >= 1e-4) {
+        int k = findLSB(pending);
+        pending &= pending - 1u;
+        SliceLookup s = lookupSlice(local, k);
+        float I = clamp(boxFilterSlice(k, s.centre, s.size), 0.0, 1.0) * s.weight;
+#if defined(SS_OT_SLICE_LAYERS)
+        occlusion[k >> 2][k & 3] = I;  // a dynamic index costs even when nobody reads the layers
+#endif
+        visibility *= 1.0 - I;
+    }
+    return visibility;
+}
+#else
+// Mipmaps and N-Buffers keep four slices per RGBA texture: group and channel are literals in
+// each copy so every sampler-array access is constant (llvmpipe turns a dynamically indexed
+// sampler array into a switch around every fetch); with the count a constant the compiler
+// drops the absent slices.
 #define SS_OT_SLICE(G, C)                                                                   \
     if (4 * G + C < SS_OT_SLICES && visibility >= 1e-4) {                                   \
         SliceLookup s = lookupSlice(local, 4 * G + C);                                      \
@@ -33,3 +70,4 @@ float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
     SS_OT_GROUP(3)
     return visibility;
 }
+#endif

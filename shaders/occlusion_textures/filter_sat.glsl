@@ -3,7 +3,11 @@
 // Integer corner sums are differenced before the fractional weights (float precision).
 // Compiled only in the FILTER_SAT variant: the three filters share one include list.
 #if defined(FILTER_SAT)
-uniform sampler2D filtered[4];  // per RGBA group: (W + 1) x (H + 1) RGBA32F table
+// One R32F layer per slice, so a slice is picked by index (a coordinate), not by sampler and
+// channel: the shading pass can loop over only the slices that matter (combine.glsl).
+uniform sampler2DArray satTables;  // layer k: slice k's (W + 1) x (H + 1) table
+// Per slice: (min x, min y, max x + 1, max y + 1) of its occupied texels (empty: min > max).
+uniform vec4 sliceBounds[16];
 
 // The box's corners: lo, hi in texels clamped to the table, their cells a, b and fractions.
 struct SatBox {
@@ -12,8 +16,8 @@ struct SatBox {
     float area;
 };
 
-SatBox satBox(int g, vec2 centre, vec2 size) {
-    ivec2 tex = textureSize(filtered[g], 0) - 1;  // W, H
+SatBox satBox(vec2 centre, vec2 size) {
+    ivec2 tex = textureSize(satTables, 0).xy - 1;  // W, H
     vec2 lo = clamp(centre - 0.5 * size, vec2(0.0), vec2(tex));
     vec2 hi = clamp(centre + 0.5 * size, vec2(0.0), vec2(tex));
     SatBox box;
@@ -25,9 +29,9 @@ SatBox satBox(int g, vec2 centre, vec2 size) {
     return box;
 }
 
-// textureGather at the shared corner of texels p and p + 1 returns, for one channel,
+// textureGather at the shared corner of texels p and p + 1 returns
 // (p.x, p.y+1), (p.x+1, p.y+1), (p.x+1, p.y), (p.x, p.y) as x, y, z, w.
-vec2 satGatherAt(int g, ivec2 p) { return (vec2(p) + 1.0) / vec2(textureSize(filtered[g], 0)); }
+vec3 satGatherAt(int k, ivec2 p) { return vec3((vec2(p) + 1.0) / vec2(textureSize(satTables, 0).xy), float(k)); }
 
 // One row of the box: the table's integral along x from lo to hi at rows j (w, z) and j + 1 (x, y)
 // of the gathered corner blocks at a and b. Integer corners are differenced first (precision).
@@ -42,20 +46,27 @@ float satCombine(vec2 lowRows, vec2 highRows, SatBox box) {
     return sum / box.area;
 }
 
-// One channel of the box filter from four gathers (2x2 corner blocks) instead of sixteen RGBA
-// fetches: fetches dominate the shading pass on llvmpipe. textureGather needs its component as a
-// literal, hence one function per channel.
-#define SS_SAT_BOX_CHANNEL(C)                                                                   \
-    float boxFilterChannel##C(int g, vec2 centre, vec2 size) {                                  \
-        SatBox box = satBox(g, centre, size);                                                   \
-        vec4 aa = textureGather(filtered[g], satGatherAt(g, box.a), C);                         \
-        vec4 ba = textureGather(filtered[g], satGatherAt(g, ivec2(box.b.x, box.a.y)), C);       \
-        vec4 ab = textureGather(filtered[g], satGatherAt(g, ivec2(box.a.x, box.b.y)), C);       \
-        vec4 bb = textureGather(filtered[g], satGatherAt(g, box.b), C);                         \
-        return satCombine(satRows(aa, ba, box), satRows(ab, bb, box), box);                     \
-    }
-SS_SAT_BOX_CHANNEL(0)
-SS_SAT_BOX_CHANNEL(1)
-SS_SAT_BOX_CHANNEL(2)
-SS_SAT_BOX_CHANNEL(3)
+// The box filter of slice k from four gathers (2x2 corner blocks) instead of sixteen fetches:
+// fetches dominate the shading pass on llvmpipe.
+float boxFilterSlice(int k, vec2 centre, vec2 size) {
+    SatBox box = satBox(centre, size);
+    vec4 aa = textureGather(satTables, satGatherAt(k, box.a), 0);
+    vec4 ba = textureGather(satTables, satGatherAt(k, ivec2(box.b.x, box.a.y)), 0);
+    vec4 ab = textureGather(satTables, satGatherAt(k, ivec2(box.a.x, box.b.y)), 0);
+    vec4 bb = textureGather(satTables, satGatherAt(k, box.b), 0);
+    return satCombine(satRows(aa, ba, box), satRows(ab, bb, box), box);
+}
+
+// False when the box cannot reach an occupied texel of slice k: its filtered value is exactly 0.
+bool boxMeetsSlice(int k, vec2 centre, vec2 size) {
+    vec4 b = sliceBounds[k];
+    vec2 lo = centre - 0.5 * size, hi = centre + 0.5 * size;
+    return all(lessThan(lo, b.zw)) && all(greaterThan(hi, b.xy));
+}
+
+// The four slices of RGBA group g, as the probe reads every filter.
+float boxFilterChannel0(int g, vec2 centre, vec2 size) { return boxFilterSlice(4 * g + 0, centre, size); }
+float boxFilterChannel1(int g, vec2 centre, vec2 size) { return boxFilterSlice(4 * g + 1, centre, size); }
+float boxFilterChannel2(int g, vec2 centre, vec2 size) { return boxFilterSlice(4 * g + 2, centre, size); }
+float boxFilterChannel3(int g, vec2 centre, vec2 size) { return boxFilterSlice(4 * g + 3, centre, size); }
 #endif

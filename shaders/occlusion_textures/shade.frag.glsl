@@ -12,7 +12,7 @@
 #include "occlusion_textures/filter_mipmap.glsl"
 #include "occlusion_textures/combine.glsl"
 
-layout(location = 0) out vec4 result;  // x = V, y = mask
+layout(location = 0) out vec2 result;  // x = V, y = mask
 layout(location = 1) out vec4 slices0;  // w_k I_k of slices 0..3
 layout(location = 2) out vec4 slices1;
 layout(location = 3) out vec4 slices2;
@@ -24,7 +24,7 @@ void main() {
     bool reached = s.receives && lightReaches(s.position, s.normal);
     float visibility = 1.0;
     if (reached) visibility = clamp(sliceVisibility(s.position, occlusion), 0.0, 1.0);
-    result = vec4(visibility, reached ? 1.0 : 0.0, 0.0, 1.0);
+    result = vec2(visibility, reached ? 1.0 : 0.0);
     slices0 = occlusion[0];
     slices1 = occlusion[1];
     slices2 = occlusion[2];

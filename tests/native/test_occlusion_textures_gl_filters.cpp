@@ -3,6 +3,7 @@
 // Each N-Buffer level against the brute-force 2^l box, mipmaps within a stated tolerance of SAT.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -88,6 +89,46 @@ TEST_F(GlFilters, SatEqualsBruteForceBoxOnAllFourChannels) {
     // less in practice. Stated bound: 1e-3 (measured ~1e-5).
     EXPECT_LT(worst, 1e-3);
     std::printf("GL SAT worst |error| vs brute force: %.2e\n", worst);
+}
+
+TEST_F(GlFilters, SatKeepsEachSlicesOccupiedBoundsAndAPartialGroup) {
+    // Six slices: a full group, then slices 4 (one small block) and 5 (empty) in a half group.
+    auto planes = packedOcclusion();
+    Plane block(kW, kH), empty(kW, kH);
+    for (int j = 20; j <= 33; ++j)
+        for (int i = 7; i <= 40; ++i) block.at(i, j) = 1.0f;
+    std::vector<Plane> second = {block, empty, empty, empty};
+    auto queries = randomQueries(200, 2);
+    std::vector<glm::vec4> bounds;
+    std::vector<glm::vec4> gpu;
+    thread().run([&] {
+        auto slices = occlusion::makeSliceTextures(kW, kH, 6, false);
+        occlusion::uploadGroup(slices, 0, interleave(planes));
+        occlusion::uploadGroup(slices, 1, interleave(second));
+        auto filtered = occlusion::prefilter(Filter::Sat, slices);
+        bounds = filtered.bounds;
+        gpu = occlusion::probeFilter(filtered, 1, queries);
+    });
+    for (int k = 0; k < 5; ++k) {
+        const Plane& p = k < 4 ? planes[size_t(k)] : block;
+        int lo[2] = {kW, kH}, hi[2] = {-1, -1};
+        for (int j = 0; j < kH; ++j)
+            for (int i = 0; i < kW; ++i)
+                if (p.at(i, j) > 0.0f) lo[0] = std::min(lo[0], i), lo[1] = std::min(lo[1], j),
+                                       hi[0] = std::max(hi[0], i), hi[1] = std::max(hi[1], j);
+        SCOPED_TRACE("slice " + std::to_string(k));
+        EXPECT_EQ(bounds[size_t(k)], glm::vec4(lo[0], lo[1], hi[0] + 1, hi[1] + 1));
+    }
+    EXPECT_EQ(bounds[4], glm::vec4(7, 20, 41, 34));
+    ASSERT_EQ(bounds.size(), 6u);
+    EXPECT_GT(bounds[5].x, bounds[5].z) << "slice 5 is empty: min above max";
+    double worst = 0.0;
+    for (size_t q = 0; q < queries.size(); ++q) {
+        glm::vec4 b = queries[q];
+        double brute = filters::boxBrute(block, b.x - b.z / 2, b.y - b.w / 2, b.x + b.z / 2, b.y + b.w / 2);
+        worst = std::max({worst, std::abs(brute - double(gpu[q].x)), std::abs(double(gpu[q].y))});
+    }
+    EXPECT_LT(worst, 1e-3);
 }
 
 TEST_F(GlFilters, NBufferLevelsEqualBruteForceBoxes) {

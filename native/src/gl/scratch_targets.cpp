@@ -16,8 +16,15 @@ struct Scratch {
     std::unique_ptr<Framebuffer> target;
 };
 
+struct ScratchArray {
+    int width = 0, height = 0, layers = 0;
+    GLenum format = 0;
+    Handle<deleteTexture> texture;
+};
+
 // Per render thread: GL objects belong to that thread's context.
 thread_local std::map<std::string, Scratch>* tScratch = nullptr;
+thread_local std::map<std::string, ScratchArray>* tArrays = nullptr;
 
 }  // namespace
 
@@ -33,9 +40,31 @@ Framebuffer& scratchFramebuffer(const std::string& purpose, int width, int heigh
     return *s.target;
 }
 
+GLuint scratchTextureArray(const std::string& purpose, int width, int height, int layers, GLenum format) {
+    if (!tArrays) tArrays = new std::map<std::string, ScratchArray>();
+    ScratchArray& a = (*tArrays)[purpose];
+    if (!a.texture || a.width != width || a.height != height || a.layers != layers || a.format != format) {
+        a.texture = Handle<deleteTexture>();
+        const Functions& gl = api();
+        GLuint id = 0;
+        gl.CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+        a.texture = Handle<deleteTexture>(id);
+        gl.TextureStorage3D(id, 1, format, width, height, layers);
+        gl.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl.TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        gl.TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        gl.check("creating a scratch texture array");
+        a.width = width, a.height = height, a.layers = layers, a.format = format;
+    }
+    return a.texture.id();
+}
+
 void releaseThreadScratchTargets() {
     delete tScratch;
     tScratch = nullptr;
+    delete tArrays;
+    tArrays = nullptr;
 }
 
 }  // namespace ss::gl

@@ -16,6 +16,10 @@ namespace ss::gl {
 Framebuffer& scratchFramebuffer(const std::string& purpose, int width, int height,
                                 const std::vector<GLenum>& colorFormats, GLenum depthFormat = 0);
 
+// A 2D array texture (one level, NEAREST, CLAMP_TO_EDGE) for `purpose`, kept the same way: a
+// compute pass's output that is rebuilt every frame.
+GLuint scratchTextureArray(const std::string& purpose, int width, int height, int layers, GLenum format);
+
 // Deletes this thread's scratch targets (the render thread calls it before its context dies).
 void releaseThreadScratchTargets();
 

@@ -31,12 +31,17 @@ struct SliceTextures {
 };
 SliceTextures makeSliceTextures(int width, int height, int count, bool withMipmaps);
 
-// Pre-filtered textures, one per group, bound to the shaders' `filtered[4]` samplers.
+// Pre-filtered textures. Mipmaps and N-Buffers: one per group, bound to the shaders'
+// `filtered[4]` samplers. SAT: one array texture, layer k = slice k's table, bound to
+// `satTables`, and each slice's occupied texels found while building it.
 struct FilteredSlices {
     Filter filter = Filter::NBuffer;
-    GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_2D_ARRAY for N-Buffers
+    GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_2D_ARRAY for N-Buffers and SAT
     std::vector<TextureHandle> owned;  // SAT tables and N-Buffers (mipmaps live in the slices)
     std::vector<GLuint> textures;
+    // SAT only, per slice: (min x, min y, max x + 1, max y + 1) of its occupied texels in texel
+    // units; an empty slice has min > max.
+    std::vector<glm::vec4> bounds;
 };
 
 FilteredSlices prefilterMipmap(const SliceTextures& slices);
@@ -44,8 +49,9 @@ FilteredSlices prefilterSat(const SliceTextures& slices);
 FilteredSlices prefilterNBuffer(const SliceTextures& slices);
 FilteredSlices prefilter(Filter filter, const SliceTextures& slices);
 
-// Points `filtered[0..3]` of `program` at the groups (units firstUnit..firstUnit+3); unused
-// entries repeat group 0 so every sampler is valid.
+// Points `filtered[0..3]` of `program` at the groups (units firstUnit..firstUnit+3; unused
+// entries repeat group 0 so every sampler is valid), or for SAT `satTables` at the table array
+// (unit firstUnit).
 void bindFiltered(const gl::Program& program, const FilteredSlices& filtered, int firstUnit);
 
 // Reads every level of one group texture back (tests and debug): RGBA floats, row 0 first.

@@ -34,7 +34,8 @@ public:
     // Settings: slices (1..16, default 8), resolution (long side of the occlusion textures,
     // default 512), filter (mipmap | nbuffer | sat, default sat: exact and the fastest on llvmpipe), thin_fix (on: every
     // mesh; default off: only meshes flagged SS_MESH_THIN), fade (below | paper),
-    // finish_stages (benchmark: glFinish at each stage so the progress marks time the GPU).
+    // finish_stages (benchmark: glFinish at each stage so the progress marks time the GPU),
+    // skip_empty_slices (SAT; default on, off only for the test that shows it is exact).
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
         int sliceCount = integerSetting(settings, "slices", 8);
@@ -42,6 +43,8 @@ public:
         occlusion::Filter filter = occlusion::parseFilter(settings.text("filter", "sat"));
         occlusion::Fade fade = parseFade(settings.text("fade", "below"));
         bool thinFixAll = settings.flag("thin_fix", false);
+        // Tests only: shade every slice, to show that skipping the empty ones changes nothing.
+        bool skipEmptySlices = settings.flag("skip_empty_slices", true);
         // The benchmark's per-stage times: wait for the GPU at each stage boundary.
         bool finishStages = settings.flag("finish_stages", false);
         auto stage = [&](float fraction, const char* name) {
@@ -56,7 +59,8 @@ public:
         stage(0.4f, "pre-filtering");
         occlusion::FilteredSlices filtered = occlusion::prefilter(filter, slices);
         stage(0.6f, "shading");
-        occlusion::ShadeOutput out = occlusion::shade(frame, lightIndex, setup, filtered, fade, settings.extraLayers);
+        occlusion::ShadeOutput out = occlusion::shade(frame, lightIndex, setup, filtered, fade, settings.extraLayers,
+                                                      skipEmptySlices);
         stage(1.0f, "done");
 
         Layers layers;

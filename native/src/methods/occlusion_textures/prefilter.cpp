@@ -68,6 +68,10 @@ FilteredSlices prefilter(Filter filter, const SliceTextures& slices) {
 }
 
 void bindFiltered(const gl::Program& program, const FilteredSlices& filtered, int firstUnit) {
+    if (filtered.filter == Filter::Sat) {
+        program.setTexture("satTables", firstUnit, filtered.textures[0], GL_TEXTURE_2D_ARRAY);
+        return;
+    }
     static const char* names[4] = {"filtered[0]", "filtered[1]", "filtered[2]", "filtered[3]"};
     for (int g = 0; g < 4; ++g) {
         GLuint tex = filtered.textures[size_t(std::min(g, int(filtered.textures.size()) - 1))];

@@ -1,44 +1,70 @@
 // How occlusion_textures pre-filters with summed-area tables (two compute passes).
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Running sums along rows, then down columns, into a (W+1) x (H+1) RGBA32F table per group of
-// four slices.
+// Running sums along rows (four slices at once, RGBA), then down columns into a (W+1) x (H+1)
+// R32F table per slice (the layers of one array texture, so shading can pick a slice by index),
+// plus each slice's occupied-texel bounds.
+#include <climits>
+
+#include "gl/scratch_targets.h"
 #include "methods/occlusion_textures/gl.h"
 
 namespace ss::occlusion {
+
+namespace {
+constexpr GLuint kSliceBoundsBinding = 2;  // prefilter_sat_rows.comp.glsl
+}
 
 FilteredSlices prefilterSat(const SliceTextures& slices) {
     const gl::Functions& gl = gl::api();
     FilteredSlices f;
     f.filter = Filter::Sat;
-    f.target = GL_TEXTURE_2D;
+    f.target = GL_TEXTURE_2D_ARRAY;
     gl::ProgramDesc rowsDesc, columnsDesc;
     rowsDesc.compute = "occlusion_textures/prefilter_sat_rows.comp.glsl";
     columnsDesc.compute = "occlusion_textures/prefilter_sat_columns.comp.glsl";
     const gl::Program& rows = gl::program(rowsDesc);
     const gl::Program& columns = gl::program(columnsDesc);
-    int tw = slices.width + 1, th = slices.height + 1;
-    for (const TextureHandle& group : slices.groups) {
-        GLuint id = 0;
-        gl.CreateTextures(GL_TEXTURE_2D, 1, &id);
-        f.owned.emplace_back(id);
-        f.textures.push_back(id);
-        gl.TextureStorage2D(id, 1, GL_RGBA32F, tw, th);
-        gl.TextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        gl.TextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        gl.TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        gl.TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const int tw = slices.width + 1, th = slices.height + 1, layers = slices.count;
 
+    // Kept between frames (gl/scratch_targets.h): fresh storage costs page faults on llvmpipe.
+    const GLuint id = gl::scratchTextureArray("occlusion_textures.sat", tw, th, layers, GL_R32F);
+    f.textures.push_back(id);
+
+    // Empty until the row pass finds a texel: min = INT_MAX, max = -1.
+    std::vector<int> empty;  // then the bounds found
+    for (int k = 0; k < layers; ++k) empty.insert(empty.end(), {INT_MAX, INT_MAX, -1, -1});
+    gl::BufferHandle bounds = gl::makeBuffer(empty.data(), empty.size() * sizeof(int));
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kSliceBoundsBinding, bounds.id());
+
+    // The row sums of one group at a time, four slices per texel (one store per texel).
+    gl::Texture rowSums(tw, th, GL_RGBA32F);
+    for (int g = 0; g < slices.groupCount(); ++g) {
         rows.use();
-        rows.setTexture("slices", 0, group.id());
-        gl.BindImageTexture(0, id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        rows.setTexture("slices", 0, slices.groups[size_t(g)].id());
+        rows.set("firstSlice", 4 * g);
+        gl.BindImageTexture(0, rowSums.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         gl.DispatchCompute(GLuint((th + 63) / 64), 1, 1);
         gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         columns.use();
-        gl.BindImageTexture(0, id, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        columns.set("firstSlice", 4 * g);
+        columns.set("sliceCount", layers);
+        gl.BindImageTexture(0, rowSums.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        gl.BindImageTexture(1, id, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
         gl.DispatchCompute(GLuint((tw + 63) / 64), 1, 1);
-        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+        gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                     GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.BindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
     gl.BindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    // Shading reads the bounds as uniforms (a constant-index uniform is a broadcast, a buffer
+    // read a per-pixel gather on llvmpipe); shading waits for these passes anyway.
+    gl.GetNamedBufferSubData(bounds.id(), 0, GLsizeiptr(empty.size() * sizeof(int)), empty.data());
+    for (int k = 0; k < layers; ++k) {
+        const int* b = &empty[size_t(4 * k)];
+        f.bounds.push_back(b[0] > b[2] ? glm::vec4(1e30f, 1e30f, -1e30f, -1e30f)
+                                       : glm::vec4(float(b[0]), float(b[1]), float(b[2] + 1), float(b[3] + 1)));
+    }
     gl.check("building summed-area tables");
     return f;
 }
