@@ -16,11 +16,13 @@
 uniform bool skipEmptySlices;  // false only to check that skipping changes nothing (tests)
 
 // Bit k: slice k can shadow the point.
-uint slicesToRead(vec3 local) {
+uint slicesToRead(SlicePoint p) {
     uint pending = 0u;
     for (int k = 0; k < SS_OT_SLICES; ++k) {
-        SliceLookup s = lookupSlice(local, k);
-        if (s.weight > 1e-4 && (!skipEmptySlices || boxMeetsSlice(k, s.centre, s.size))) pending |= 1u << uint(k);
+        SliceLookup s = lookupSlice(p, k);
+        // Bitwise, not && and ||: those become branches, and branches cost both sides here.
+        uint use = uint(s.weight > 1e-4) & (uint(boxMeetsSlice(k, s.centre, s.size)) | uint(!skipEmptySlices));
+        pending |= use << uint(k);
     }
     return pending;
 }
@@ -28,13 +30,13 @@ uint slicesToRead(vec3 local) {
 // occlusion[g][c] receives w_k I_k of slice k = 4 g + c (the debug layers).
 float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
     for (int g = 0; g < 4; ++g) occlusion[g] = vec4(0.0);
-    vec3 local = (worldToLight * vec4(world, 1.0)).xyz;
-    uint pending = slicesToRead(local);
+    SlicePoint p = slicePoint((worldToLight * vec4(world, 1.0)).xyz);
+    uint pending = slicesToRead(p);
     float visibility = 1.0;
     while (pending != 0u && visibility >= 1e-4) {
         int k = findLSB(pending);
         pending &= pending - 1u;
-        SliceLookup s = lookupSlice(local, k);
+        SliceLookup s = lookupSlice(p, k);
         float I = clamp(boxFilterSlice(k, s.centre, s.size), 0.0, 1.0) * s.weight;
 #if defined(SS_OT_SLICE_LAYERS)
         occlusion[k >> 2][k & 3] = I;  // a dynamic index costs even when nobody reads the layers
@@ -50,7 +52,7 @@ float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
 // drops the absent slices.
 #define SS_OT_SLICE(G, C)                                                                   \
     if (4 * G + C < SS_OT_SLICES && visibility >= 1e-4) {                                   \
-        SliceLookup s = lookupSlice(local, 4 * G + C);                                      \
+        SliceLookup s = lookupSlice(p, 4 * G + C);                                          \
         if (s.weight > 0.0) {                                                               \
             float I = clamp(boxFilterChannel##C(G, s.centre, s.size), 0.0, 1.0) * s.weight; \
             occlusion[G][C] = I;                                                            \
@@ -62,7 +64,7 @@ float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
 // occlusion[g][c] receives w_k I_k of slice k = 4 g + c (the debug layers).
 float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
     for (int g = 0; g < 4; ++g) occlusion[g] = vec4(0.0);
-    vec3 local = (worldToLight * vec4(world, 1.0)).xyz;
+    SlicePoint p = slicePoint((worldToLight * vec4(world, 1.0)).xyz);
     float visibility = 1.0;
     SS_OT_GROUP(0)
     SS_OT_GROUP(1)

@@ -12,18 +12,32 @@ uniform int fadeRule;       // 0: fade in across the next slice (default), 1: th
 uniform vec4 sliceDepths[16];
 uniform vec4 sliceScales[16];
 
+// The shaded point as every slice lookup needs it (computed once per point).
+struct SlicePoint {
+    vec2 xyOverZ;  // light-local x, y over depth
+    float z;       // light-local depth
+    float invZ;
+};
+
+SlicePoint slicePoint(vec3 local) {
+    SlicePoint p;
+    p.z = local.z;
+    p.invZ = 1.0 / max(local.z, 1e-20);
+    p.xyOverZ = local.xy * p.invZ;
+    return p;
+}
+
 struct SliceLookup {
     vec2 centre;  // texels
     vec2 size;    // texels, full kernel width and height
     float weight;
 };
 
-SliceLookup lookupSlice(vec3 local, int k) {
+SliceLookup lookupSlice(SlicePoint p, int k) {
     vec4 depths = sliceDepths[k], scales = sliceScales[k];
-    float z = local.z, invZ = 1.0 / max(z, 1e-20);
     SliceLookup s;
-    s.weight = z <= 0.0 ? 0.0 : clamp((z - (fadeRule == 1 ? depths.x : depths.y)) * depths.z, 0.0, 1.0);
-    s.centre = local.xy * invZ * scales.xy + 0.5 * sliceSize;
-    s.size = abs(z - depths.y) * invZ * scales.zw;
+    s.weight = p.z <= 0.0 ? 0.0 : clamp((p.z - (fadeRule == 1 ? depths.x : depths.y)) * depths.z, 0.0, 1.0);
+    s.centre = p.xyOverZ * scales.xy + 0.5 * sliceSize;
+    s.size = abs(p.z - depths.y) * p.invZ * scales.zw;
     return s;
 }

@@ -114,6 +114,23 @@ Image Framebuffer::readChannel(int index, int channel) const {
     return flipRowsToImage(glRows.data(), width_, height_, 1, 0);
 }
 
+std::vector<Image> Framebuffer::readChannels(int index, int count) const {
+    const Functions& gl = api();
+    static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    if (count < 1 || count > 4) fail(SS_ERROR_INTERNAL, "channel count must be 1..4");
+    std::vector<float> glRows(size_t(width_) * height_ * size_t(count));
+    gl.NamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0 + index);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadnPixels(0, 0, width_, height_, formats[count - 1], GL_FLOAT, GLsizei(glRows.size() * sizeof(float)),
+                   glRows.data());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.check("reading back colour channels");
+    std::vector<Image> out;
+    for (int c = 0; c < count; ++c) out.push_back(flipRowsToImage(glRows.data(), width_, height_, count, c));
+    return out;
+}
+
 Image Framebuffer::readDepth() const {
     const Functions& gl = api();
     std::vector<float> glRows(size_t(width_) * height_);

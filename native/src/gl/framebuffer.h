@@ -44,6 +44,8 @@ public:
     std::vector<glm::vec4> readRgba(int index) const;
     // One channel (0..3) of colour attachment i as an Image, top row first.
     Image readChannel(int index, int channel) const;
+    // Channels 0..count-1 (count 1..4) of colour attachment i from one read-back, top row first.
+    std::vector<Image> readChannels(int index, int count) const;
     // The depth attachment's [0,1] window depth as an Image, top row first.
     Image readDepth() const;
 

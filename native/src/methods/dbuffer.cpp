@@ -176,8 +176,9 @@ public:
         Layers layers;
         if (!settings.extraLayers) {
             // Two channels read alone: half the bytes of the whole attachment.
-            layers.add("V", out.readChannel(0, 0));
-            layers.add("mask", out.readChannel(0, 1));
+            std::vector<Image> vm = out.readChannels(0, 2);
+            layers.add("V", std::move(vm[0]));
+            layers.add("mask", std::move(vm[1]));
         } else {
             std::vector<glm::vec4> result = out.readRgba(0);
             layers.add("V", split(result, 0));

@@ -39,6 +39,7 @@ struct FilteredSlices {
     GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_2D_ARRAY for N-Buffers and SAT
     std::vector<TextureHandle> owned;  // SAT tables and N-Buffers (mipmaps live in the slices)
     std::vector<GLuint> textures;
+    int width = 0, height = 0;  // of the slices (SAT tables are one texel larger)
     // SAT only, per slice: (min x, min y, max x + 1, max y + 1) of its occupied texels in texel
     // units; an empty slice has min > max.
     std::vector<glm::vec4> bounds;

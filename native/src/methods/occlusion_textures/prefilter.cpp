@@ -45,7 +45,7 @@ SliceTextures makeSliceTextures(int width, int height, int count, bool withMipma
         GLuint id = 0;
         gl.CreateTextures(GL_TEXTURE_2D, 1, &id);
         s.groups.emplace_back(id);
-        gl.TextureStorage2D(id, levels, GL_RGBA16F, width, height);
+        gl.TextureStorage2D(id, levels, withMipmaps ? GL_RGBA16F : GL_RGBA8, width, height);
         // Outside the slicing frustum nothing occludes: sample the border as 0.
         gl.TextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
         gl.TextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
@@ -70,6 +70,9 @@ FilteredSlices prefilter(Filter filter, const SliceTextures& slices) {
 void bindFiltered(const gl::Program& program, const FilteredSlices& filtered, int firstUnit) {
     if (filtered.filter == Filter::Sat) {
         program.setTexture("satTables", firstUnit, filtered.textures[0], GL_TEXTURE_2D_ARRAY);
+        for (size_t k = 0; k < filtered.bounds.size(); ++k)
+            program.set(("sliceBounds[" + std::to_string(k) + "]").c_str(), filtered.bounds[k]);
+        program.set("satTexel", 1.0f / glm::vec2(float(filtered.width + 1), float(filtered.height + 1)));
         return;
     }
     static const char* names[4] = {"filtered[0]", "filtered[1]", "filtered[2]", "filtered[3]"};

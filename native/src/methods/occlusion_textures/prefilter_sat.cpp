@@ -19,6 +19,8 @@ FilteredSlices prefilterSat(const SliceTextures& slices) {
     FilteredSlices f;
     f.filter = Filter::Sat;
     f.target = GL_TEXTURE_2D_ARRAY;
+    f.width = slices.width;
+    f.height = slices.height;
     gl::ProgramDesc rowsDesc, columnsDesc;
     rowsDesc.compute = "occlusion_textures/prefilter_sat_rows.comp.glsl";
     columnsDesc.compute = "occlusion_textures/prefilter_sat_columns.comp.glsl";
@@ -44,7 +46,7 @@ FilteredSlices prefilterSat(const SliceTextures& slices) {
         rows.set("firstSlice", 4 * g);
         gl.BindImageTexture(0, rowSums.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         gl.DispatchCompute(GLuint((th + 63) / 64), 1, 1);
-        gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         columns.use();
         columns.set("firstSlice", 4 * g);
         columns.set("sliceCount", layers);

@@ -40,8 +40,6 @@ void setShadingUniforms(Frame& frame, const gl::Program& program, int lightIndex
         program.set(("sliceDepths" + index).c_str(), glm::vec4(top, bottom, 1.0f / (bottom - top), 0.0f));
         program.set(("sliceScales" + index).c_str(),
                     glm::vec4(bottom * project * 0.5f * texels / lightHalf, project * texels));
-        if (filtered.filter == Filter::Sat)
-            program.set(("sliceBounds" + index).c_str(), filtered.bounds[size_t(k)]);
     }
     program.set("sliceSize", texels);
     program.set("skipEmptySlices", skipEmptySlices ? 1 : 0);
@@ -68,8 +66,9 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     gl.check("shading occlusion_textures");
 
     ShadeOutput out;
-    out.visibility = target.readChannel(0, 0);
-    out.mask = target.readChannel(0, 1);
+    std::vector<Image> vm = target.readChannels(0, 2);
+    out.visibility = std::move(vm[0]);
+    out.mask = std::move(vm[1]);
     for (int k = 0; k < (sliceLayers ? setup.count() : 0); ++k) out.slices.push_back(target.readChannel(1 + k / 4, k % 4));
     return out;
 }
