@@ -15,12 +15,29 @@
 // busiest pixel of its SIMD block needs (and at least once).
 uniform bool skipEmptySlices;  // false only to check that skipping changes nothing (tests)
 
+// The classifying pass's test (shading.cpp): false only where no slice can shadow the point. One
+// box that holds every non-empty slice's kernel box (centres between the extreme slices' and the
+// largest half size) against the union of their bounds, so one test stands for sixteen.
+uniform vec4 reachRect;   // union of the non-empty slices' bounds, texels (min xy, max xy)
+uniform vec4 reachScale;  // the smallest and largest centre scales (sliceScales.xy): min xy, max xy
+uniform vec4 reachDepth;  // (depth a weight starts above, smallest bottom, largest bottom, unused)
+uniform vec2 reachHalf;   // the largest half-size scale (sliceScales.zw / 2)
+
+bool maySliceShadow(vec3 world) {
+    SlicePoint p = slicePoint((worldToLight * vec4(world, 1.0)).xyz);
+    vec2 a = p.xyOverZ * reachScale.xy, b = p.xyOverZ * reachScale.zw;
+    vec2 centreLo = min(a, b) + 0.5 * sliceSize, centreHi = max(a, b) + 0.5 * sliceSize;
+    vec2 half_ = max(abs(p.z - reachDepth.y), abs(p.z - reachDepth.z)) * p.invZ * reachHalf;
+    return p.z > reachDepth.x && all(bvec4(lessThan(centreLo - half_, reachRect.zw), greaterThan(centreHi + half_, reachRect.xy)));
+}
+
 // Bit k: slice k can shadow the point.
 uint slicesToRead(SlicePoint p) {
     uint pending = 0u;
     for (int k = 0; k < SS_OT_SLICES; ++k) {
         SliceLookup s = lookupSlice(p, k);
-        // Bitwise, not && and ||: those become branches, and branches cost both sides here.
+        // Bitwise, not && and ||: those become branches, and branches cost both sides here. The
+        // 1e-4 is also in shading.cpp (setReachUniforms).
         uint use = uint(s.weight > 1e-4) & (uint(boxMeetsSlice(k, s.centre, s.size)) | uint(!skipEmptySlices));
         pending |= use << uint(k);
     }

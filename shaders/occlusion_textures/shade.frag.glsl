@@ -12,6 +12,14 @@
 #include "occlusion_textures/filter_mipmap.glsl"
 #include "occlusion_textures/combine.glsl"
 
+// With the SAT the pass runs twice (shading.cpp): SS_OT_CLASSIFY writes every pixel as lit and
+// marks in depth the pixels some slice may shadow (one test, maySliceShadow); the full pass then
+// runs behind an early depth test on those alone. llvmpipe skips a pixel block whose depth
+// test fails everywhere, where a branch or a discard inside the shader skips nothing.
+#if defined(FILTER_SAT) && !defined(SS_OT_CLASSIFY)
+layout(early_fragment_tests) in;
+#endif
+
 layout(location = 0) out vec2 result;  // x = V, y = mask
 layout(location = 1) out vec4 slices0;  // w_k I_k of slices 0..3
 layout(location = 2) out vec4 slices1;
@@ -23,7 +31,11 @@ void main() {
     vec4 occlusion[4] = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
     bool reached = s.receives && lightReaches(s.position, s.normal);
     float visibility = 1.0;
+#if defined(SS_OT_CLASSIFY)
+    gl_FragDepth = reached && maySliceShadow(s.position) ? 0.0 : 1.0;
+#else
     if (reached) visibility = clamp(sliceVisibility(s.position, occlusion), 0.0, 1.0);
+#endif
     result = vec2(visibility, reached ? 1.0 : 0.0);
     slices0 = occlusion[0];
     slices1 = occlusion[1];

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // One full-screen pass reading the pre-filtered slices, V and mask in one target, the per-slice
 // shadows in four more.
+#include <algorithm>
 #include <string>
 
 #include "gl/framebuffer.h"
@@ -14,14 +15,50 @@ namespace ss::occlusion {
 
 namespace {
 
-const gl::Program& shadingProgram(Filter filter, int sliceCount, bool sliceLayers) {
+const gl::Program& shadingProgram(Filter filter, int sliceCount, bool sliceLayers, bool classify) {
     gl::ProgramDesc desc;
     desc.vertex = "common/fullscreen.vert.glsl";
     desc.fragment = "occlusion_textures/shade.frag.glsl";
     // The slice count as a constant: see combine.glsl (one program variant per count in use).
     desc.defines = {filterDefine(filter), "SS_OT_SLICES=" + std::to_string(sliceCount)};
     if (sliceLayers) desc.defines.push_back("SS_OT_SLICE_LAYERS");
+    if (classify) desc.defines.push_back("SS_OT_CLASSIFY");
     return gl::program(desc);
+}
+
+// The classifying pass's bounds over every non-empty slice (combine.glsl, maySliceShadow).
+void setReachUniforms(const gl::Program& program, const SliceSetup& setup, const FilteredSlices& filtered, Fade fade,
+                      bool skipEmptySlices) {
+    const glm::vec2 texels(float(setup.width), float(setup.height));
+    const glm::vec2 lightHalf(setup.light.halfX, setup.light.halfY);
+    glm::vec4 rect(1e30f, 1e30f, -1e30f, -1e30f), scale(1e30f, 1e30f, -1e30f, -1e30f);
+    glm::vec4 depth(1e30f, 1e30f, -1e30f, 0.0f);
+    glm::vec2 half(0.0f);
+    for (int k = 0; k < setup.count(); ++k) {
+        const glm::vec4& b = filtered.bounds[size_t(k)];
+        const float top = setup.planes[size_t(k)], bottom = setup.planes[size_t(k) + 1];
+        // Left out: empty slices, and slices below every receiver, whose weight stays under the
+        // 1e-4 that slicesToRead asks for at any receiver (e.g. the ground's own slice; 1e-6 of
+        // the depth for the G-buffer's rounding).
+        const float start = fade == Fade::Paper ? top : bottom;
+        const bool belowReceivers = start >= setup.receiverDepthMax * (1.0f + 1e-6f) - 1e-4f * (bottom - top);
+        if (b.x > b.z || belowReceivers) continue;
+        const float project = setup.d / (setup.d + bottom);
+        const glm::vec2 centreScale = bottom * project * 0.5f * texels / lightHalf;
+        rect = glm::vec4(glm::min(glm::vec2(rect), glm::vec2(b)), glm::max(glm::vec2(rect.z, rect.w), glm::vec2(b.z, b.w)));
+        scale = glm::vec4(glm::min(glm::vec2(scale), centreScale), glm::max(glm::vec2(scale.z, scale.w), centreScale));
+        depth = glm::vec4(std::min(depth.x, fade == Fade::Paper ? top : bottom), std::min(depth.y, bottom),
+                          std::max(depth.z, bottom), 0.0f);
+        half = glm::max(half, 0.5f * project * texels);
+    }
+    if (!skipEmptySlices) {  // every pixel goes to the full pass
+        rect = glm::vec4(-1e30f, -1e30f, 1e30f, 1e30f);
+        depth.x = -1e30f;
+    }
+    program.set("reachRect", rect);
+    program.set("reachScale", scale);
+    program.set("reachDepth", depth);
+    program.set("reachHalf", half);
 }
 
 void setShadingUniforms(Frame& frame, const gl::Program& program, int lightIndex, const SliceSetup& setup,
@@ -43,6 +80,7 @@ void setShadingUniforms(Frame& frame, const gl::Program& program, int lightIndex
     }
     program.set("sliceSize", texels);
     program.set("skipEmptySlices", skipEmptySlices ? 1 : 0);
+    if (filtered.filter == Filter::Sat) setReachUniforms(program, setup, filtered, fade, skipEmptySlices);
     program.set("fadeRule", fade == Fade::Paper ? 1 : 0);
 }
 
@@ -56,12 +94,27 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     // V and mask in an RG target (half the bytes to write and read back), the slices in RGBA.
     std::vector<GLenum> formats(size_t(1 + groups), GL_RGBA32F);
     formats[0] = GL_RG32F;
-    gl::Framebuffer& target = gl::scratchFramebuffer("occlusion_textures.shading", camera.width, camera.height, formats);
+    const bool classify = filtered.filter == Filter::Sat;
+    gl::Framebuffer& target = gl::scratchFramebuffer("occlusion_textures.shading", camera.width, camera.height,
+                                                     formats, classify ? GL_DEPTH_COMPONENT32F : 0);
     target.bind();
     gl::apply(gl::states::overwrite);
-    const gl::Program& program = shadingProgram(filtered.filter, setup.count(), sliceLayers);
+    if (classify) {
+        // Every pixel lit, depth 0 where a slice may shadow it (shade.frag.glsl)...
+        const gl::Program& marks = shadingProgram(filtered.filter, setup.count(), sliceLayers, true);
+        setShadingUniforms(frame, marks, lightIndex, setup, filtered, fade, skipEmptySlices);
+        gl.Enable(GL_DEPTH_TEST);
+        gl.DepthFunc(GL_ALWAYS);
+        gl.DepthMask(GL_TRUE);
+        frame.drawFullscreen();
+        // ...then the full pass there only: its triangle lies at depth 0.5.
+        gl.DepthFunc(GL_GREATER);
+        gl.DepthMask(GL_FALSE);
+    }
+    const gl::Program& program = shadingProgram(filtered.filter, setup.count(), sliceLayers, false);
     setShadingUniforms(frame, program, lightIndex, setup, filtered, fade, skipEmptySlices);
     frame.drawFullscreen();
+    gl::apply(gl::states::overwrite);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.check("shading occlusion_textures");
 

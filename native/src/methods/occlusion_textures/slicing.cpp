@@ -85,7 +85,7 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
         fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: resolution = " + std::to_string(resolution) +
                                             " is outside 16..4096");
     const float inf = std::numeric_limits<float>::infinity();
-    float zAllMax = 0.0f, zCastMin = inf, zCastMax = 0.0f;
+    float zAllMax = 0.0f, zCastMin = inf, zCastMax = 0.0f, zReceiveMax = 0.0f;
     float d = inf;
     for (const Mesh& mesh : scene.meshes()) {
         if (!mesh.casts() && !mesh.receives()) continue;
@@ -94,6 +94,7 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
             if (q.z <= 0.0f) continue;
             zAllMax = std::max(zAllMax, q.z);
             if (mesh.casts()) zCastMin = std::min(zCastMin, q.z), zCastMax = std::max(zCastMax, q.z);
+            if (mesh.receives()) zReceiveMax = std::max(zReceiveMax, q.z);
             // Inside the frustum when |x| <= a (z + d) / d, i.e. d <= a z / (|x| - a).
             if (std::abs(q.x) > light.halfX) d = std::min(d, light.halfX * q.z / (std::abs(q.x) - light.halfX));
             if (std::abs(q.y) > light.halfY) d = std::min(d, light.halfY * q.z / (std::abs(q.y) - light.halfY));
@@ -105,6 +106,7 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
     SliceSetup s;
     s.light = light;
     s.d = std::clamp(d, dMin, std::max(dMin, 4.0f * zAllMax));
+    s.receiverDepthMax = zReceiveMax;
     // Vertices touching the light plane would make the first slice start at 0 depth; keep a
     // thin gap so the slicing camera's near plane stays positive.
     float z0 = std::max(zCastMin, 1e-4f * zCastMax);

@@ -37,6 +37,7 @@ struct SliceSetup {
     std::vector<float> planes;   // count + 1 depths below the light plane, increasing
     int width = 256, height = 256;  // occlusion texture size (aspect of the light)
     glm::mat4 worldToClip{1.0f};    // the slicing camera (COP) for the slicing pass
+    float receiverDepthMax = 0.0f;  // the deepest receiving vertex in front of the light
     int count() const { return int(planes.size()) - 1; }
     // Slice holding depth z (clamped to the range).
     int sliceOf(float z) const;
