@@ -1,7 +1,7 @@
 // How occlusion_textures shades the shared camera G-buffer.
 // SPDX-License-Identifier: GPL-3.0-or-later
-// One full-screen pass reading the pre-filtered slices, V and mask in one target, the per-slice
-// shadows in four more.
+// A full-screen pass reading the pre-filtered slices, V and mask in one target, the per-slice
+// shadows in four more; with the SAT, behind a classifying pass that marks the pixels to shade.
 #include <algorithm>
 #include <string>
 
@@ -47,8 +47,7 @@ void setReachUniforms(const gl::Program& program, const SliceSetup& setup, const
         const glm::vec2 centreScale = bottom * project * 0.5f * texels / lightHalf;
         rect = glm::vec4(glm::min(glm::vec2(rect), glm::vec2(b)), glm::max(glm::vec2(rect.z, rect.w), glm::vec2(b.z, b.w)));
         scale = glm::vec4(glm::min(glm::vec2(scale), centreScale), glm::max(glm::vec2(scale.z, scale.w), centreScale));
-        depth = glm::vec4(std::min(depth.x, fade == Fade::Paper ? top : bottom), std::min(depth.y, bottom),
-                          std::max(depth.z, bottom), 0.0f);
+        depth = glm::vec4(std::min(depth.x, start), std::min(depth.y, bottom), std::max(depth.z, bottom), 0.0f);
         half = glm::max(half, 0.5f * project * texels);
     }
     if (!skipEmptySlices) {  // every pixel goes to the full pass
