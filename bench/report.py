@@ -247,7 +247,8 @@ def reading_notes(work, scenes):
           "- `penumbra_map` draws the whole penumbra outside the hard shadow (its umbra is the hard shadow, "
           "too big by construction); by default it shades it with the share of the light disk seen past the "
           "edge, and `penumbra_map-paper` with the paper's 3I² − 2I³, which is too dark: its RMSE is above "
-          "`shadow_map`'s (docs/methods/penumbra_map.md).",
+          "`shadow_map`'s (docs/methods/penumbra_map.md). Under an occluder smaller than the light "
+          "(small_occluder) both keep a black hard shadow where the truth has no umbra.",
           "- Our methods run at their defaults (`occlusion_textures` 8 slices of 512², SAT; `pcss` 16 blocker and "
           "32 PCF samples; `sweep` 16 light samples, irradiance weights) and, as `occlusion_textures-16`, "
           "`pcss-64` and `sweep-64`, at the next setting a user would try (16 slices; 32 + 64 samples; 64 light "
