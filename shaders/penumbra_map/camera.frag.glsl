@@ -7,6 +7,20 @@
 
 uniform sampler2D uPenumbraMap;  // R32F, same texel grid as the shadow map
 
+// The penumbra map where P falls. Right at the hard edge P's own texel can hold the occluder
+// (the texel is larger than the edge's offset; the hard test, from the normal-offset point,
+// still finds P lit): no cone fragment survives there, it reads 1 and would draw a lit seam along
+// the hard shadow. Then the darkest of the eight neighbours is the ramp's start.
+float penumbraAt(vec3 P, ivec2 texel) {
+    float pm = texelFetch(uPenumbraMap, texel, 0).r;
+    bool ownTexelOccluded = texelFetch(uShadowDistance, texel, 0).r < shadowDistanceOf(P) * (1.0 - 1e-3);
+    if (pm < 1.0 || !ownTexelOccluded) return pm;
+    ivec2 last = textureSize(uPenumbraMap, 0) - 1;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) pm = min(pm, texelFetch(uPenumbraMap, clamp(texel + ivec2(dx, dy), ivec2(0), last), 0).r);
+    return pm;
+}
+
 layout(location = 0) out vec4 oResult;  // V, mask, hard shadow (0/1), penumbra map value
 
 void main() {
@@ -17,7 +31,7 @@ void main() {
     // surface); the hard-shadow test uses the normal-offset point against acne.
     vec2 uv;
     bool inMap = shadowMapUv(s.position, uv);
-    float pm = inMap ? texelFetch(uPenumbraMap, shadowTexel(uv), 0).r : 1.0;
+    float pm = inMap ? penumbraAt(s.position, shadowTexel(uv)) : 1.0;
     oResult.w = pm;
     if (!s.receives || !lightReaches(s.position, s.normal)) return;
     oResult.y = 1.0;
