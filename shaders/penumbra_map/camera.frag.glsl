@@ -7,14 +7,21 @@
 
 uniform sampler2D uPenumbraMap;  // R32F, same texel grid as the shadow map
 
-// The penumbra map where P falls. Right at the hard edge P's own texel can hold the occluder
-// (the texel is larger than the edge's offset; the hard test, from the normal-offset point,
-// still finds P lit): no cone fragment survives there, it reads 1 and would draw a lit seam along
-// the hard shadow. Then the darkest of the eight neighbours is the ramp's start.
+// The penumbra map where P falls, when P's own texel holds P's own surface. Along a silhouette
+// the texel can hold another surface, one more than 10 % nearer or farther from the light (within
+// that, it is P's own surface, sampled at the texel's centre; grazing surfaces vary that much):
+// - the occluder, right at the hard edge (the texel is wider than P's offset from the edge; the
+//   hard test, from the normal-offset point, still finds P lit). No cone fragment survives over
+//   it, it reads 1 and drew a lit seam along every hard shadow: the darkest of the eight
+//   neighbours, the ramp's start, is used instead;
+// - a surface behind P, when P is on an occluder's own rim (a curved occluder at its terminator,
+//   seen from the light): the value is that surface's penumbra, which starts right there, and
+//   painted the rim with the ramp's start. P is in front of that surface and its ramp: lit.
 float penumbraAt(vec3 P, ivec2 texel) {
     float pm = texelFetch(uPenumbraMap, texel, 0).r;
-    bool ownTexelOccluded = texelFetch(uShadowDistance, texel, 0).r < shadowDistanceOf(P) * (1.0 - 1e-3);
-    if (pm < 1.0 || !ownTexelOccluded) return pm;
+    float stored = texelFetch(uShadowDistance, texel, 0).r, own = shadowDistanceOf(P);
+    if (stored > own * 1.1) return 1.0;
+    if (pm < 1.0 || stored >= own * 0.9) return pm;
     ivec2 last = textureSize(uPenumbraMap, 0) - 1;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) pm = min(pm, texelFetch(uPenumbraMap, clamp(texel + ivec2(dx, dy), ivec2(0), last), 0).r);
