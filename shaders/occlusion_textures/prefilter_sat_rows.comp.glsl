@@ -8,6 +8,7 @@ layout(local_size_x = 64) in;
 
 uniform sampler2D slices;  // one RGBA group of occlusion textures, W x H
 uniform int firstSlice;    // 4 * group: channel c is slice firstSlice + c
+uniform int sliceCount;    // slices in all (a last group may use fewer than four channels)
 layout(rgba32f, binding = 0) uniform writeonly image2D rowSums;  // (W + 1) x (H + 1)
 // Per slice: min x, min y, max x, max y of its occupied texels (empty: min > max).
 layout(std430, binding = 2) buffer SliceBounds { int bounds[]; };
@@ -30,7 +31,7 @@ void main() {
         }
         imageStore(rowSums, ivec2(i, j), sum);
     }
-    for (int c = 0; c < 4; ++c) {
+    for (int c = 0; c < min(4, sliceCount - firstSlice); ++c) {
         if (last[c] < 0) continue;
         int k = 4 * (firstSlice + c);
         atomicMin(bounds[k + 0], first[c]);

@@ -33,11 +33,12 @@ SliceTextures makeSliceTextures(int width, int height, int count, bool withMipma
 
 // Pre-filtered textures. Mipmaps and N-Buffers: one per group, bound to the shaders'
 // `filtered[4]` samplers. SAT: one array texture, layer k = slice k's table, bound to
-// `satTables`, and each slice's occupied texels found while building it.
+// `satTables`, and each slice's occupied texels found while building it; the array is the render
+// thread's scratch texture (gl/scratch_targets.h), valid until the next prefilterSat there.
 struct FilteredSlices {
     Filter filter = Filter::NBuffer;
     GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_2D_ARRAY for N-Buffers and SAT
-    std::vector<TextureHandle> owned;  // SAT tables and N-Buffers (mipmaps live in the slices)
+    std::vector<TextureHandle> owned;  // N-Buffers (mipmaps live in the slices, SAT tables in scratch)
     std::vector<GLuint> textures;
     int width = 0, height = 0;  // of the slices (SAT tables are one texel larger)
     // SAT only, per slice: (min x, min y, max x + 1, max y + 1) of its occupied texels in texel

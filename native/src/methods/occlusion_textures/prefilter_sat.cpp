@@ -32,11 +32,11 @@ FilteredSlices prefilterSat(const SliceTextures& slices) {
     const GLuint id = gl::scratchTextureArray("occlusion_textures.sat", tw, th, layers, GL_R32F);
     f.textures.push_back(id);
 
-    // Empty until the row pass finds a texel: min = INT_MAX, max = -1.
-    std::vector<int> empty;  // then the bounds found
-    for (int k = 0; k < layers; ++k) empty.insert(empty.end(), {INT_MAX, INT_MAX, -1, -1});
-    gl::BufferHandle bounds = gl::makeBuffer(empty.data(), empty.size() * sizeof(int));
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kSliceBoundsBinding, bounds.id());
+    // Per slice min x, min y, max x, max y: empty (min > max) until the row pass finds a texel.
+    std::vector<int> bounds;
+    for (int k = 0; k < layers; ++k) bounds.insert(bounds.end(), {INT_MAX, INT_MAX, -1, -1});
+    gl::BufferHandle boundsBuffer = gl::makeBuffer(bounds.data(), bounds.size() * sizeof(int));
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kSliceBoundsBinding, boundsBuffer.id());
 
     // The row sums of one group at a time, four slices per texel (one store per texel).
     gl::Texture rowSums(tw, th, GL_RGBA32F);
@@ -44,6 +44,7 @@ FilteredSlices prefilterSat(const SliceTextures& slices) {
         rows.use();
         rows.setTexture("slices", 0, slices.groups[size_t(g)].id());
         rows.set("firstSlice", 4 * g);
+        rows.set("sliceCount", layers);
         gl.BindImageTexture(0, rowSums.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         gl.DispatchCompute(GLuint((th + 63) / 64), 1, 1);
         gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -61,9 +62,9 @@ FilteredSlices prefilterSat(const SliceTextures& slices) {
     gl.BindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     // Shading reads the bounds as uniforms (a constant-index uniform is a broadcast, a buffer
     // read a per-pixel gather on llvmpipe); shading waits for these passes anyway.
-    gl.GetNamedBufferSubData(bounds.id(), 0, GLsizeiptr(empty.size() * sizeof(int)), empty.data());
+    gl.GetNamedBufferSubData(boundsBuffer.id(), 0, GLsizeiptr(bounds.size() * sizeof(int)), bounds.data());
     for (int k = 0; k < layers; ++k) {
-        const int* b = &empty[size_t(4 * k)];
+        const int* b = &bounds[size_t(4 * k)];
         f.bounds.push_back(b[0] > b[2] ? glm::vec4(1e30f, 1e30f, -1e30f, -1e30f)
                                        : glm::vec4(float(b[0]), float(b[1]), float(b[2] + 1), float(b[3] + 1)));
     }
