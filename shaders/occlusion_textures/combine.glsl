@@ -8,11 +8,7 @@
 // SS_OT_SLICES, the slice count, is a define of the program variant (shading.cpp): llvmpipe runs
 // both sides of an `if` under a lane mask, so a slice behind an `if` costs its lookups whether
 // or not any pixel needs it. Only a loop stops early, once every lane has left it.
-#if defined(FILTER_SAT)
-// The SAT picks a slice by index, so the lookups sit in one loop over the slices that can shadow
-// the point: weight > 0 and the kernel reaching the slice's occupied texels (ALU only, exact:
-// any other slice's box filters to 0). Most pixels need few; the loop runs as many times as the
-// busiest pixel of its SIMD block needs (and at least once).
+
 uniform bool skipEmptySlices;  // false only to check that skipping changes nothing (tests)
 
 // The classifying pass's test (shading.cpp): false only where no slice can shadow the point. One
@@ -22,14 +18,25 @@ uniform vec4 reachRect;   // union of the non-empty slices' bounds, texels (min 
 uniform vec4 reachScale;  // the smallest and largest centre scales (sliceScales.xy): min xy, max xy
 uniform vec4 reachDepth;  // (depth a weight starts above, smallest bottom, largest bottom, unused)
 uniform vec2 reachHalf;   // the largest half-size scale (sliceScales.zw / 2)
+// How far the filter reads past its box: half size x factor + texels, the larger half size on
+// both axes when isotropic (1) (a mipmap level or N-Buffer square spans the box's short side
+// whatever the long one).
+uniform vec3 reachSpread; // (factor, texels, isotropic)
 
 bool maySliceShadow(vec3 world) {
     SlicePoint p = slicePoint((worldToLight * vec4(world, 1.0)).xyz);
     vec2 a = p.xyOverZ * reachScale.xy, b = p.xyOverZ * reachScale.zw;
     vec2 centreLo = min(a, b) + 0.5 * sliceSize, centreHi = max(a, b) + 0.5 * sliceSize;
     vec2 half_ = max(abs(p.z - reachDepth.y), abs(p.z - reachDepth.z)) * p.invZ * reachHalf;
+    half_ = mix(half_, vec2(max(half_.x, half_.y)), reachSpread.z) * reachSpread.x + reachSpread.y;
     return p.z > reachDepth.x && all(bvec4(lessThan(centreLo - half_, reachRect.zw), greaterThan(centreHi + half_, reachRect.xy)));
 }
+
+#if defined(FILTER_SAT)
+// The SAT picks a slice by index, so the lookups sit in one loop over the slices that can shadow
+// the point: weight > 0 and the kernel reaching the slice's occupied texels (ALU only, exact:
+// any other slice's box filters to 0). Most pixels need few; the loop runs as many times as the
+// busiest pixel of its SIMD block needs (and at least once).
 
 // Bit k: slice k can shadow the point.
 uint slicesToRead(SlicePoint p) {
@@ -70,7 +77,7 @@ float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
 #define SS_OT_SLICE(G, C)                                                                   \
     if (4 * G + C < SS_OT_SLICES && visibility >= 1e-4) {                                   \
         SliceLookup s = lookupSlice(p, 4 * G + C);                                          \
-        if (s.weight > 0.0) {                                                               \
+        if (s.weight > 1e-4) {                                                              \
             float I = clamp(boxFilterChannel##C(G, s.centre, s.size), 0.0, 1.0) * s.weight; \
             occlusion[G][C] = I;                                                            \
             visibility *= 1.0 - I;                                                          \

@@ -4,14 +4,11 @@
 // Only inside the group's occupied bounds: elsewhere the table is 0 or repeats its edge, and
 // lookups clamp their boxes to each slice's bounds (filter_sat.glsl), so nothing reads it.
 #version 450 core
+#include "occlusion_textures/slice_bounds.glsl"
 layout(local_size_x = 64) in;
 
-uniform int firstSlice;  // 4 * group
-uniform int sliceCount;  // the table's layers
 layout(rgba32f, binding = 0) uniform readonly image2D rowSums;
 layout(r32f, binding = 1) uniform writeonly image2DArray table;  // (W + 1) x (H + 1) x sliceCount
-// Per slice: min x, min y, max x, max y of its occupied texels (empty: min > max).
-layout(std430, binding = 2) readonly buffer SliceBounds { int bounds[]; };
 
 void main() {
     int channels = min(4, sliceCount - firstSlice);

@@ -12,11 +12,11 @@
 #include "occlusion_textures/filter_mipmap.glsl"
 #include "occlusion_textures/combine.glsl"
 
-// With the SAT the pass runs twice (shading.cpp): SS_OT_CLASSIFY writes every pixel as lit and
-// marks in depth the pixels some slice may shadow (one test, maySliceShadow); the full pass then
-// runs behind an early depth test on those alone. llvmpipe skips a pixel block whose depth
-// test fails everywhere, where a branch or a discard inside the shader skips nothing.
-#if defined(FILTER_SAT) && !defined(SS_OT_CLASSIFY)
+// The pass runs twice (shading.cpp): SS_OT_CLASSIFY writes every pixel as lit and marks in depth
+// the pixels some slice may shadow (one test, maySliceShadow); the full pass then runs behind an
+// early depth test on those alone. llvmpipe skips a pixel block whose depth test fails
+// everywhere, where a branch or a discard inside the shader skips nothing.
+#if !defined(SS_OT_CLASSIFY)
 layout(early_fragment_tests) in;
 #endif
 

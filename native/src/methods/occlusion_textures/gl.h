@@ -33,18 +33,24 @@ SliceTextures makeSliceTextures(int width, int height, int count, bool withMipma
 
 // Pre-filtered textures. Mipmaps and N-Buffers: one per group, bound to the shaders'
 // `filtered[4]` samplers. SAT: one array texture, layer k = slice k's table, bound to
-// `satTables`, and each slice's occupied texels found while building it; the array is the render
-// thread's scratch texture (gl/scratch_targets.h), valid until the next prefilterSat there.
+// `satTables`; the array is the render thread's scratch texture (gl/scratch_targets.h), valid
+// until the next prefilterSat there. Every filter also has each slice's occupied texels.
 struct FilteredSlices {
     Filter filter = Filter::NBuffer;
     GLenum target = GL_TEXTURE_2D;  // GL_TEXTURE_2D_ARRAY for N-Buffers and SAT
     std::vector<TextureHandle> owned;  // N-Buffers (mipmaps live in the slices, SAT tables in scratch)
     std::vector<GLuint> textures;
     int width = 0, height = 0;  // of the slices (SAT tables are one texel larger)
-    // SAT only, per slice: (min x, min y, max x + 1, max y + 1) of its occupied texels in texel
-    // units; an empty slice has min > max.
+    // Per slice: (min x, min y, max x + 1, max y + 1) of its occupied texels in texel units; an
+    // empty slice has min > max.
     std::vector<glm::vec4> bounds;
 };
+
+// The slices' occupied bounds: a storage buffer the scans fill (slice_bounds.glsl; made bound
+// for them), its read-back, and a scan of its own for the filters that do not scan every texel.
+gl::BufferHandle makeSliceBoundsBuffer(int count);
+std::vector<glm::vec4> readSliceBounds(const gl::BufferHandle& buffer, int count);
+std::vector<glm::vec4> findSliceBounds(const SliceTextures& slices);
 
 FilteredSlices prefilterMipmap(const SliceTextures& slices);
 FilteredSlices prefilterSat(const SliceTextures& slices);

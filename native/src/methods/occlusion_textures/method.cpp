@@ -35,7 +35,7 @@ public:
     // default 512), filter (mipmap | nbuffer | sat, default sat: exact and the fastest on llvmpipe), thin_fix (on: every
     // mesh; default off: only meshes flagged SS_MESH_THIN), fade (below | paper),
     // finish_stages (benchmark: glFinish at each stage so the progress marks time the GPU),
-    // skip_empty_slices (SAT; default on, off only for the test that shows it is exact).
+    // skip_empty_slices (default on; off only for the test that shows it is exact).
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
         int sliceCount = integerSetting(settings, "slices", 8);

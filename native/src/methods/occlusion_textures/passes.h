@@ -23,8 +23,8 @@ struct ShadeOutput {
     Image visibility, mask;
     std::vector<Image> slices;  // camera-aligned w_k I_k, when requested
 };
-// skipEmptySlices (SAT): leave out the slices whose occupied texels the kernel misses (exact;
-// off only to show that in a test).
+// skipEmptySlices: leave out the pixels and (SAT) the slices whose occupied texels no kernel
+// reaches (exact; off only to show that in a test).
 ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const FilteredSlices& filtered,
                   Fade fade, bool sliceLayers, bool skipEmptySlices);
 

@@ -59,12 +59,10 @@ SliceTextures makeSliceTextures(int width, int height, int count, bool withMipma
 }
 
 FilteredSlices prefilter(Filter filter, const SliceTextures& slices) {
-    switch (filter) {
-        case Filter::Mipmap: return prefilterMipmap(slices);
-        case Filter::NBuffer: return prefilterNBuffer(slices);
-        case Filter::Sat: return prefilterSat(slices);
-    }
-    return prefilterNBuffer(slices);
+    if (filter == Filter::Sat) return prefilterSat(slices);  // its row pass finds the bounds
+    FilteredSlices f = filter == Filter::Mipmap ? prefilterMipmap(slices) : prefilterNBuffer(slices);
+    f.bounds = findSliceBounds(slices);
+    return f;
 }
 
 void bindFiltered(const gl::Program& program, const FilteredSlices& filtered, int firstUnit) {

@@ -3,16 +3,10 @@
 // Running sums along rows (four slices at once, RGBA), then down columns into a (W+1) x (H+1)
 // R32F table per slice (the layers of one array texture, so shading can pick a slice by index),
 // plus each slice's occupied-texel bounds.
-#include <climits>
-
 #include "gl/scratch_targets.h"
 #include "methods/occlusion_textures/gl.h"
 
 namespace ss::occlusion {
-
-namespace {
-constexpr GLuint kSliceBoundsBinding = 2;  // prefilter_sat_rows.comp.glsl
-}
 
 FilteredSlices prefilterSat(const SliceTextures& slices) {
     const gl::Functions& gl = gl::api();
@@ -32,11 +26,7 @@ FilteredSlices prefilterSat(const SliceTextures& slices) {
     const GLuint id = gl::scratchTextureArray("occlusion_textures.sat", tw, th, layers, GL_R32F);
     f.textures.push_back(id);
 
-    // Per slice min x, min y, max x, max y: empty (min > max) until the row pass finds a texel.
-    std::vector<int> bounds;
-    for (int k = 0; k < layers; ++k) bounds.insert(bounds.end(), {INT_MAX, INT_MAX, -1, -1});
-    gl::BufferHandle boundsBuffer = gl::makeBuffer(bounds.data(), bounds.size() * sizeof(int));
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, kSliceBoundsBinding, boundsBuffer.id());
+    gl::BufferHandle bounds = makeSliceBoundsBuffer(layers);
 
     // The row sums of one group at a time, four slices per texel (one store per texel).
     gl::Texture rowSums(tw, th, GL_RGBA32F);
@@ -62,12 +52,7 @@ FilteredSlices prefilterSat(const SliceTextures& slices) {
     gl.BindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     // Shading reads the bounds as uniforms (a constant-index uniform is a broadcast, a buffer
     // read a per-pixel gather on llvmpipe); shading waits for these passes anyway.
-    gl.GetNamedBufferSubData(boundsBuffer.id(), 0, GLsizeiptr(bounds.size() * sizeof(int)), bounds.data());
-    for (int k = 0; k < layers; ++k) {
-        const int* b = &bounds[size_t(4 * k)];
-        f.bounds.push_back(b[0] > b[2] ? glm::vec4(1e30f, 1e30f, -1e30f, -1e30f)
-                                       : glm::vec4(float(b[0]), float(b[1]), float(b[2] + 1), float(b[3] + 1)));
-    }
+    f.bounds = readSliceBounds(bounds, layers);
     gl.check("building summed-area tables");
     return f;
 }

@@ -1,7 +1,7 @@
 // How occlusion_textures shades the shared camera G-buffer.
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A full-screen pass reading the pre-filtered slices, V and mask in one target, the per-slice
-// shadows in four more; with the SAT, behind a classifying pass that marks the pixels to shade.
+// shadows in four more, behind a classifying pass that marks the pixels to shade.
 #include <algorithm>
 #include <string>
 
@@ -58,6 +58,14 @@ void setReachUniforms(const gl::Program& program, const SliceSetup& setup, const
     program.set("reachScale", scale);
     program.set("reachDepth", depth);
     program.set("reachHalf", half);
+    // The SAT reads its box exactly. An N-Buffer lookup reads squares of up to twice the short side
+    // S around probes spread over the long side L, bilinearly: within L/2 + S + 1 <= 3 L/2 + 1.
+    // A mipmap lookup reads 2x2 texels of a level up to 2 max(S, L/16) wide around each probe:
+    // within L/2 + 2L = 5 L/2 (filter_nbuffer.glsl, filter_mipmap.glsl).
+    glm::vec3 spread(1.0f, 0.0f, 0.0f);
+    if (filtered.filter == Filter::NBuffer) spread = glm::vec3(3.0f, 2.0f, 1.0f);
+    if (filtered.filter == Filter::Mipmap) spread = glm::vec3(5.0f, 2.0f, 1.0f);
+    program.set("reachSpread", spread);
 }
 
 void setShadingUniforms(Frame& frame, const gl::Program& program, int lightIndex, const SliceSetup& setup,
@@ -79,7 +87,7 @@ void setShadingUniforms(Frame& frame, const gl::Program& program, int lightIndex
     }
     program.set("sliceSize", texels);
     program.set("skipEmptySlices", skipEmptySlices ? 1 : 0);
-    if (filtered.filter == Filter::Sat) setReachUniforms(program, setup, filtered, fade, skipEmptySlices);
+    setReachUniforms(program, setup, filtered, fade, skipEmptySlices);
     program.set("fadeRule", fade == Fade::Paper ? 1 : 0);
 }
 
@@ -93,23 +101,20 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     // V and mask in an RG target (half the bytes to write and read back), the slices in RGBA.
     std::vector<GLenum> formats(size_t(1 + groups), GL_RGBA32F);
     formats[0] = GL_RG32F;
-    const bool classify = filtered.filter == Filter::Sat;
     gl::Framebuffer& target = gl::scratchFramebuffer("occlusion_textures.shading", camera.width, camera.height,
-                                                     formats, classify ? GL_DEPTH_COMPONENT32F : 0);
+                                                     formats, GL_DEPTH_COMPONENT32F);
     target.bind();
     gl::apply(gl::states::overwrite);
-    if (classify) {
-        // Every pixel lit, depth 0 where a slice may shadow it (shade.frag.glsl)...
-        const gl::Program& marks = shadingProgram(filtered.filter, setup.count(), sliceLayers, true);
-        setShadingUniforms(frame, marks, lightIndex, setup, filtered, fade, skipEmptySlices);
-        gl.Enable(GL_DEPTH_TEST);
-        gl.DepthFunc(GL_ALWAYS);
-        gl.DepthMask(GL_TRUE);
-        frame.drawFullscreen();
-        // ...then the full pass there only: its triangle lies at depth 0.5.
-        gl.DepthFunc(GL_GREATER);
-        gl.DepthMask(GL_FALSE);
-    }
+    // Every pixel lit, depth 0 where a slice may shadow it (shade.frag.glsl)...
+    const gl::Program& marks = shadingProgram(filtered.filter, setup.count(), sliceLayers, true);
+    setShadingUniforms(frame, marks, lightIndex, setup, filtered, fade, skipEmptySlices);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_ALWAYS);
+    gl.DepthMask(GL_TRUE);
+    frame.drawFullscreen();
+    // ...then the full pass there only: its triangle lies at depth 0.5.
+    gl.DepthFunc(GL_GREATER);
+    gl.DepthMask(GL_FALSE);
     const gl::Program& program = shadingProgram(filtered.filter, setup.count(), sliceLayers, false);
     setShadingUniforms(frame, program, lightIndex, setup, filtered, fade, skipEmptySlices);
     frame.drawFullscreen();
