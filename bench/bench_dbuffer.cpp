@@ -6,7 +6,6 @@
 // (BM_Foundation times those).
 #include <benchmark/benchmark.h>
 
-#include <map>
 #include <string>
 
 #include "bench_scenes.h"
@@ -27,15 +26,9 @@ void BM_DbufferStages(benchmark::State& state) {
     settings.options = {{"finish_stages", "1"}};
     // Shared passes and programs drawn once (a frame's other methods would share them).
     bench::sharedRenderer().render(scene, 0, "dbuffer", settings, nullptr);
-    std::map<std::string, double> ms;
-    bench::StageClock clock;
-    for (auto _ : state) {
-        state.SetIterationTime(clock.render(scene, "dbuffer", settings));
-        // finish_stages: glFinish before each mark, so each span is that stage's GPU work.
-        ms["dbuffer_pass_ms"] += clock.ms("D-buffer pass", "camera pass");
-        ms["camera_pass_readback_ms"] += clock.ms("camera pass", "done");
-    }
-    for (auto& [k, v] : ms) state.counters[k] = v / double(state.iterations());
+    // finish_stages: glFinish before each mark, so each span is that stage's GPU work.
+    bench::timeStages(state, scene, "dbuffer", settings,
+                      {{"dbuffer_pass_ms", "D-buffer pass", "camera pass"}, {"camera_pass_readback_ms", "camera pass", "done"}});
     state.counters["triangles"] = double(4 * m * m);
     state.counters["silhouettes_ms"] = geo->silhouetteMs;
     state.counters["extrusion_ms"] = geo->extrusionMs;

@@ -4,7 +4,6 @@
 // ground plane.
 #include <benchmark/benchmark.h>
 
-#include <map>
 #include <string>
 
 #include "bench_scenes.h"
@@ -25,15 +24,10 @@ void BM_OcclusionTexturesStages(benchmark::State& state) {
                         {"filter", filters[state.range(3)]},
                         {"finish_stages", "1"}};
     bench::sharedRenderer().render(scene, 0, "occlusion_textures", settings, nullptr);  // warm: passes, programs
-    std::map<std::string, double> ms;
-    bench::StageClock clock;
-    for (auto _ : state) {
-        state.SetIterationTime(clock.render(scene, "occlusion_textures", settings));
-        ms["slicing_ms"] += clock.ms("slicing", "pre-filtering");
-        ms["prefilter_ms"] += clock.ms("pre-filtering", "shading");
-        ms["shading_ms"] += clock.ms("shading", "done");  // includes the read-back
-    }
-    for (auto& [k, v] : ms) state.counters[k] = v / double(state.iterations());
+    bench::timeStages(state, scene, "occlusion_textures", settings,
+                      {{"slicing_ms", "slicing", "pre-filtering"},
+                       {"prefilter_ms", "pre-filtering", "shading"},
+                       {"shading_ms", "shading", "done"}});  // shading includes the read-back
     state.SetLabel(filters[state.range(3)]);
 }
 

@@ -91,4 +91,15 @@ double StageClock::ms(const std::string& from, const std::string& to) const {
     return std::chrono::duration<double, std::milli>(b->second - a->second).count();
 }
 
+void timeStages(benchmark::State& state, const Scene& scene, const std::string& method,
+                const RenderSettings& settings, const std::vector<StageSpan>& spans) {
+    std::map<std::string, double> ms;
+    StageClock clock;
+    for (auto _ : state) {
+        state.SetIterationTime(clock.render(scene, method, settings));
+        for (const StageSpan& span : spans) ms[span.name] += clock.ms(span.from, span.to);
+    }
+    for (auto& [name, total] : ms) state.counters[name] = total / double(state.iterations());
+}
+
 }  // namespace ss::bench

@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
+#include <benchmark/benchmark.h>
 #include <glm/glm.hpp>
 
 #include "core/light.h"
@@ -42,5 +44,16 @@ struct StageClock {
     // Milliseconds from the mark `from` to the mark `to`.
     double ms(const std::string& from, const std::string& to) const;
 };
+
+// A span between two progress marks, reported as the counter `name` (ms, mean over iterations).
+struct StageSpan {
+    const char* name;
+    const char* from;
+    const char* to;
+};
+// The benchmark loop of a stage benchmark: each iteration renders light 0 of `scene` (manual
+// time) and the spans' means become counters.
+void timeStages(benchmark::State& state, const Scene& scene, const std::string& method,
+                const RenderSettings& settings, const std::vector<StageSpan>& spans);
 
 }  // namespace ss::bench
