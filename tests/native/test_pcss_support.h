@@ -1,11 +1,14 @@
 // How the pcss and penumbra_map tests render a method and the reference on the shared scenes.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <map>
 #include <string>
 
+#include "core/error.h"
 #include "core/image.h"
 #include "io/metrics.h"
 #include "io/png_preview.h"
@@ -30,6 +33,19 @@ inline Layers renderWith(const Scene& scene, const std::string& method,
     s.options = options;
     s.samples = samples;
     return sharedRenderer().render(scene, light, method, s, nullptr);
+}
+
+// Expects rendering `method` with `options` to fail with SS_ERROR_INVALID_ARGUMENT and a message
+// naming `setting`.
+inline void expectSettingRefused(const Scene& scene, const std::string& method,
+                                 const std::map<std::string, std::string>& options, const std::string& setting) {
+    try {
+        renderWith(scene, method, options);
+        ADD_FAILURE() << method << ": a bad " << setting << " was accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.status(), SS_ERROR_INVALID_ARGUMENT);
+        EXPECT_NE(std::string(e.what()).find(setting), std::string::npos) << e.what();
+    }
 }
 
 // The reference at 256 samples: its own noise (sd <= 0.5/sqrt(256) = 0.03 per pixel, less
