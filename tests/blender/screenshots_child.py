@@ -70,6 +70,10 @@ def step():
         view3d.type = "NODE_EDITOR"
         view3d.ui_type = "CompositorNodeTree"
     elif s == 5:
+        editor = view3d.spaces.active
+        editor.show_region_ui = False  # the sidebar would hide the final output node
+        if hasattr(editor, "show_region_asset_shelf"):
+            editor.show_region_asset_shelf = False
         region = next(r for r in view3d.regions if r.type == "WINDOW")
         with bpy.context.temp_override(window=win, area=view3d, region=region):
             bpy.ops.node.view_all()
