@@ -14,7 +14,7 @@
 #include "geometry/silhouette.h"
 #include "io/metrics.h"
 #include "io/png_preview.h"
-#include "methods/dbuffer_geometry.h"
+#include "methods/dbuffer/geometry.h"
 #include "methods/method.h"
 #include "pipeline/renderer.h"
 #include "softshadow/softshadow.h"

@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 #include "io/metrics.h"
-#include "methods/dbuffer_geometry.h"
+#include "methods/dbuffer/geometry.h"
 #include "methods/method.h"
 #include "pipeline/renderer.h"
 #include "softshadow/softshadow.h"

@@ -10,7 +10,7 @@
 
 #include "filters/box_filter.h"
 #include "gl/render_thread.h"
-#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/prefilter.h"
 
 namespace ss {
 namespace {

@@ -11,7 +11,7 @@
 #include "capi/capi_internal.h"
 #include "core/error.h"
 #include "io/metrics.h"
-#include "methods/sweep_shadow.h"
+#include "methods/sweep/shadow.h"
 #include "pipeline/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"

@@ -6,7 +6,7 @@
 
 #include "capi/capi_internal.h"
 #include "methods/method.h"
-#include "methods/sweep_shadow.h"
+#include "methods/sweep/shadow.h"
 
 struct ss_sweep_mesh {
     std::vector<float> xyz, intensity;

@@ -9,7 +9,7 @@
 #include "gl/render_state.h"
 #include "gl/scratch_targets.h"
 #include "methods/method.h"
-#include "methods/pcss_common.h"
+#include "methods/receiver_plane.h"
 #include "pipeline/frame.h"
 
 namespace ss {

@@ -13,7 +13,7 @@
 #include "gl/scratch_targets.h"
 #include "methods/method.h"
 #include "methods/penumbra_map.h"
-#include "methods/pcss_common.h"
+#include "methods/receiver_plane.h"
 #include "pipeline/frame.h"
 
 namespace ss {

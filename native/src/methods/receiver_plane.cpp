@@ -1,6 +1,6 @@
 // How pcss and penumbra_map set up their shared shadow-map comparison and class layers.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/pcss_common.h"
+#include "methods/receiver_plane.h"
 
 #include <algorithm>
 

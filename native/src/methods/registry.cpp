@@ -4,7 +4,7 @@
 
 #include "core/error.h"
 #include "methods/method.h"
-#include "methods/sweep_receiver.h"
+#include "methods/sweep/receiver.h"
 
 namespace ss {
 

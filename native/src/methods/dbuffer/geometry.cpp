@@ -1,6 +1,6 @@
 // How the dbuffer volumes of a scene and light are built and cached.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/dbuffer_geometry.h"
+#include "methods/dbuffer/geometry.h"
 
 #include <atomic>
 #include <chrono>
@@ -9,7 +9,7 @@
 #include <mutex>
 
 #include "core/error.h"
-#include "methods/dbuffer_light.h"
+#include "methods/dbuffer/light.h"
 
 namespace ss {
 

@@ -10,7 +10,7 @@
 namespace ss {
 
 struct DbufferGeometry {
-    Disk disk;              // the light as the method sees it (methods/dbuffer_light.h)
+    Disk disk;              // the light as the method sees it (methods/dbuffer/light.h)
     ShadowVolumes volumes;  // every casting mesh's volumes, concatenated
     float extrusionLength = 0.0f;
     double silhouetteMs = 0.0, extrusionMs = 0.0;  // CPU time of the two stages when built

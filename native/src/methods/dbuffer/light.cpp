@@ -1,6 +1,6 @@
 // How each Blender light shape is mapped onto the disk light the dbuffer method needs.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/dbuffer_light.h"
+#include "methods/dbuffer/light.h"
 
 #include <cmath>
 

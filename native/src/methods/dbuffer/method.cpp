@@ -11,7 +11,7 @@
 #include "gl/program.h"
 #include "gl/render_state.h"
 #include "gl/scratch_targets.h"
-#include "methods/dbuffer_geometry.h"
+#include "methods/dbuffer/geometry.h"
 #include "methods/method.h"
 #include "pipeline/frame.h"
 

@@ -1,7 +1,7 @@
 // How the tests reach the GL pre-filters directly: upload a slice group, probe boxFilter().
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "core/error.h"
-#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/prefilter.h"
 
 namespace ss::occlusion {
 

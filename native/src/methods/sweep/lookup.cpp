@@ -1,6 +1,6 @@
 // How the bucket grid over the shadow triangles is built and queried.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/sweep_lookup.h"
+#include "methods/sweep/lookup.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,9 +9,9 @@
 
 #include "core/error.h"
 #include "methods/method.h"
-#include "methods/sweep_lookup.h"
-#include "methods/sweep_raster.h"
-#include "methods/sweep_shadow.h"
+#include "methods/sweep/lookup.h"
+#include "methods/sweep/raster.h"
+#include "methods/sweep/shadow.h"
 #include "pipeline/frame.h"
 #include "pipeline/visibility_contract.h"
 

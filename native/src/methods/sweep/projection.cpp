@@ -1,7 +1,7 @@
 // How silhouette edges and fallback triangles are classified, clipped below the sample and
 // projected onto the receiver plane.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/sweep_projection.h"
+#include "methods/sweep/projection.h"
 
 #include <cmath>
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/scene.h"
-#include "methods/sweep_receiver.h"
+#include "methods/sweep/receiver.h"
 #include "planar/snap.h"
 #include "sampling/light_samples.h"
 

@@ -1,6 +1,6 @@
 // How the shadow triangles are uploaded and rasterised with the camera's matrices.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/sweep_raster.h"
+#include "methods/sweep/raster.h"
 
 #include <cstddef>
 #include <vector>

@@ -3,7 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include "core/image.h"
-#include "methods/sweep_shadow.h"
+#include "methods/sweep/shadow.h"
 #include "pipeline/frame.h"
 
 namespace ss {

@@ -1,6 +1,6 @@
 // How the receiver plane is found and framed for the sweep method.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/sweep_receiver.h"
+#include "methods/sweep/receiver.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,14 +1,14 @@
 // How the sweep method's CPU stages run in order: samples, projection, per-sample sweep,
 // merge and fill.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/sweep_shadow.h"
+#include "methods/sweep/shadow.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "core/error.h"
-#include "methods/sweep_weights.h"
+#include "methods/sweep/weights.h"
 #include "planar/outline.h"
 #include "planar/rings.h"
 #include "sampling/light_samples.h"

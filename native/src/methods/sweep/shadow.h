@@ -7,8 +7,8 @@
 
 #include "core/scene.h"
 #include "methods/method.h"
-#include "methods/sweep_projection.h"
-#include "methods/sweep_receiver.h"
+#include "methods/sweep/projection.h"
+#include "methods/sweep/receiver.h"
 #include "planar/penumbra_fill.h"
 
 namespace ss {

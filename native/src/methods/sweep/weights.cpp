@@ -1,7 +1,7 @@
 // How each shadow-mesh corner gets the irradiance-weighted share of the light its region's
 // shadowing samples stand for.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "methods/sweep_weights.h"
+#include "methods/sweep/weights.h"
 
 #include <algorithm>
 #include <cmath>
