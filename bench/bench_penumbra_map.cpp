@@ -10,7 +10,7 @@
 #include "core/scene.h"
 #include "geometry/silhouette.h"
 #include "methods/penumbra_map.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 #include "softshadow/softshadow.h"
 
 namespace ss {

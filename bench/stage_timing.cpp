@@ -9,7 +9,7 @@
 
 #include "gl/render_thread.h"
 #include "methods/method.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss::bench {
 

@@ -16,7 +16,7 @@
 #include "io/png_preview.h"
 #include "methods/dbuffer/geometry.h"
 #include "methods/method.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
 

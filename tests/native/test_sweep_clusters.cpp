@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "io/metrics.h"
 #include "methods/sweep/shadow.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
 

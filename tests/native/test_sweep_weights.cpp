@@ -10,7 +10,7 @@
 #include "io/metrics.h"
 #include "methods/sweep/shadow.h"
 #include "methods/sweep/weights.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "sampling/light_samples.h"
 #include "test_scenes.h"
 

@@ -8,7 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "pipeline/visibility_contract.h"
+#include "core/visibility_contract.h"
 #include "reference/light_sampler.h"
 
 namespace ss {

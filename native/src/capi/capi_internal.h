@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/scene.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 
 struct ss_context {

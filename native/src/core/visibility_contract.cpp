@@ -1,6 +1,6 @@
 // How E_L > 0 is tested on the CPU: a line-for-line copy of shaders/common/visibility_contract.glsl.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "pipeline/visibility_contract.h"
+#include "core/visibility_contract.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // How the shared passes are drawn once per frame: mesh upload, camera G-buffer, shadow maps.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 #include <algorithm>
 #include <cmath>

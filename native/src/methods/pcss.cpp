@@ -10,32 +10,26 @@
 #include "gl/scratch_targets.h"
 #include "methods/method.h"
 #include "methods/receiver_plane.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss {
 
 namespace {
 
-int positiveSetting(const RenderSettings& s, const char* key, int fallback, int most) {
-    float v = s.number(key, float(fallback));
-    if (!(v >= 1.0f) || v > float(most))
-        fail(SS_ERROR_INVALID_ARGUMENT, std::string("pcss: setting '") + key + "' must be in 1.." +
-                                            std::to_string(most) + " (got " + std::to_string(v) + ")");
-    return int(v);
-}
-
 class PcssMethod final : public Method {
 public:
     const char* name() const override { return "pcss"; }
     bool needsGl() const override { return true; }
+    std::vector<std::string> settingKeys() const override { return {"blocker_samples", "pcf_samples", "shadow_map_size", "max_search"}; }
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
-        const int blockerSamples = positiveSetting(settings, "blocker_samples", 16, 1024);
-        const int pcfSamples =
-            positiveSetting(settings, "pcf_samples", settings.samples > 0 ? settings.samples : 32, 4096);
-        const int mapSize = int(settings.number("shadow_map_size", 0.0f));
-        const float maxSearch = settings.number("max_search", 0.25f);
+        if (settings.samples > 4096)
+            fail(SS_ERROR_INVALID_ARGUMENT, "pcss: samples must be in 1..4096 (got " + std::to_string(settings.samples) + ")");
+        const int blockerSamples = settings.integer("blocker_samples", 16, 1, 1024);
+        const int pcfSamples = settings.integer("pcf_samples", settings.samples > 0 ? settings.samples : 32, 1, 4096);
+        const int mapSize = settings.integer("shadow_map_size", 0, 0, 16384);
+        const float maxSearch = settings.number("max_search", 0.25f, 0.0f, 1.0f);
 
         const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
         const CameraPass& cam = frame.cameraPass();
@@ -68,7 +62,6 @@ public:
         layers.add("V", v);
         layers.add("mask", mask);
         if (settings.extraLayers) {
-            addClassLayers(layers, v, mask);
             layers.add("blocker_distance", std::move(ch.c[2]));
             layers.add("kernel_texels", std::move(ch.c[3]));
         }

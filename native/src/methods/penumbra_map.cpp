@@ -14,7 +14,7 @@
 #include "methods/method.h"
 #include "methods/penumbra_map.h"
 #include "methods/receiver_plane.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss {
 
@@ -41,10 +41,8 @@ ConesSheets buildPenumbraGeometry(const Scene& scene, const ShadowMap& map, floa
 }
 
 PenumbraIntensity intensityRule(const RenderSettings& settings) {
-    const std::string rule = settings.text("intensity", "coverage");
-    if (rule == "coverage") return PenumbraIntensity::Coverage;
-    if (rule == "paper") return PenumbraIntensity::Paper;
-    fail(SS_ERROR_INVALID_ARGUMENT, "penumbra_map: intensity must be coverage or paper, not '" + rule + "'");
+    return settings.choice("intensity", "coverage", {"coverage", "paper"}) == "coverage" ? PenumbraIntensity::Coverage
+                                                                                         : PenumbraIntensity::Paper;
 }
 
 namespace {
@@ -67,17 +65,18 @@ class PenumbraMapMethod final : public Method {
 public:
     const char* name() const override { return "penumbra_map"; }
     bool needsGl() const override { return true; }
+    std::vector<std::string> settingKeys() const override {
+        return {"shadow_map_size", "cone_segments", "intensity", "finish_stages"};
+    }
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
         if (light.type == LightType::Sun)
             fail(SS_ERROR_UNSUPPORTED, "penumbra_map: light '" + light.name +
                                            "' is a sun; penumbra maps need a light centre (use pcss)");
-        const int mapSize = int(settings.number("shadow_map_size", 0.0f));
+        const int mapSize = settings.integer("shadow_map_size", 0, 0, 16384);
         ConeSheetSettings cs;
-        cs.coneSegments = int(settings.number("cone_segments", 16.0f));
-        if (cs.coneSegments < 3 || cs.coneSegments > 256)
-            fail(SS_ERROR_INVALID_ARGUMENT, "penumbra_map: cone_segments must be in 3..256");
+        cs.coneSegments = settings.integer("cone_segments", 16, 3, 256);
         (void)intensityRule(settings);  // a bad value fails before any GL work
         const float radius = penumbraMapLightRadius(light);
         GpuConesSheets& g = geometry_;
@@ -169,7 +168,6 @@ public:
         layers.add("V", v);
         layers.add("mask", mask);
         if (settings.extraLayers) {
-            addClassLayers(layers, v, mask);
             layers.add("penumbra_map", std::move(ch.c[3]));
             layers.add("hard_shadow", std::move(ch.c[2]));
         }

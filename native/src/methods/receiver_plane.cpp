@@ -1,10 +1,8 @@
-// How pcss and penumbra_map set up their shared shadow-map comparison and class layers.
+// How pcss and penumbra_map set up their shared shadow-map comparison and split their read-back.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "methods/receiver_plane.h"
 
 #include <algorithm>
-
-#include "io/metrics.h"
 
 namespace ss {
 
@@ -41,18 +39,6 @@ Channels splitChannels(const std::vector<glm::vec4>& rgba, int width, int height
     for (size_t i = 0; i < rgba.size(); ++i)
         for (int k = 0; k < 4; ++k) out.c[k].pixels[i] = rgba[i][k];
     return out;
-}
-
-void addClassLayers(Layers& layers, const Image& v, const Image& mask) {
-    Image umbra(v.width, v.height, 0.0f), penumbra(v.width, v.height, 0.0f);
-    for (size_t i = 0; i < v.pixels.size(); ++i) {
-        if (mask.pixels[i] <= 0.5f) continue;
-        float x = v.pixels[i];
-        umbra.pixels[i] = x < kUmbraThreshold ? 1.0f : 0.0f;
-        penumbra.pixels[i] = (x >= kUmbraThreshold && x <= kLitThreshold) ? 1.0f : 0.0f;
-    }
-    layers.add("umbra", std::move(umbra));
-    layers.add("penumbra", std::move(penumbra));
 }
 
 }  // namespace ss

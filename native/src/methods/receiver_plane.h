@@ -1,5 +1,5 @@
 // What pcss and penumbra_map share on the C++ side: the shadow-ray basis of the receiver-plane
-// comparison (shaders/pcss/receiver_plane.glsl) and the umbra/penumbra class layers.
+// comparison (shaders/pcss/receiver_plane.glsl) and the split of their RGBA read-back.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <glm/glm.hpp>
@@ -7,7 +7,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "gl/program.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss {
 
@@ -25,9 +25,5 @@ struct Channels {
     Image c[4];
 };
 Channels splitChannels(const std::vector<glm::vec4>& rgba, int width, int height);
-
-// "umbra" (V < kUmbraThreshold) and "penumbra" (in between the thresholds) inside the mask, as
-// 0/1 images: the same classes the metrics use, so the layers and the IoU numbers agree.
-void addClassLayers(Layers& layers, const Image& v, const Image& mask);
 
 }  // namespace ss

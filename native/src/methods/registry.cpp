@@ -36,15 +36,6 @@ const std::vector<Entry>& entries() {
 }
 }  // namespace
 
-const std::vector<std::string>& methodNames() {
-    static const std::vector<std::string> names = [] {
-        std::vector<std::string> n;
-        for (const Entry& e : entries()) n.push_back(e.name);
-        return n;
-    }();
-    return names;
-}
-
 std::unique_ptr<Method> createMethod(const std::string& name) {
     for (const Entry& e : entries())
         if (name == e.name) {

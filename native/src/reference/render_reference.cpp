@@ -52,7 +52,7 @@ struct CameraRays {
 };
 
 int threadCount(const RenderSettings& settings, int rows) {
-    int n = int(settings.number("threads", 0.0f));
+    int n = settings.integer("threads", 0, 0, 1024);
     if (n <= 0) n = int(std::max(1u, std::thread::hardware_concurrency()));
     return std::clamp(n, 1, std::max(1, rows));
 }
@@ -140,22 +140,8 @@ Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings&
     settings.report(1.0f, "tracing shadow rays");
 
     Layers layers;
-    if (settings.extraLayers) {
-        Image umbra(width, height, 0.0f), penumbra(width, height, 0.0f);
-        for (size_t i = 0; i < visibility.pixels.size(); ++i) {
-            if (mask.pixels[i] == 0.0f) continue;
-            float v = visibility.pixels[i];
-            umbra.pixels[i] = v < kUmbraBelow ? 1.0f : 0.0f;
-            penumbra.pixels[i] = (v >= kUmbraBelow && v <= kLitAbove) ? 1.0f : 0.0f;
-        }
-        layers.add("V", std::move(visibility));
-        layers.add("mask", std::move(mask));
-        layers.add("umbra", std::move(umbra));
-        layers.add("penumbra", std::move(penumbra));
-    } else {
-        layers.add("V", std::move(visibility));
-        layers.add("mask", std::move(mask));
-    }
+    layers.add("V", std::move(visibility));
+    layers.add("mask", std::move(mask));
     return layers;
 }
 

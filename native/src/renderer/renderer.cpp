@@ -1,15 +1,16 @@
 // How a (light, method) render is dispatched: lazy GL start, the frame cache, CPU vs GL methods.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 
 #include <map>
 #include <mutex>
 
 #include "core/error.h"
+#include "core/visibility_classes.h"
 #include "gl/capabilities.h"
 #include "gl/context.h"
 #include "gl/render_thread.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss {
 
@@ -18,6 +19,7 @@ struct Renderer::Impl {
     std::mutex m;  // one render at a time per renderer: frames and methods are not thread-safe
     std::unique_ptr<gl::RenderThread> thread;
     std::string infoJson;
+    std::function<void()> cacheTakenHook;
 
     // The shared passes and the method objects (with whatever they prepared) of the last
     // scene revision rendered; a new (scene id, revision) replaces them.
@@ -36,8 +38,8 @@ struct Renderer::Impl {
     }
 
     // ss_shutdown() stopped the thread: everything GL died with its context, so the frame
-    // cache goes too and the next GL use starts afresh. Called before any cache reference is
-    // taken, since it may drop the cache.
+    // cache goes too and the next GL use starts afresh. Called only before any cache reference
+    // is taken, since it may drop the cache.
     void forgetStoppedThread() {
         if (thread && !thread->running()) {
             dropCache();
@@ -46,8 +48,10 @@ struct Renderer::Impl {
         }
     }
 
+    // The thread, started if there is none. A thread stopped by a shutdown since the last
+    // forgetStoppedThread() is kept as it is: its run() throws SS_ERROR_GL, so a render that
+    // already holds cache references fails cleanly instead of having them freed under it.
     gl::RenderThread& glThread() {
-        forgetStoppedThread();
         if (!thread) thread = std::make_unique<gl::RenderThread>(backend);
         return *thread;
     }
@@ -58,7 +62,11 @@ struct Renderer::Impl {
         if (!cache) return;
         count(*cache->frame, finished);
         if (thread && thread->running()) {
-            thread->run([&] { cache.reset(); });
+            try {
+                thread->run([&] { cache.reset(); });
+            } catch (const Error&) {
+                // Shut down in between: the context is gone and the handles just forget.
+            }
         }
         cache.reset();
     }
@@ -92,12 +100,18 @@ Renderer::~Renderer() {
 std::string Renderer::info() {
     std::lock_guard lock(impl_->m);
     if (impl_->infoJson.empty()) {
+        impl_->forgetStoppedThread();
         gl::RenderThread& t = impl_->glThread();
         gl::Capabilities caps;
         t.run([&] { caps = gl::probeCapabilities(); });
         impl_->infoJson = caps.toJson(t.backendName());
     }
     return impl_->infoJson;
+}
+
+void Renderer::setCacheTakenHook(std::function<void()> hook) {
+    std::lock_guard lock(impl_->m);
+    impl_->cacheTakenHook = std::move(hook);
 }
 
 Renderer::CacheStats Renderer::cacheStats() const {
@@ -112,6 +126,10 @@ namespace {
 void checkLayers(const Layers& layers, const Camera& camera, const std::string& method) {
     if (!layers.find("V") || !layers.find("mask"))
         fail(SS_ERROR_INTERNAL, "method '" + method + "' did not produce the V and mask layers");
+    for (const char* reserved : {"umbra", "penumbra"})
+        if (layers.find(reserved))
+            fail(SS_ERROR_INTERNAL, "method '" + method + "' made the '" + reserved +
+                                        "' layer, which the renderer draws from V for every method");
     for (const auto& [name, img] : layers.items)
         if (img.width != camera.width || img.height != camera.height ||
             img.pixels.size() != size_t(img.width) * size_t(img.height))
@@ -138,6 +156,8 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
     if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
     Method& m = *it->second;
     Frame& frame = *cached.frame;
+    settings.requireKnownKeys(name, m.settingKeys());
+    if (impl_->cacheTakenHook) impl_->cacheTakenHook();
 
     Layers layers;
     if (!m.needsGl()) {
@@ -150,6 +170,7 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
         });
     }
     checkLayers(layers, camera, name);
+    if (settings.extraLayers) addClassLayers(layers);
     if (methodUsed) *methodUsed = name;
     return layers;
 }

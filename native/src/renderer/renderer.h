@@ -1,6 +1,7 @@
 // How one (light, method) render is run: the GL render thread, the shared frame passes, "auto".
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -37,12 +38,13 @@ public:
     };
     CacheStats cacheStats() const;
 
+    // Tests only: runs inside render() once the cache entry and the method are taken and before
+    // GL work starts, so a test can shut the render threads down at exactly that point.
+    void setCacheTakenHook(std::function<void()> hook);
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
-
-// Joins every render thread still alive (the C API's ss_shutdown and a static destructor).
-void shutdownRenderThreads();
 
 }  // namespace ss

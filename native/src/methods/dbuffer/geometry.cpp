@@ -34,7 +34,7 @@ double msSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& disk) {
+std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& disk, const std::atomic<bool>* cancel) {
     auto g = std::make_shared<DbufferGeometry>();
     g->disk = disk;
     Bounds all = scene.bounds();
@@ -44,6 +44,8 @@ std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& dis
     g->extrusionLength = 2.0f * reach;
     for (const Mesh& mesh : scene.meshes()) {
         if (!mesh.casts() || mesh.triangles.empty()) continue;
+        if (cancel && cancel->load(std::memory_order_relaxed))
+            fail(SS_ERROR_CANCELLED, "cancelled during dbuffer: silhouettes and volumes");
         auto t0 = std::chrono::steady_clock::now();
         DiskSilhouette sil = diskSilhouette(mesh, disk);
         g->silhouetteMs += msSince(t0);
@@ -57,7 +59,8 @@ std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& dis
 
 }  // namespace
 
-std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex) {
+std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex,
+                                                       const std::atomic<bool>* cancel) {
     if (lightIndex < 0 || size_t(lightIndex) >= scene.lights().size())
         fail(SS_ERROR_INVALID_ARGUMENT, "dbuffer: light index " + std::to_string(lightIndex) + " is out of range");
     Bounds casters;
@@ -74,7 +77,7 @@ std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int l
                 return cache.front().second;
             }
     }
-    auto g = build(scene, key.disk);
+    auto g = build(scene, key.disk, cancel);
     std::lock_guard<std::mutex> lock(cacheMutex);
     cache.emplace_front(key, g);
     if (cache.size() > kCacheEntries) cache.pop_back();

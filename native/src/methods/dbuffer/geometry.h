@@ -1,6 +1,7 @@
 // Which umbra/penumbra volumes the dbuffer method draws for a light, cached while nothing changes.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <atomic>
 #include <cstddef>
 #include <memory>
 
@@ -19,7 +20,9 @@ struct DbufferGeometry {
 // The volumes of casting meshes for light `lightIndex`, built on first use and kept for the same
 // (scene id, scene revision, disk) — the scene's revision changes whenever a mesh or light does,
 // so a moved light or edited mesh rebuilds them. A few recent entries are kept (thread-safe).
-std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex);
+// Throws ss::Error(SS_ERROR_CANCELLED) between meshes once `cancel` is set.
+std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex,
+                                                       const std::atomic<bool>* cancel = nullptr);
 
 // How many times volumes were really built (not found in the cache) since the process started.
 size_t dbufferGeometryBuilds();

@@ -13,7 +13,7 @@
 #include "gl/scratch_targets.h"
 #include "methods/dbuffer/geometry.h"
 #include "methods/method.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss {
 
@@ -73,25 +73,22 @@ void draw(const GpuSoup& s) {
     g.BindVertexArray(0);
 }
 
-// Replaces anything non-finite (never expected: a safety net for the contract "no NaN").
-void sanitize(Image& img, float fallback) {
-    for (float& v : img.pixels)
-        if (!std::isfinite(v)) v = fallback;
-}
-
 class DbufferMethod final : public Method {
 public:
     const char* name() const override { return "dbuffer"; }
     bool needsGl() const override { return true; }
+    std::vector<std::string> settingKeys() const override {
+        return {"shadow_map_size", "umbra_rule", "small_occluders", "profile", "bias_texels", "finish_stages"};
+    }
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         settings.report(0.0f, "silhouettes and volumes");
-        geometry_ = dbufferGeometry(frame.scene(), lightIndex);
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex, settings.cancel);
     }
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         // A cache hit when prepare() ran for this light (the cache keys on scene and light).
-        geometry_ = dbufferGeometry(frame.scene(), lightIndex);
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex, settings.cancel);
         const DbufferGeometry& geo = *geometry_;
         const gl::Functions& g = frame.gl();
         // finish_stages (benchmark): glFinish at each stage so the progress marks time the GPU.
@@ -102,7 +99,7 @@ public:
         finishStage();
         const CameraPass& cam = frame.cameraPass();
         finishStage();
-        const ShadowMap& map = frame.shadowMap(lightIndex, int(settings.number("shadow_map_size", 0.0f)));
+        const ShadowMap& map = frame.shadowMap(lightIndex, settings.integer("shadow_map_size", 0, 0, 16384));
         finishStage();
 
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
@@ -125,9 +122,7 @@ public:
         vol.set("uFar", far);
         GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
         // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
-        std::string rule = settings.text("umbra_rule", "first_exit");
-        if (rule != "first_exit" && rule != "farthest")
-            fail(SS_ERROR_INVALID_ARGUMENT, "dbuffer: umbra_rule must be 'first_exit' or 'farthest', not '" + rule + "'");
+        std::string rule = settings.choice("umbra_rule", "first_exit", {"first_exit", "farthest"});
         bool firstExit = rule == "first_exit";
         gl::apply(firstExit ? kNearest : kFarthest);
         vol.set("uBeyondOccluder", firstExit ? 1 : 0);
@@ -157,9 +152,7 @@ public:
         frame.setLightUniforms(shade, lightIndex);
         shade.set("uCentre", geo.disk.centre);
         shade.set("uSmallOccluders", settings.flag("small_occluders", false) ? 1 : 0);
-        std::string profile = settings.text("profile", "smoothstep");
-        if (profile != "smoothstep" && profile != "segment")
-            fail(SS_ERROR_INVALID_ARGUMENT, "dbuffer: profile must be 'smoothstep' or 'segment', not '" + profile + "'");
+        std::string profile = settings.choice("profile", "smoothstep", {"smoothstep", "segment"});
         shade.set("uSegmentProfile", profile == "segment" ? 1 : 0);
         shade.set("uBiasTexels", settings.number("bias_texels", 1.5f));
         frame.drawFullscreen();
@@ -184,14 +177,15 @@ public:
             layers.add("V", split(result, 0));
             layers.add("mask", split(result, 1));
             std::vector<glm::vec4> dist = out.readRgba(1);
-            layers.add("umbra", split(result, 2));
-            layers.add("penumbra", split(result, 3));
+            // Where the camera point lies inside the geometric volumes: not the umbra/penumbra
+            // classes of V (core/visibility_classes.h), which the renderer adds.
+            layers.add("umbra_volume", split(result, 2));
+            layers.add("penumbra_volume", split(result, 3));
             layers.add("dist_occluder", split(dist, 0));
             layers.add("dist_umbra", split(dist, 1));
             layers.add("dist_penumbra", split(dist, 2));
             layers.add("dist_silhouette", split(dist, 3));
         }
-        for (auto& [name, img] : layers.items) sanitize(img, name == "V" ? 1.0f : 0.0f);
         finishStage();
         settings.report(1.0f, "done");
         return layers;

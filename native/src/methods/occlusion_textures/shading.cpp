@@ -9,7 +9,7 @@
 #include "gl/render_state.h"
 #include "gl/scratch_targets.h"
 #include "methods/occlusion_textures/passes.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss::occlusion {
 

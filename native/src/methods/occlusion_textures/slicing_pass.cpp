@@ -3,7 +3,7 @@
 // One MAX-blended draw of the casters into up to four RGBA targets, four slices per target.
 #include "gl/framebuffer.h"
 #include "methods/occlusion_textures/passes.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss::occlusion {
 

@@ -12,8 +12,8 @@
 #include "methods/sweep/lookup.h"
 #include "methods/sweep/raster.h"
 #include "methods/sweep/shadow.h"
-#include "pipeline/frame.h"
-#include "pipeline/visibility_contract.h"
+#include "frame/frame.h"
+#include "core/visibility_contract.h"
 
 namespace ss {
 
@@ -24,6 +24,7 @@ public:
     const char* name() const override { return "sweep"; }
     // GL for the shared camera pass and for drawing the shadow mesh; the mesh is CPU geometry.
     bool needsGl() const override { return true; }
+    std::vector<std::string> settingKeys() const override { return sweepSettingKeys(); }
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         shadowFor(frame.scene(), lightIndex, settings);
@@ -35,12 +36,10 @@ public:
         settings.report(0.5f, "sweep: camera pass");
         const CameraImages& cam = frame.cameraImages();
         const int w = cam.width, h = cam.height;
-        Image V(w, h, 1.0f), mask(w, h, 0.0f), umbra(w, h, 0.0f), penumbra(w, h, 0.0f);
+        Image V(w, h, 1.0f), mask(w, h, 0.0f);
         // raster=gl (default): the shadow triangles drawn with the camera's matrices;
         // raster=cpu: the same triangles looked up per pixel (no GL draw; a cross-check).
-        std::string raster = settings.text("raster", "gl");
-        if (raster != "gl" && raster != "cpu")
-            fail(SS_ERROR_INVALID_ARGUMENT, "sweep: setting 'raster' = '" + raster + "' is not gl or cpu");
+        std::string raster = settings.choice("raster", "gl", {"gl", "cpu"});
         // Clusters: one lookup per cluster's mesh, their weighted intensities added.
         std::vector<ShadowLookup> lookups;
         Image drawn;
@@ -65,20 +64,14 @@ public:
                     for (const ShadowLookup& l : lookups) intensity += l.intensity(gx, gy);
                 } else {
                     intensity = drawn.at(x, y);
-                    if (!std::isfinite(intensity)) intensity = 0.0f;
                 }
-                float v = 1.0f - std::clamp(intensity, 0.0f, 1.0f);
-                V.at(x, y) = v;
-                umbra.at(x, y) = v < 0.05f ? 1.0f : 0.0f;
-                penumbra.at(x, y) = (v >= 0.05f && v <= 0.95f) ? 1.0f : 0.0f;
+                // std::clamp keeps a NaN: a broken shadow mesh shows as V = NaN, which the
+                // finiteness tests catch, instead of passing for lit.
+                V.at(x, y) = 1.0f - std::clamp(intensity, 0.0f, 1.0f);
             }
         Layers layers;
         layers.add("V", std::move(V));
         layers.add("mask", std::move(mask));
-        if (settings.extraLayers) {
-            layers.add("umbra", std::move(umbra));
-            layers.add("penumbra", std::move(penumbra));
-        }
         settings.report(1.0f, "sweep: done");
         return layers;
     }

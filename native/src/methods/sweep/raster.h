@@ -4,7 +4,7 @@
 #pragma once
 #include "core/image.h"
 #include "methods/sweep/shadow.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss {
 

@@ -20,28 +20,22 @@ using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 }  // namespace
 
+std::vector<std::string> sweepSettingKeys() { return {"receiver", "fill", "border", "clusters", "weights", "raster"}; }
+
 SweepOptions sweepOptions(const RenderSettings& settings) {
+    settings.requireKnownKeys("sweep", sweepSettingKeys());
     SweepOptions o;
     if (settings.samples < 0) fail(SS_ERROR_INVALID_ARGUMENT, "sweep: samples must not be negative");
     o.samples = settings.samples > 0 ? settings.samples : kSweepDefaultSamples;
     if (o.samples > 4096) fail(SS_ERROR_INVALID_ARGUMENT, "sweep: at most 4096 samples (got " + std::to_string(o.samples) + ")");
     o.seed = settings.seed;
+    o.cancel = settings.cancel;
     o.receiver = settings.text("receiver", "");
-    std::string fill = settings.text("fill", "smooth");
-    if (fill == "smooth") o.fill = planar::FillMode::Smooth;
-    else if (fill == "steps") o.fill = planar::FillMode::Steps;
-    else fail(SS_ERROR_INVALID_ARGUMENT, "sweep: setting 'fill' = '" + fill + "' is not smooth or steps");
-    o.borderShare = settings.number("border", 0.25f);
-    if (!(o.borderShare >= 0 && o.borderShare <= 1))
-        fail(SS_ERROR_INVALID_ARGUMENT, "sweep: setting 'border' must be in [0, 1]");
-    float clusters = settings.number("clusters", 1.0f);
-    if (!(clusters >= 1 && clusters <= 64) || clusters != std::floor(clusters))
-        fail(SS_ERROR_INVALID_ARGUMENT, "sweep: setting 'clusters' must be a whole number in [1, 64]");
-    o.clusters = int(clusters);
-    std::string weights = settings.text("weights", "irradiance");
-    if (weights == "irradiance") o.irradianceWeights = true;
-    else if (weights == "equal") o.irradianceWeights = false;
-    else fail(SS_ERROR_INVALID_ARGUMENT, "sweep: setting 'weights' = '" + weights + "' is not irradiance or equal");
+    o.fill = settings.choice("fill", "smooth", {"smooth", "steps"}) == "smooth" ? planar::FillMode::Smooth
+                                                                               : planar::FillMode::Steps;
+    o.borderShare = settings.number("border", 0.25f, 0.0f, 1.0f);
+    o.clusters = settings.integer("clusters", 1, 1, 64);
+    o.irradianceWeights = settings.choice("weights", "irradiance", {"irradiance", "equal"}) == "irradiance";
     return o;
 }
 
@@ -79,6 +73,8 @@ planar::ShadowMesh clusterShadow(const Scene& scene, const std::vector<int>& occ
     std::vector<LightSample> usedSamples;
     std::vector<planar::DirectedEdge> edges;
     for (const LightSample& s : samples) {
+        if (options.cancel && options.cancel->load(std::memory_order_relaxed))
+            fail(SS_ERROR_CANCELLED, "cancelled during sweep: light samples");
         edges.clear();
         auto t0 = Clock::now();
         if (!projectSample(scene, occluders, out->plane, out->snap, s, &edges, &out->projection)) continue;

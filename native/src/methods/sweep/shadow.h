@@ -2,6 +2,7 @@
 // hard outline, the merged rings and the shadow mesh on the receiver plane, with stage timings.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -27,11 +28,15 @@ struct SweepOptions {
     // Each sample weighed by the irradiance it sends to each shadow-mesh corner (the contract);
     // false: every sample counts the same (the paper).
     bool irradianceWeights = true;
+    // RenderSettings::cancel: checked between light samples (null: never cancelled).
+    const std::atomic<bool>* cancel = nullptr;
 };
 
+// The keys of RenderSettings::options the sweep reads (its shadow mesh and its camera pass).
+std::vector<std::string> sweepSettingKeys();
 // Reads RenderSettings: samples (0 = 16), seed, options "receiver", "fill" (smooth|steps),
-// "border" (share of samples on the light's border, 0..1), "clusters" (1..64), "weights" (irradiance|equal). Throws ss::Error
-// on bad values.
+// "border" (share of samples on the light's border, 0..1), "clusters" (1..64), "weights"
+// (irradiance|equal). Throws ss::Error on an unknown key or a bad value.
 SweepOptions sweepOptions(const RenderSettings& settings);
 
 struct SweepTimings {
