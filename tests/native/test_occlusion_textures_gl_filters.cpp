@@ -11,6 +11,7 @@
 #include "filters/box_filter.h"
 #include "gl/render_thread.h"
 #include "methods/occlusion_textures/prefilter.h"
+#include "occlusion_probe.h"
 
 namespace ss {
 namespace {

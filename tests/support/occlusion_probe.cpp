@@ -1,7 +1,8 @@
 // How the tests reach the GL pre-filters directly: upload a slice group, probe boxFilter().
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "occlusion_probe.h"
+
 #include "core/error.h"
-#include "methods/occlusion_textures/prefilter.h"
 
 namespace ss::occlusion {
 

@@ -66,11 +66,3 @@ void bindFiltered(const gl::Program& program, const FilteredSlices& filtered, in
 std::vector<float> readTexture(GLuint texture, GLenum target, int level, int layer, int width, int height);
 
 }  // namespace ss::occlusion
-
-namespace ss::occlusion {
-// Evaluates the GLSL boxFilter of `filtered` for group `group` at each query
-// (centre.x, centre.y, width, height in texels) and returns the RGBA responses (tests).
-std::vector<glm::vec4> probeFilter(const FilteredSlices& filtered, int group, const std::vector<glm::vec4>& queries);
-// Uploads RGBA texels (row 0 first) into level 0 of a group texture (tests).
-void uploadGroup(const SliceTextures& slices, int group, const std::vector<float>& rgba);
-}  // namespace ss::occlusion
