@@ -79,7 +79,7 @@ Stages runOnce(const Scene& scene, const std::string& method, Layers* keep, doub
         // What one float layer at camera resolution costs to bring back (every method reads at
         // least V; its own read-back is inside `render`).
         t = Clock::now();
-        Image v = cam.framebuffer.readChannel(0, 3);
+        std::vector<Image> v = cam.framebuffer.readChannels(0, 1);
         st.readback = msSince(t);
         benchmark::DoNotOptimize(v);
         m.reset();  // GL objects of the method die on their own thread

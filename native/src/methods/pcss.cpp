@@ -56,14 +56,12 @@ public:
         frame.gl().check("pcss camera pass");
 
         Layers layers;
-        Channels ch = splitChannels(out.readRgba(0), out.width(), out.height());
-        const Image& v = ch.c[0];
-        const Image& mask = ch.c[1];
-        layers.add("V", v);
-        layers.add("mask", mask);
+        std::vector<Image> ch = out.readChannels(0, settings.extraLayers ? 4 : 2);
+        layers.add("V", std::move(ch[0]));
+        layers.add("mask", std::move(ch[1]));
         if (settings.extraLayers) {
-            layers.add("blocker_distance", std::move(ch.c[2]));
-            layers.add("kernel_texels", std::move(ch.c[3]));
+            layers.add("blocker_distance", std::move(ch[2]));
+            layers.add("kernel_texels", std::move(ch[3]));
         }
         frame.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
         return layers;

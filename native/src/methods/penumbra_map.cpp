@@ -162,14 +162,12 @@ public:
         settings.report(0.9f, "penumbra_map readback");
 
         Layers layers;
-        Channels ch = splitChannels(out.readRgba(0), out.width(), out.height());
-        const Image& v = ch.c[0];
-        const Image& mask = ch.c[1];
-        layers.add("V", v);
-        layers.add("mask", mask);
+        std::vector<Image> ch = out.readChannels(0, settings.extraLayers ? 4 : 2);
+        layers.add("V", std::move(ch[0]));
+        layers.add("mask", std::move(ch[1]));
         if (settings.extraLayers) {
-            layers.add("penumbra_map", std::move(ch.c[3]));
-            layers.add("hard_shadow", std::move(ch.c[2]));
+            layers.add("penumbra_map", std::move(ch[3]));
+            layers.add("hard_shadow", std::move(ch[2]));
         }
         api.BindFramebuffer(GL_FRAMEBUFFER, 0);
         return layers;

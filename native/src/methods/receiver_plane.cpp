@@ -1,4 +1,4 @@
-// How pcss and penumbra_map set up their shared shadow-map comparison and split their read-back.
+// How pcss and penumbra_map set up their shared shadow-map comparison.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "methods/receiver_plane.h"
 
@@ -31,14 +31,6 @@ float nearestCasterDistance(const Scene& scene, const ShadowMap& map) {
         }
     }
     return std::max(best, map.nearPlane);
-}
-
-Channels splitChannels(const std::vector<glm::vec4>& rgba, int width, int height) {
-    Channels out;
-    for (Image& img : out.c) img = Image(width, height);
-    for (size_t i = 0; i < rgba.size(); ++i)
-        for (int k = 0; k < 4; ++k) out.c[k].pixels[i] = rgba[i][k];
-    return out;
 }
 
 }  // namespace ss

@@ -1,5 +1,5 @@
 // What pcss and penumbra_map share on the C++ side: the shadow-ray basis of the receiver-plane
-// comparison (shaders/pcss/receiver_plane.glsl) and the split of their RGBA read-back.
+// comparison (shaders/pcss/receiver_plane.glsl).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <glm/glm.hpp>
@@ -18,12 +18,5 @@ void setShadowRayBasis(const gl::Program& program, const ShadowMap& map);
 // The smallest map quantity (distance, or depth for a sun) of any caster vertex, never below
 // the map's near plane; the map's far plane when nothing casts.
 float nearestCasterDistance(const Scene& scene, const ShadowMap& map);
-
-// The four channels of a top-row-first RGBA read-back as four images: one read-back of an
-// RGBA32F target is cheaper than four single-channel ones.
-struct Channels {
-    Image c[4];
-};
-Channels splitChannels(const std::vector<glm::vec4>& rgba, int width, int height);
 
 }  // namespace ss

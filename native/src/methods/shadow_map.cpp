@@ -49,19 +49,11 @@ public:
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("resolving the shadow map");
 
-        std::vector<glm::vec4> px = out.readRgba(0);
+        std::vector<Image> ch = out.readChannels(0, settings.extraLayers ? 3 : 2);
         Layers layers;
-        Image& V = layers.add("V", Image(cam.width, cam.height));
-        Image& mask = layers.add("mask", Image(cam.width, cam.height));
-        for (size_t i = 0; i < px.size(); ++i) {
-            V.pixels[i] = px[i].x;
-            mask.pixels[i] = px[i].y;
-        }
-        if (settings.extraLayers) {
-            Image lightDistance(cam.width, cam.height);
-            for (size_t i = 0; i < px.size(); ++i) lightDistance.pixels[i] = px[i].z;
-            layers.add("light_distance", std::move(lightDistance));
-        }
+        layers.add("V", std::move(ch[0]));
+        layers.add("mask", std::move(ch[1]));
+        if (settings.extraLayers) layers.add("light_distance", std::move(ch[2]));
         settings.report(1.0f, "done");
         return layers;
     }

@@ -160,31 +160,21 @@ public:
         g.check("drawing the dbuffer camera pass");
         finishStage();
 
-        // One read-back per attachment (top row first), split into channels here.
-        auto split = [&](const std::vector<glm::vec4>& rgba, int channel) {
-            Image img(cam.width, cam.height);
-            for (size_t i = 0; i < rgba.size() && i < img.pixels.size(); ++i) img.pixels[i] = rgba[i][channel];
-            return img;
-        };
+        // One read-back per attachment (top row first); without extra layers only V and mask.
         Layers layers;
-        if (!settings.extraLayers) {
-            // Two channels read alone: half the bytes of the whole attachment.
-            std::vector<Image> vm = out.readChannels(0, 2);
-            layers.add("V", std::move(vm[0]));
-            layers.add("mask", std::move(vm[1]));
-        } else {
-            std::vector<glm::vec4> result = out.readRgba(0);
-            layers.add("V", split(result, 0));
-            layers.add("mask", split(result, 1));
-            std::vector<glm::vec4> dist = out.readRgba(1);
+        std::vector<Image> result = out.readChannels(0, settings.extraLayers ? 4 : 2);
+        layers.add("V", std::move(result[0]));
+        layers.add("mask", std::move(result[1]));
+        if (settings.extraLayers) {
+            std::vector<Image> dist = out.readChannels(1, 4);
             // Where the camera point lies inside the geometric volumes: not the umbra/penumbra
             // classes of V (core/visibility_classes.h), which the renderer adds.
-            layers.add("umbra_volume", split(result, 2));
-            layers.add("penumbra_volume", split(result, 3));
-            layers.add("dist_occluder", split(dist, 0));
-            layers.add("dist_umbra", split(dist, 1));
-            layers.add("dist_penumbra", split(dist, 2));
-            layers.add("dist_silhouette", split(dist, 3));
+            layers.add("umbra_volume", std::move(result[2]));
+            layers.add("penumbra_volume", std::move(result[3]));
+            layers.add("dist_occluder", std::move(dist[0]));
+            layers.add("dist_umbra", std::move(dist[1]));
+            layers.add("dist_penumbra", std::move(dist[2]));
+            layers.add("dist_silhouette", std::move(dist[3]));
         }
         finishStage();
         settings.report(1.0f, "done");

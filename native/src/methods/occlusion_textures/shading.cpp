@@ -126,7 +126,11 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     std::vector<Image> vm = target.readChannels(0, 2);
     out.visibility = std::move(vm[0]);
     out.mask = std::move(vm[1]);
-    for (int k = 0; k < (sliceLayers ? setup.count() : 0); ++k) out.slices.push_back(target.readChannel(1 + k / 4, k % 4));
+    // Slice k is channel k % 4 of attachment 1 + k / 4: one read-back per attachment.
+    for (int group = 0; sliceLayers && group * 4 < setup.count(); ++group) {
+        std::vector<Image> four = target.readChannels(1 + group, std::min(4, setup.count() - group * 4));
+        for (Image& slice : four) out.slices.push_back(std::move(slice));
+    }
     return out;
 }
 

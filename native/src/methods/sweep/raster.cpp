@@ -65,7 +65,7 @@ Image rasterSweepShadow(Frame& frame, const SweepShadow& shadow) {
     }
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing the sweep shadow mesh");
-    return out.readChannel(0, 0);
+    return std::move(out.readChannels(0, 1)[0]);
 }
 
 }  // namespace ss
