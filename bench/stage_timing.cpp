@@ -7,6 +7,7 @@
 #include <chrono>
 #include <memory>
 
+#include "core/stopwatch.h"
 #include "gl/render_thread.h"
 #include "methods/method.h"
 #include "frame/frame.h"
@@ -14,10 +15,6 @@
 namespace ss::bench {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 gl::RenderThread& glThread() {
     static gl::RenderThread* t = new gl::RenderThread(SS_BACKEND_AUTO);
     return *t;

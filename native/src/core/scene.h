@@ -30,6 +30,8 @@ public:
 
     const std::vector<Mesh>& meshes() const { return meshes_; }
     const std::vector<Light>& lights() const { return lights_; }
+    // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) naming the index and the light count.
+    const Light& light(int index) const;
     const Camera& camera() const;  // throws when the scene has no camera
     bool hasCamera() const { return camera_.has_value(); }
     const std::string& viewLayer() const { return viewLayer_; }

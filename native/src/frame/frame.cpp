@@ -119,12 +119,7 @@ ShadowMap fitShadowMap(const Light& light, const Bounds& sceneBounds, int size) 
 Frame::Frame(const Scene& scene) : scene_(scene) {}
 Frame::~Frame() = default;
 
-const Light& Frame::light(int index) const {
-    if (index < 0 || size_t(index) >= scene_.lights().size())
-        fail(SS_ERROR_INVALID_ARGUMENT, "light index " + std::to_string(index) + " is out of range (the scene has " +
-                                            std::to_string(scene_.lights().size()) + " lights)");
-    return scene_.lights()[size_t(index)];
-}
+const Light& Frame::light(int index) const { return scene_.light(index); }
 
 const gl::Functions& Frame::gl() const { return gl::api(); }
 

@@ -62,12 +62,8 @@ int threadCount(const RenderSettings& settings, int rows) {
 
 Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings& settings,
                        TraceSceneCache* cache) {
-    if (lightIndex < 0 || lightIndex >= int(scene.lights().size()))
-        fail(SS_ERROR_INVALID_ARGUMENT, "reference: light index " + std::to_string(lightIndex) +
-                                            " is out of range (the scene has " +
-                                            std::to_string(scene.lights().size()) + " lights)");
+    const Light& light = scene.light(lightIndex);
     const Camera& camera = scene.camera();
-    const Light& light = scene.lights()[size_t(lightIndex)];
     const int samples = settings.samples > 0 ? settings.samples : kReferenceDefaultSamples;
     // One pixel's rays are gathered before tracing (~25 bytes each per thread): cap the memory.
     if (samples > (1 << 20))

@@ -145,10 +145,7 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
                         const RenderSettings& settings, std::string* methodUsed) {
     std::lock_guard lock(impl_->m);
     const Camera& camera = scene.camera();  // throws when the scene has no camera
-    if (lightIndex < 0 || size_t(lightIndex) >= scene.lights().size())
-        fail(SS_ERROR_INVALID_ARGUMENT, "light index " + std::to_string(lightIndex) +
-                                            " is out of range (the scene has " +
-                                            std::to_string(scene.lights().size()) + " lights)");
+    (void)scene.light(lightIndex);  // throws for an index out of range, before any work
     std::string name = method == "auto" ? chooseAutoMethod(scene, lightIndex) : method;
     impl_->forgetStoppedThread();
     auto& cached = impl_->cacheFor(scene);

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "methods/dbuffer/light.h"
 
 namespace ss {
@@ -30,10 +31,6 @@ std::mutex cacheMutex;
 std::list<std::pair<Key, std::shared_ptr<const DbufferGeometry>>> cache;  // most recent first
 std::atomic<size_t> builds{0};
 
-double msSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& disk, const std::atomic<bool>* cancel) {
     auto g = std::make_shared<DbufferGeometry>();
     g->disk = disk;
@@ -46,10 +43,10 @@ std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& dis
         if (!mesh.casts() || mesh.triangles.empty()) continue;
         if (cancel && cancel->load(std::memory_order_relaxed))
             fail(SS_ERROR_CANCELLED, "cancelled during dbuffer: silhouettes and volumes");
-        auto t0 = std::chrono::steady_clock::now();
+        auto t0 = Clock::now();
         DiskSilhouette sil = diskSilhouette(mesh, disk);
         g->silhouetteMs += msSince(t0);
-        auto t1 = std::chrono::steady_clock::now();
+        auto t1 = Clock::now();
         g->volumes.append(extrudeVolumes(mesh, sil, disk, g->extrusionLength));
         g->extrusionMs += msSince(t1);
     }
@@ -61,14 +58,12 @@ std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& dis
 
 std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex,
                                                        const std::atomic<bool>* cancel) {
-    if (lightIndex < 0 || size_t(lightIndex) >= scene.lights().size())
-        fail(SS_ERROR_INVALID_ARGUMENT, "dbuffer: light index " + std::to_string(lightIndex) + " is out of range");
     Bounds casters;
     for (const Mesh& m : scene.meshes())
         if (m.casts())
             for (const glm::vec3& p : m.positions) casters.extend(p);
     Key key{scene.id(), scene.revision(), lightIndex,
-            dbufferDisk(scene.lights()[size_t(lightIndex)], casters, scene.bounds())};
+            dbufferDisk(scene.light(lightIndex), casters, scene.bounds())};
     {
         std::lock_guard<std::mutex> lock(cacheMutex);
         for (auto it = cache.begin(); it != cache.end(); ++it)

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "methods/sweep/weights.h"
 #include "planar/outline.h"
 #include "planar/rings.h"
@@ -15,10 +16,6 @@
 
 namespace ss {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-}  // namespace
 
 std::vector<std::string> sweepSettingKeys() { return {"receiver", "fill", "border", "clusters", "weights", "raster"}; }
 
@@ -103,9 +100,7 @@ planar::ShadowMesh clusterShadow(const Scene& scene, const std::vector<int>& occ
 }  // namespace
 
 SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOptions& options) {
-    if (lightIndex < 0 || size_t(lightIndex) >= scene.lights().size())
-        fail(SS_ERROR_INVALID_ARGUMENT, "sweep: light index " + std::to_string(lightIndex) + " is out of range");
-    const Light& light = scene.lights()[lightIndex];
+    const Light& light = scene.light(lightIndex);
     std::vector<LightCluster> clusters = splitLight(light, options.clusters);
     SweepShadow out;
     out.plane = findReceiverPlane(scene, light, options.receiver);
