@@ -128,9 +128,8 @@ public:
         pm.clearColor(0, glm::vec4(1.0f));
         pm.clearDepth(1.0f);
         if (geometry_.indexCount > 0) {
-            gl::apply(gl::states::opaque);
             // Cone bases lie on the far plane: clamp rather than clip them there.
-            api.Enable(GL_DEPTH_CLAMP);
+            gl::apply(gl::states::opaqueDepthClamped);
             const gl::Program& p = gl::program("penumbra_map/cones.vert.glsl", "penumbra_map/cones.frag.glsl");
             p.use();
             frame.bindShadowMap(p, map, 0);
@@ -138,7 +137,6 @@ public:
             api.BindVertexArray(geometry_.vao.id());
             api.DrawElements(GL_TRIANGLES, geometry_.indexCount, GL_UNSIGNED_INT, nullptr);
             api.BindVertexArray(0);
-            api.Disable(GL_DEPTH_CLAMP);
             api.check("penumbra_map pass 2");
         }
         if (finishStages) api.Finish();

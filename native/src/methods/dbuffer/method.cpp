@@ -23,6 +23,8 @@ namespace {
 // occluders). Both sides drawn: the soups have no consistent winding.
 constexpr gl::RenderState kFarthest{"dbuffer_farthest", true, GL_GREATER, true, true, false,
                                     GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
+// The umbra volume writes R, G and the penumbra volume B, A of the one D-buffer target.
+constexpr unsigned kUmbraChannels = 0x3, kPenumbraChannels = 0xC;
 // The umbra "first exit" rule: the nearest umbra surface beyond the first caster.
 constexpr gl::RenderState kNearest{"dbuffer_nearest", true, GL_LESS, true, true, false,
                                    GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
@@ -107,8 +109,7 @@ public:
         gl::Framebuffer& dbuf =
             gl::scratchFramebuffer("dbuffer.distances", map.size, map.size, {GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
         dbuf.bind();
-        gl::apply(kFarthest);  // colour writes on before clearing (clears honour the colour mask)
-        g.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        gl::apply(kFarthest);  // every channel written: clears honour the colour mask
         dbuf.clearColor(0, glm::vec4(0.0f));
         const gl::Program& vol = gl::program("dbuffer/volume.vert.glsl", "dbuffer/volume.frag.glsl");
         vol.use();
@@ -124,18 +125,19 @@ public:
         // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
         std::string rule = settings.choice("umbra_rule", "first_exit", {"first_exit", "farthest"});
         bool firstExit = rule == "first_exit";
-        gl::apply(firstExit ? kNearest : kFarthest);
+        gl::RenderState umbraState = firstExit ? kNearest : kFarthest;
+        umbraState.channels = kUmbraChannels;
+        gl::apply(umbraState);
         vol.set("uBeyondOccluder", firstExit ? 1 : 0);
         vol.set("uExitEpsilon", kExitEpsilon);
         dbuf.clearDepth(firstExit ? 1.0f : 0.0f);
-        g.ColorMask(GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE);
         draw(umbra);
-        gl::apply(kFarthest);
+        gl::RenderState penumbraState = kFarthest;
+        penumbraState.channels = kPenumbraChannels;
+        gl::apply(penumbraState);
         vol.set("uBeyondOccluder", 0);
         dbuf.clearDepth(0.0f);
-        g.ColorMask(GL_FALSE, GL_FALSE, GL_TRUE, GL_TRUE);
         draw(penumbra);
-        g.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         g.check("drawing the D-buffer");
         finishStage();
 
