@@ -32,39 +32,21 @@ public:
         const float maxSearch = settings.number("max_search", 0.25f, 0.0f, 1.0f);
 
         const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
-        const CameraPass& cam = frame.cameraPass();
+        frame.cameraPass();  // the shared pass drawn (or found) before the filter stage begins
         settings.report(0.3f, "pcss filter");
 
-        const gl::Framebuffer& out = gl::scratchFramebuffer("pcss.camera", cam.width, cam.height, {GL_RGBA32F});
-        out.bind();
-        out.clearColor(0, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
-        gl::apply(gl::states::overwrite);
-        const gl::Program& p = gl::program("common/fullscreen.vert.glsl", "pcss/camera.frag.glsl");
-        p.use();
-        int unit = frame.bindCameraPass(p, 0);
-        frame.bindShadowMap(p, map, unit);
-        frame.setLightUniforms(p, lightIndex);
-        setShadowRayBasis(p, map);
-        p.set("uBlockerSamples", blockerSamples);
-        p.set("uPcfSamples", pcfSamples);
-        // A sun's size is an angle: the penumbra grows by tan(half angle) per unit of distance.
-        p.set("uLightSize", light.type == LightType::Sun ? std::tan(light.sunHalfAngle())
-                                                         : light.equivalentRadius());
-        p.set("uNearCaster", nearestCasterDistance(frame.scene(), map));
-        p.set("uMaxSearchUv", maxSearch);
-        frame.drawFullscreen();
-        frame.gl().check("pcss camera pass");
-
-        Layers layers;
-        std::vector<Image> ch = out.readChannels(0, settings.extraLayers ? 4 : 2);
-        layers.add("V", std::move(ch[0]));
-        layers.add("mask", std::move(ch[1]));
-        if (settings.extraLayers) {
-            layers.add("blocker_distance", std::move(ch[2]));
-            layers.add("kernel_texels", std::move(ch[3]));
-        }
-        frame.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
-        return layers;
+        const gl::Framebuffer& out = drawReceiverPlanePass(
+            frame, lightIndex, map, "pcss.camera", "pcss/camera.frag.glsl", glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),
+            [&](const gl::Program& p, int) {
+                p.set("uBlockerSamples", blockerSamples);
+                p.set("uPcfSamples", pcfSamples);
+                // A sun's size is an angle: the penumbra grows by tan(half angle) per unit of distance.
+                p.set("uLightSize", light.type == LightType::Sun ? std::tan(light.sunHalfAngle())
+                                                                 : light.equivalentRadius());
+                p.set("uNearCaster", nearestCasterDistance(frame.scene(), map));
+                p.set("uMaxSearchUv", maxSearch);
+            });
+        return readReceiverPlaneLayers(out, settings.extraLayers, {{"blocker_distance", 2}, {"kernel_texels", 3}});
     }
 
 private:

@@ -116,7 +116,7 @@ public:
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const gl::Functions& api = frame.gl();
         const ShadowMap& map = frame.shadowMap(lightIndex, geometry_.mapSize);
-        const CameraPass& cam = frame.cameraPass();
+        frame.cameraPass();  // the shared pass drawn (or found) before the stages are timed
         // For the benchmark: wait for each pass so progress reports time the stages.
         const bool finishStages = settings.flag("finish_stages", false);
 
@@ -143,32 +143,13 @@ public:
 
         // Pass 3: the camera lookup.
         settings.report(0.7f, "penumbra_map pass 3");
-        const gl::Framebuffer& out = gl::scratchFramebuffer("penumbra_map.camera", cam.width, cam.height, {GL_RGBA32F});
-        out.bind();
-        out.clearColor(0, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
-        gl::apply(gl::states::overwrite);
-        const gl::Program& p = gl::program("common/fullscreen.vert.glsl", "penumbra_map/camera.frag.glsl");
-        p.use();
-        int unit = frame.bindCameraPass(p, 0);
-        unit = frame.bindShadowMap(p, map, unit);
-        p.setTexture("uPenumbraMap", unit, pm.colorId(0));
-        frame.setLightUniforms(p, lightIndex);
-        setShadowRayBasis(p, map);
-        frame.drawFullscreen();
-        api.check("penumbra_map pass 3");
+        const gl::Framebuffer& out = drawReceiverPlanePass(
+            frame, lightIndex, map, "penumbra_map.camera", "penumbra_map/camera.frag.glsl",
+            glm::vec4(1.0f, 0.0f, 0.0f, 1.0f),
+            [&](const gl::Program& p, int unit) { p.setTexture("uPenumbraMap", unit, pm.colorId(0)); });
         if (finishStages) api.Finish();
         settings.report(0.9f, "penumbra_map readback");
-
-        Layers layers;
-        std::vector<Image> ch = out.readChannels(0, settings.extraLayers ? 4 : 2);
-        layers.add("V", std::move(ch[0]));
-        layers.add("mask", std::move(ch[1]));
-        if (settings.extraLayers) {
-            layers.add("penumbra_map", std::move(ch[3]));
-            layers.add("hard_shadow", std::move(ch[2]));
-        }
-        api.BindFramebuffer(GL_FRAMEBUFFER, 0);
-        return layers;
+        return readReceiverPlaneLayers(out, settings.extraLayers, {{"penumbra_map", 3}, {"hard_shadow", 2}});
     }
 
     // For tests and the benchmark: how many cones and sheets the last prepare() built.
