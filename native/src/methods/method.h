@@ -36,7 +36,7 @@ public:
 
 // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) for an unknown name; "auto" is not accepted here.
 std::unique_ptr<Method> createMethod(const std::string& name);
-// The documented rule behind "auto" (docs/methods.md).
+// The documented rule behind "auto" (docs/methods/README.md).
 std::string chooseAutoMethod(const Scene& scene, int lightIndex);
 
 }  // namespace ss
