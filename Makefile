@@ -58,7 +58,7 @@ TSAN_TESTS := GlRendererCache.*:GlRenderThread.*:CApiContext.*:Cancellation.*
 test-tsan: deps
 	cmake -S . -B $(TSAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" -DSS_TSAN=ON -DSS_BUILD_BENCH=OFF > /dev/null
 	cmake --build $(TSAN_BUILD) -j $(JOBS) --target softshadow_tests
-	TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" $(TSAN_BUILD)/softshadow_tests --gtest_filter='$(TSAN_TESTS)'
+	TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/tests/tsan.supp" $(TSAN_BUILD)/softshadow_tests --gtest_filter='$(TSAN_TESTS)'
 
 bench: build
 	bash bench/run.sh $(BUILD)

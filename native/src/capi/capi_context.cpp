@@ -1,6 +1,7 @@
 // How the C API creates, describes and shuts down GL contexts (the library's render threads).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "capi/capi_internal.h"
+#include "core/libstdcxx_baseline.h"
 #include "gl/render_thread.h"
 
 using namespace ss::capi;
