@@ -3,6 +3,7 @@
 SHELL := /bin/bash
 BUILD ?= build
 ASAN_BUILD ?= build-asan
+TSAN_BUILD ?= build-tsan
 JOBS ?= $(shell nproc)
 UID_NOW := $(shell id -u)
 SUDO := $(if $(filter 0,$(UID_NOW)),,sudo)
@@ -14,7 +15,7 @@ DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
   blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev mmdebstrap
 
-.PHONY: deps build demo test test-native test-asan test-blender test-matrix bench addon clean
+.PHONY: deps build demo test test-native test-asan test-tsan test-blender test-matrix bench addon clean
 
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
@@ -31,7 +32,7 @@ demo: build
 	bash examples/run_demo.sh $(BUILD)
 
 test: build
-	$(MAKE) --no-print-directory test-native test-blender test-matrix test-asan
+	$(MAKE) --no-print-directory test-native test-blender test-matrix test-asan test-tsan
 
 test-native:
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -50,6 +51,14 @@ test-asan: deps
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
 	  SS_TEST_QUICK=1 ctest --output-on-failure -j $(JOBS)
+
+# The tests of threads (shutdown and context destroy during renders, the render thread,
+# cancellation) once more under ThreadSanitizer.
+TSAN_TESTS := GlRendererCache.*:GlRenderThread.*:CApiContext.*:Cancellation.*
+test-tsan: deps
+	cmake -S . -B $(TSAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" -DSS_TSAN=ON -DSS_BUILD_BENCH=OFF > /dev/null
+	cmake --build $(TSAN_BUILD) -j $(JOBS) --target softshadow_tests
+	TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/tests/tsan.supp" $(TSAN_BUILD)/softshadow_tests --gtest_filter='$(TSAN_TESTS)'
 
 bench: build
 	bash bench/run.sh $(BUILD)

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "bench_scenes.h"
-#include "methods/dbuffer_geometry.h"
+#include "methods/dbuffer/geometry.h"
 #include "softshadow/softshadow.h"
 
 namespace ss {

@@ -15,7 +15,7 @@
 #include "core/error.h"
 #include "core/scene.h"
 #include "io/scene_file.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "stage_timing.h"
 

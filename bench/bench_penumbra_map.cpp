@@ -10,16 +10,13 @@
 #include "core/scene.h"
 #include "geometry/silhouette.h"
 #include "methods/penumbra_map.h"
-#include "pipeline/frame.h"
+#include "core/stopwatch.h"
+#include "frame/frame.h"
 #include "softshadow/softshadow.h"
 
 namespace ss {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 
 Scene benchScene(int m, int resolution) {
     return bench::sphereOverGround(m, SS_MESH_CAST, LightType::Disk, resolution);

@@ -9,10 +9,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "core/settings.h"
 #include "io/exr_file.h"
 #include "io/pass_names.h"
 #include "io/scene_file.h"
@@ -98,12 +98,8 @@ const bool registered = [] {
     const char* list = std::getenv("SS_BENCH_SCENES");
     const char* out = std::getenv("SS_BENCH_OUT");
     if (!list || !out) return false;
-    std::stringstream ss(list);
-    std::string item;
-    while (std::getline(ss, item, ';')) {
-        size_t eq = item.find('=');
-        if (eq == std::string::npos) continue;
-        std::string name = item.substr(0, eq), path = item.substr(eq + 1);
+    // "name=path;name=path": the same form as method settings, read by the same parser.
+    for (const auto& [name, path] : parseSettings(list)) {
         for (const Variant& variant : variants()) {
             benchmark::RegisterBenchmark(("BM_SceneFile/" + name + "/" + variant.key).c_str(),
                                          [=](benchmark::State& st) { runSceneFile(st, name, path, variant, out); })

@@ -14,7 +14,7 @@
 #include "core/mesh.h"
 #include "core/scene.h"
 #include "methods/method.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 
 namespace ss::bench {
 

@@ -7,7 +7,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_scenes.h"
-#include "methods/sweep_shadow.h"
+#include "methods/sweep/shadow.h"
 #include "softshadow/softshadow.h"
 
 namespace ss {

@@ -7,17 +7,14 @@
 #include <chrono>
 #include <memory>
 
+#include "core/stopwatch.h"
 #include "gl/render_thread.h"
 #include "methods/method.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss::bench {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 gl::RenderThread& glThread() {
     static gl::RenderThread* t = new gl::RenderThread(SS_BACKEND_AUTO);
     return *t;
@@ -79,7 +76,7 @@ Stages runOnce(const Scene& scene, const std::string& method, Layers* keep, doub
         // What one float layer at camera resolution costs to bring back (every method reads at
         // least V; its own read-back is inside `render`).
         t = Clock::now();
-        Image v = cam.framebuffer.readChannel(0, 3);
+        std::vector<Image> v = cam.framebuffer.readChannels(0, 1);
         st.readback = msSince(t);
         benchmark::DoNotOptimize(v);
         m.reset();  // GL objects of the method die on their own thread

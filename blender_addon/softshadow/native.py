@@ -96,6 +96,8 @@ _SIGNATURES = {
     "ss_context_destroy": (None, [_vp]),
     "ss_context_info": (_st, [_vp, ctypes.c_char_p, ctypes.c_size_t]),
     "ss_shutdown": (None, []),
+    "ss_method_count": (ctypes.c_int32, []),
+    "ss_method_name": (ctypes.c_char_p, [ctypes.c_int32]),
     "ss_scene_create": (_st, [ctypes.POINTER(_vp)]),
     "ss_scene_destroy": (None, [_vp]),
     "ss_scene_load": (_st, [ctypes.c_char_p, ctypes.POINTER(_vp)]),
@@ -207,6 +209,12 @@ def _text(value):
 
 def version():
     return lib().ss_version().decode()
+
+
+def method_names():
+    """The library's methods, in its order ("auto" is not one)."""
+    loaded = lib()
+    return tuple(loaded.ss_method_name(i).decode() for i in range(loaded.ss_method_count()))
 
 
 def context():

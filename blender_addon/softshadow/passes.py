@@ -5,14 +5,12 @@ from dataclasses import dataclass, field
 
 from . import native, scene_export
 
-METHODS = ("shadow_map", "pcss", "dbuffer", "sweep", "penumbra_map", "occlusion_textures", "reference")
-
 
 @dataclass
 class FrameResult:
     arrays: dict = field(default_factory=dict)    # (light name, method) -> (H, W) float32
     results: list = field(default_factory=list)   # native.Result, for ss_write_exr
-    chosen: dict = field(default_factory=dict)    # light name -> method that ran (for 'auto')
+    chosen: dict = field(default_factory=dict)    # light name -> the methods that ran, 'auto' resolved ("a, b")
     problems: list = field(default_factory=list)
     view_layer: str = "ViewLayer"
     exr_path: str = ""
@@ -87,8 +85,8 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
     try:
         jobs = [(l, m) for l, ms in _wanted(exported, lights, methods, only_enabled) for m in ms]
         for number, (light, method) in enumerate(jobs):
-            if light["name"] not in indices:
-                continue
+            if light["name"] not in indices or (light["name"], method) in out.arrays:
+                continue  # skipped, or already made: 'auto' resolved to a method also asked for
             options = light.get("options", {})
 
             def step(fraction, stage, number=number):
@@ -104,7 +102,11 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
                 out.problems.append("light '%s' with %s: %s" % (light["name"], method, exc))
                 continue
             ran = result.method
-            out.chosen[light["name"]] = ran
+            if (light["name"], ran) in out.arrays:
+                result.close()  # the same (light, method, settings) as a pass already made
+                continue
+            ran_before = out.chosen.get(light["name"])
+            out.chosen[light["name"]] = ran if not ran_before else ran_before + ", " + ran
             layers = result.layers()
             if "V" in layers:
                 out.arrays[(light["name"], ran)] = layers["V"]

@@ -14,7 +14,11 @@ from gpu_extras.presets import draw_texture_2d
 from . import native, passes, scene_export
 
 PREVIEW_OPACITY = 0.75
-FAST_METHODS = ("shadow_map", "pcss", "dbuffer", "sweep", "penumbra_map", "occlusion_textures")
+
+
+def fast_methods():
+    """The library's methods fast enough to preview: all but the ray-traced reference."""
+    return tuple(m for m in native.method_names() if m != "reference")
 
 
 class _State:
@@ -50,7 +54,7 @@ def _render_job(exported, camera, cancelled):
             if light["name"] not in indices or not options.get("enabled", True) or not light["cast_shadows"]:
                 continue
             method = options.get("method", "auto")
-            method = method if method in FAST_METHODS else "auto"
+            method = method if method in fast_methods() else "auto"
             result = scene.render(indices[light["name"]], method, progress=lambda f, s: cancelled())
             try:
                 v = result.layers().get("V")

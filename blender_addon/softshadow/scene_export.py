@@ -27,17 +27,6 @@ class ExportedScene:
     skipped: list = field(default_factory=list)   # names of objects left out on purpose
 
 
-def safe_name(name):
-    """A light name as it appears in a pass name: dots and spaces become '_' (DESIGN.md)."""
-    return "".join("_" if c in ". " else c for c in name)
-
-
-def pass_name(light_name, method, layer=None):
-    """The EXR pass name of one (light, method[, extra layer]) result."""
-    base = "%s_%s" % (safe_name(light_name), method)
-    return base if layer in (None, "", "V") else "%s_%s" % (base, layer)
-
-
 def column_major(matrix):
     """A 4x4 row-indexed matrix (mathutils or nested lists) -> 16 floats, m[col*4 + row]."""
     rows = np.asarray([list(r) for r in matrix], dtype=np.float64).reshape(4, 4)

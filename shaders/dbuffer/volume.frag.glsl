@@ -17,7 +17,7 @@ uniform float uFar;       // distances are divided by it for the depth test
 // (the shared shadow map, same view and size) count, and the nearest of them wins.
 // uExitEpsilon (relative) keeps the caster's own surface out (a silhouette face that is the
 // nearest caster is drawn at the same texels and distance up to rounding) and nothing else: the
-// exit of a ray that grazes the occluder lies just behind it (see dbuffer.cpp).
+// exit of a ray that grazes the occluder lies just behind it (see methods/dbuffer/method.cpp).
 uniform int uBeyondOccluder;
 uniform float uExitEpsilon;
 

@@ -65,7 +65,7 @@ def test_default_every_light_with_its_method():
     sstest.check(lights == ["Key", "Rim.Light 2"], "shadow-casting enabled lights only, real names: %s" % list(result))
     sstest.check(("Rim.Light 2", "shadow_map") in result, "own method setting used: %s" % list(result))
     auto = [k for k in result if k[0] == "Key"][0][1]
-    sstest.check(auto in ss.passes.METHODS, "auto resolved to a real method: %r" % auto)
+    sstest.check(auto in ss.native.method_names(), "auto resolved to a real method: %r" % auto)
     only = ss.render_passes(scene, lights="Rim.Light 2", methods="shadow_map")
     sstest.check(list(only) == [("Rim.Light 2", "shadow_map")], "lights= filter: %s" % list(only))
 
@@ -113,6 +113,42 @@ def test_agrees_with_cli_on_exported_scene():
     # Same library, same scene, same deterministic method: equal to float precision.
     diff = float(np.abs(from_cli - from_api).max())
     sstest.check(diff <= 1e-5, "CLI and add-on differ by %g" % diff)
+
+
+def test_auto_and_the_method_it_resolves_to_make_one_pass():
+    # 'auto' resolving to a method also asked for must not drop or overwrite a result: the two
+    # are the same (light, method, settings), so one pass is made and 'chosen' names it once.
+    scene = sstest.standard_scene(W, H)
+    resolved = list(ss.render_passes(scene, lights="Key", methods="auto"))[0][1]
+    for methods in (["auto", resolved], [resolved, "auto"]):
+        result = ss.render_passes(scene, lights="Key", methods=methods)
+        sstest.check(list(result) == [("Key", resolved)], "%s: %s" % (methods, list(result)))
+        sstest.check(ss.render_passes.last_chosen == {"Key": resolved},
+                     "%s: chosen %s" % (methods, ss.render_passes.last_chosen))
+        sstest.check(ss.render_passes.last_problems == [], "%s: %s" % (methods, ss.render_passes.last_problems))
+    both = ss.render_passes(scene, lights="Key", methods=["auto", "shadow_map"] if resolved != "shadow_map"
+                            else ["auto", "pcss"])
+    sstest.check(len(both) == 2, "two methods, two passes: %s" % list(both))
+    sstest.check(", " in ss.render_passes.last_chosen["Key"], "chosen names both: %s" % ss.render_passes.last_chosen)
+
+
+def test_a_setting_typo_is_a_problem_naming_the_key():
+    scene = sstest.standard_scene(W, H)
+    scene.objects["Key"].data.softshadow.method = "pcss"
+    scene.objects["Key"].data.softshadow.settings = "blocker_sample=64"
+    result = ss.render_passes(scene)
+    sstest.check(("Key", "pcss") not in result, "the typo rendered the default: %s" % list(result))
+    problems = " ".join(ss.render_passes.last_problems)
+    sstest.check("no setting 'blocker_sample'" in problems and "blocker_samples" in problems,
+                 "problem names the key and the known keys: %s" % problems)
+
+
+def test_method_list_comes_from_the_library():
+    names = ss.native.method_names()
+    sstest.check(names[0] == "shadow_map" and names[-1] == "reference" and len(names) == 7, "%s" % (names,))
+    items = [item[0] for item in ss.properties.METHOD_ITEMS]
+    sstest.check(items == ["auto"] + list(names), "the light's method menu follows the library: %s" % items)
+    sstest.check(set(ss.preview.fast_methods()) == set(names) - {"reference"}, "%s" % (ss.preview.fast_methods(),))
 
 
 if __name__ == "__main__":

@@ -10,13 +10,6 @@ import sstest  # noqa: E402
 from softshadow import scene_export as se  # noqa: E402
 
 
-def test_pass_names_follow_design():
-    sstest.check(se.pass_name("Key", "dbuffer") == "Key_dbuffer", "plain")
-    sstest.check(se.pass_name("Area.001", "sweep") == "Area_001_sweep", "dots become _")
-    sstest.check(se.pass_name("Rim Light", "pcss", "umbra") == "Rim_Light_pcss_umbra", "spaces, layer")
-    sstest.check(se.pass_name("Key", "reference", "V") == "Key_reference", "V is the main pass")
-
-
 def test_column_major_layout():
     rows = [[1, 2, 3, 4], [5, 6, 7, 8], [9, 10, 11, 12], [13, 14, 15, 16]]
     flat = se.column_major(rows)

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <atomic>
+#include <chrono>
 #include <string>
 #include <thread>
 
@@ -316,6 +318,70 @@ TEST(CApi, ShadowMapRenderThroughGl) {
     ASSERT_EQ(ss_result_layer(res, 0, nullptr, &px, nullptr, nullptr), SS_OK);
     ss_result_destroy(res);
     ss_scene_destroy(s);
+    ss_context_destroy(ctx);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(CApiContext, DestroyDuringARenderCancelsItAndWaits) {
+    // The preview stops its worker by destroying the context from another thread: the render in
+    // flight is cancelled (SS_ERROR_CANCELLED) and destroy returns only after it has.
+    ss_context* ctx = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &ctx), SS_OK);
+    ss_scene* scene = smallScene(64, 48);
+    struct Shared {
+        std::atomic<bool> started{false};
+    } shared;
+    ss_render_options o;
+    ss_render_options_default(&o);
+    o.samples = 4096;  // seconds of tracing: still running when destroy comes
+    o.settings = "threads=1";
+    o.progress_user = &shared;
+    o.progress = [](void* user, float, const char*) {
+        static_cast<Shared*>(user)->started = true;
+        return 0;
+    };
+    ss_status status = SS_OK;
+    std::thread worker([&] {
+        ss_result* r = nullptr;
+        status = ss_render(ctx, scene, 0, "reference", &o, &r);
+        ss_result_destroy(r);
+    });
+    while (!shared.started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    auto t0 = std::chrono::steady_clock::now();
+    ss_context_destroy(ctx);
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    worker.join();
+    EXPECT_EQ(status, SS_ERROR_CANCELLED);
+    EXPECT_LT(seconds, 5.0) << "the render was not cancelled";
+    ss_scene_destroy(scene);
+}
+
+TEST(CApiContext, MethodListComesFromTheLibrary) {
+    ASSERT_EQ(ss_method_count(), 7);
+    std::vector<std::string> names;
+    for (int32_t i = 0; i < ss_method_count(); ++i) names.push_back(ss_method_name(i));
+    EXPECT_EQ(names, (std::vector<std::string>{"shadow_map", "pcss", "dbuffer", "sweep", "penumbra_map",
+                                               "occlusion_textures", "reference"}));
+    EXPECT_EQ(ss_method_name(-1), nullptr);
+    EXPECT_EQ(ss_method_name(7), nullptr);
+}
+
+TEST(CApiContext, UnknownSettingKeyIsRefusedNamingIt) {
+    ss_context* ctx = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &ctx), SS_OK);
+    ss_scene* scene = smallScene(32, 24);
+    ss_render_options o;
+    ss_render_options_default(&o);
+    o.settings = "blocker_sample=64";
+    ss_result* r = nullptr;
+    EXPECT_EQ(ss_render(ctx, scene, 0, "pcss", &o, &r), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(r, nullptr);
+    EXPECT_TRUE(errorHas("no setting 'blocker_sample'")) << ss_last_error();
+    EXPECT_TRUE(errorHas("blocker_samples, pcf_samples")) << ss_last_error();
+    ss_scene_destroy(scene);
     ss_context_destroy(ctx);
 }
 

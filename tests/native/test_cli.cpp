@@ -170,4 +170,16 @@ TEST(Cli, RenderWritesExactPassNames) {
     fs::remove_all(dir);
 }
 
+TEST(Cli, UnknownSettingKeyFailsNamingItAndTheKnownKeys) {
+    // A typo (blocker_sample for blocker_samples) must not render the default with exit 0.
+    fs::path dir = tempDir("setting_typo");
+    std::ofstream(dir / "good.json") << scene(kPos, kTri);
+    fs::path out = dir / "out.exr";
+    expectFailure(cli("render '" + (dir / "good.json").string() + "' -m pcss --set blocker_sample=64 -o '" +
+                      out.string() + "'"),
+                  {"no setting 'blocker_sample'", "blocker_samples, pcf_samples, shadow_map_size, max_search"});
+    EXPECT_FALSE(fs::exists(out));
+    fs::remove_all(dir);
+}
+
 }  // namespace

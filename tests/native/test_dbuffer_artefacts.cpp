@@ -10,7 +10,7 @@
 #include "io/metrics.h"
 #include "io/scene_file.h"
 #include "methods/method.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
 

@@ -14,9 +14,9 @@
 #include "geometry/silhouette.h"
 #include "io/metrics.h"
 #include "io/png_preview.h"
-#include "methods/dbuffer_geometry.h"
+#include "methods/dbuffer/geometry.h"
 #include "methods/method.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
 
@@ -42,8 +42,8 @@ int referenceSamples() { return test::quickTests() ? 64 : 256; }
 
 // Every layer finite; V in [0, 1]; masks exactly 0 or 1; distances >= 0; V = 1 outside the mask.
 void expectSaneLayers(const Layers& l, const std::string& what) {
-    for (const char* name : {"V", "mask", "umbra", "penumbra", "dist_occluder", "dist_umbra",
-                             "dist_penumbra", "dist_silhouette"})
+    for (const char* name : {"V", "mask", "umbra", "penumbra", "umbra_volume", "penumbra_volume", "dist_occluder",
+                             "dist_umbra", "dist_penumbra", "dist_silhouette"})
         ASSERT_NE(l.find(name), nullptr) << what << ": no layer " << name;
     const Image& V = layer(l, "V");
     const Image& mask = layer(l, "mask");
@@ -55,7 +55,9 @@ void expectSaneLayers(const Layers& l, const std::string& what) {
             float v = img.pixels[i];
             bool ok = std::isfinite(v);
             if (name == "V") ok = ok && v >= 0.0f && v <= 1.0f && (mask.pixels[i] > 0.5f || v == 1.0f);
-            else if (name == "mask" || name == "umbra" || name == "penumbra") ok = ok && (v == 0.0f || v == 1.0f);
+            else if (name == "mask" || name == "umbra" || name == "penumbra" || name == "umbra_volume" ||
+                     name == "penumbra_volume")
+                ok = ok && (v == 0.0f || v == 1.0f);
             else ok = ok && v >= 0.0f;
             if (!ok) ++bad;
         }

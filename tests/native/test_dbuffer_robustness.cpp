@@ -11,9 +11,9 @@
 
 #include "core/error.h"
 #include "io/metrics.h"
-#include "methods/dbuffer_geometry.h"
+#include "methods/dbuffer/geometry.h"
 #include "methods/method.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
 
@@ -43,7 +43,7 @@ void expectFinite(const Layers& l, const std::string& what) {
     for (auto& [name, img] : l.items)
         for (float v : img.pixels) bad += !std::isfinite(v) || (name == "V" && (v < 0.0f || v > 1.0f));
     EXPECT_EQ(bad, 0u) << what;
-    EXPECT_EQ(l.items.size(), 8u) << what;
+    EXPECT_EQ(l.items.size(), 10u) << what;  // V, mask, umbra, penumbra, two volumes, four distances
 }
 
 Metrics againstReference(Renderer& r, const Scene& scene, const std::string& what,

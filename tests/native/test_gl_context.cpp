@@ -12,7 +12,7 @@
 #include "gl/program.h"
 #include "gl/render_state.h"
 #include "gl/render_thread.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 
 namespace ss {
 namespace {

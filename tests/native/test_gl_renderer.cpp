@@ -1,12 +1,17 @@
 // Does the Renderer reuse the shared passes while a scene is unchanged, and fail clearly otherwise?
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <atomic>
+#include <chrono>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "core/visibility_classes.h"
+#include "gl/render_thread.h"
 #include "methods/method.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "test_scenes.h"
 
 namespace ss {
@@ -91,6 +96,127 @@ TEST(GlRendererCache, RendersAgainAfterShutdown) {
     Layers after = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
     EXPECT_EQ(before.find("V")->pixels, after.find("V")->pixels);
     EXPECT_EQ(renderer.cacheStats().cameraPasses, 2);
+}
+
+TEST(GlRendererCache, ShutdownWhileARenderHoldsTheCacheFailsCleanly) {
+    // ss_shutdown from another thread may land after render() took the cache entry and the
+    // method and before GL work starts. What the render holds must stay alive: the render
+    // fails with SS_ERROR_GL (the thread is gone), and the next one starts afresh.
+    Scene scene = twoLightScene();
+    Renderer renderer(SS_BACKEND_AUTO);
+    Layers before = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    int calls = 0;
+    renderer.setCacheTakenHook([&] {
+        if (calls++ == 0) shutdownRenderThreads();
+    });
+    EXPECT_EQ(statusOf([&] { renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr); }), SS_ERROR_GL);
+    Layers after = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    EXPECT_EQ(before.find("V")->pixels, after.find("V")->pixels);
+    EXPECT_EQ(calls, 2);
+}
+
+TEST(GlRendererCache, ShutdownStressDuringRendersNeverCrashes) {
+    // ss_shutdown on one thread while another renders: every render either succeeds with the
+    // right picture or fails with SS_ERROR_GL.
+    Scene scene = twoLightScene();
+    Renderer renderer(SS_BACKEND_AUTO);
+    const std::vector<float> expected = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr).find("V")->pixels;
+    std::atomic<bool> done{false};
+    std::thread stopper([&] {
+        while (!done) {
+            shutdownRenderThreads();
+            std::this_thread::sleep_for(std::chrono::milliseconds(3));
+        }
+    });
+    int ok = 0, refused = 0;
+    for (int i = 0; i < 40; ++i) {
+        try {
+            Layers l = renderer.render(scene, i % 2, "shadow_map", RenderSettings{}, nullptr);
+            if (i % 2 == 0) EXPECT_EQ(l.find("V")->pixels, expected);
+            ++ok;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.status(), SS_ERROR_GL) << e.what();
+            ++refused;
+        }
+    }
+    done = true;
+    stopper.join();
+    EXPECT_EQ(ok + refused, 40);
+}
+
+TEST(GlRendererSettings, AnUnknownKeyIsRefusedNamingItAndTheKnownKeys) {
+    Scene scene = twoLightScene();
+    Renderer renderer(SS_BACKEND_AUTO);
+    RenderSettings settings;
+    settings.options = {{"blocker_sample", "64"}};  // a typo of blocker_samples
+    try {
+        renderer.render(scene, 0, "pcss", settings, nullptr);
+        ADD_FAILURE() << "the unknown key was accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.status(), SS_ERROR_INVALID_ARGUMENT);
+        EXPECT_EQ(std::string(e.what()),
+                  "method 'pcss' has no setting 'blocker_sample' (its settings: blocker_samples, pcf_samples, "
+                  "shadow_map_size, max_search)");
+    }
+    // Every method refuses an unknown key, CPU and GL alike, and before any work.
+    for (const std::string& method : methodNames()) {
+        RenderSettings typo;
+        typo.options = {{"no_such_setting", "1"}};
+        EXPECT_EQ(statusOf([&] { renderer.render(scene, 0, method, typo, nullptr); }), SS_ERROR_INVALID_ARGUMENT)
+            << method;
+    }
+}
+
+TEST(GlRendererSettings, EveryMethodsKeysAreAccepted) {
+    // The declared keys are the keys the method reads: each is accepted with its default value.
+    for (const std::string& name : methodNames()) {
+        auto m = createMethod(name);
+        EXPECT_EQ(m->name(), name);
+        std::vector<std::string> keys = m->settingKeys();
+        RenderSettings s;
+        for (const std::string& k : keys) s.options[k] = "x";
+        EXPECT_NO_THROW(s.requireKnownKeys(name, keys)) << name;
+    }
+}
+
+TEST(GlRendererLayers, UmbraAndPenumbraAreTheClassesOfVForEveryMethod) {
+    // One meaning for every method: umbra = mask and V < 0.05, penumbra = mask and
+    // 0.05 <= V <= 0.95 (core/visibility_classes.h), placed right after the mask.
+    Scene scene = twoLightScene();
+    Renderer renderer(SS_BACKEND_AUTO);
+    RenderSettings settings;
+    settings.samples = 16;
+    for (const std::string& method : methodNames()) {
+        Layers layers;
+        try {
+            layers = renderer.render(scene, 0, method, settings, nullptr);
+        } catch (const Error& e) {
+            ADD_FAILURE() << method << ": " << e.what();
+            continue;
+        }
+        ASSERT_GE(layers.items.size(), 4u) << method;
+        EXPECT_EQ(layers.items[0].first, "V") << method;
+        EXPECT_EQ(layers.items[1].first, "mask") << method;
+        EXPECT_EQ(layers.items[2].first, "umbra") << method;
+        EXPECT_EQ(layers.items[3].first, "penumbra") << method;
+        const Image& v = *layers.find("V");
+        const Image& mask = *layers.find("mask");
+        const Image& umbra = *layers.find("umbra");
+        const Image& penumbra = *layers.find("penumbra");
+        size_t wrong = 0, umbraPixels = 0;
+        for (size_t i = 0; i < v.pixels.size(); ++i) {
+            bool in = mask.pixels[i] > 0.5f;
+            wrong += umbra.pixels[i] != ((in && v.pixels[i] < 0.05f) ? 1.0f : 0.0f);
+            wrong += penumbra.pixels[i] != ((in && v.pixels[i] >= 0.05f && v.pixels[i] <= 0.95f) ? 1.0f : 0.0f);
+            umbraPixels += umbra.pixels[i] == 1.0f;
+        }
+        EXPECT_EQ(wrong, 0u) << method;
+        EXPECT_GT(umbraPixels, 0u) << method << ": the box casts an umbra";
+    }
+    RenderSettings plain;
+    plain.extraLayers = false;
+    Layers only = renderer.render(scene, 0, "pcss", plain, nullptr);
+    EXPECT_EQ(only.items.size(), 2u);
 }
 
 TEST(GlRendererCache, EglAndOsmesaAgree) {

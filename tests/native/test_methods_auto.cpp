@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "methods/method.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "test_scenes.h"
 
 namespace ss {

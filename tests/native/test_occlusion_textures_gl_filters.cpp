@@ -10,7 +10,8 @@
 
 #include "filters/box_filter.h"
 #include "gl/render_thread.h"
-#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/prefilter.h"
+#include "occlusion_probe.h"
 
 namespace ss {
 namespace {

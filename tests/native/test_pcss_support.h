@@ -13,7 +13,7 @@
 #include "io/metrics.h"
 #include "io/png_preview.h"
 #include "methods/method.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "test_scenes.h"
 
 namespace ss::test {

@@ -36,7 +36,7 @@ double meanIrradiance(const Light& light, const glm::vec3& point, const glm::vec
     SampleSequence seq(7, 3, 4);
     double sum = 0.0;
     for (int i = 0; i < n; ++i) {
-        LightSample s = sampler.sample(point, seq.point(uint32_t(i)));
+        ShadowRay s = sampler.sample(point, seq.point(uint32_t(i)));
         sum += double(s.weight) * std::max(0.0, double(glm::dot(normal, s.toLight)));
     }
     return sum / n;
@@ -93,7 +93,7 @@ TEST(ReferenceSampling, AreaSamplesLieOnTheLightShape) {
         const glm::vec3 point(0.3f, -0.2f, -4.0f);
         glm::vec3 mean(0.0f);
         for (uint32_t i = 0; i < 1024; ++i) {
-            LightSample s = sampler.sample(point, seq.point(i));
+            ShadowRay s = sampler.sample(point, seq.point(i));
             glm::vec3 q = point + s.distance * s.toLight - l.position();
             float x = glm::dot(q, ax) / a, y = glm::dot(q, ay) / b;
             EXPECT_NEAR(glm::dot(q, l.direction()), 0.0f, 1e-4f) << l.name;  // in the plane
@@ -137,7 +137,7 @@ TEST(ReferenceSampling, SphereLightIsADiskFacingThePoint) {
         LightSampler sampler(l);
         SampleSequence seq(3, 1, 1);
         for (uint32_t i = 0; i < 256; ++i) {
-            LightSample s = sampler.sample(p, seq.point(i));
+            ShadowRay s = sampler.sample(p, seq.point(i));
             glm::vec3 q = p + s.distance * s.toLight;  // on the disk through the centre, facing p
             EXPECT_NEAR(glm::dot(q, dir), 0.0f, 1e-4f);
             EXPECT_LE(glm::length(q), 0.5f + 1e-4f);
@@ -157,7 +157,7 @@ TEST(ReferenceSampling, SunDirectionsFillItsConeUniformly) {
     const float cosMax = std::cos(0.5f * sun.angle);
     double meanCos = 0.0;
     for (uint32_t i = 0; i < 4096; ++i) {
-        LightSample s = sampler.sample(glm::vec3(0.0f), seq.point(i));
+        ShadowRay s = sampler.sample(glm::vec3(0.0f), seq.point(i));
         EXPECT_TRUE(std::isinf(s.distance));
         EXPECT_EQ(s.weight, 1.0f);
         float c = glm::dot(s.toLight, toSun);

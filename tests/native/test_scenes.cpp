@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "io/primitives.h"
 #include "softshadow/softshadow.h"
 
 namespace ss::test {
@@ -69,29 +70,12 @@ Mesh makeTorus(const glm::vec3& centre, float majorRadius, float minorRadius, in
 }
 
 Mesh makeUvSphere(const glm::vec3& centre, float radius, int rings, int segments, uint32_t flags) {
+    // The scene files' UV sphere (io/primitives.h), moved to `centre`.
+    TriangleSoup soup = ss::makeUvSphere(radius, segments, rings);
     Mesh m;
     m.name = "sphere";
-    auto& p = m.positions;
-    p.push_back(centre + glm::vec3(0, 0, radius));
-    for (int i = 1; i < rings; ++i) {
-        float th = float(M_PI) * float(i) / float(rings);
-        for (int j = 0; j < segments; ++j) {
-            float ph = 2.0f * float(M_PI) * float(j) / float(segments);
-            p.push_back(centre + radius * glm::vec3(std::sin(th) * std::cos(ph),
-                                                    std::sin(th) * std::sin(ph), std::cos(th)));
-        }
-    }
-    p.push_back(centre - glm::vec3(0, 0, radius));
-    const uint32_t south = uint32_t(p.size() - 1);
-    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * segments + (j % segments)); };
-    auto& t = m.triangles;
-    for (int j = 0; j < segments; ++j) t.push_back({0, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i < rings - 1; ++i)
-        for (int j = 0; j < segments; ++j) {
-            t.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-            t.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-        }
-    for (int j = 0; j < segments; ++j) t.push_back({south, ring(rings - 1, j + 1), ring(rings - 1, j)});
+    for (const glm::vec3& p : soup.positions) m.positions.push_back(centre + p);
+    m.triangles = std::move(soup.triangles);
     m.flags = flags;
     m.finalize();
     return m;

@@ -8,8 +8,8 @@
 
 #include "core/error.h"
 #include "gl/render_thread.h"
-#include "pipeline/frame.h"
-#include "pipeline/renderer.h"
+#include "frame/frame.h"
+#include "renderer/renderer.h"
 #include "test_scenes.h"
 
 namespace ss {

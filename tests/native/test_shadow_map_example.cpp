@@ -6,7 +6,7 @@
 
 #include "io/metrics.h"
 #include "io/scene_file.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 
 namespace ss {
 namespace {

@@ -11,8 +11,8 @@
 #include "capi/capi_internal.h"
 #include "core/error.h"
 #include "io/metrics.h"
-#include "methods/sweep_shadow.h"
-#include "pipeline/renderer.h"
+#include "methods/sweep/shadow.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
 

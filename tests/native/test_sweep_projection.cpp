@@ -11,8 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
-#include "methods/sweep_projection.h"
-#include "methods/sweep_receiver.h"
+#include "methods/sweep/projection.h"
+#include "methods/sweep/receiver.h"
 #include "planar/outline.h"
 #include "planar/trapezoids.h"
 #include "test_scenes.h"

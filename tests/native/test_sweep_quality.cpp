@@ -9,7 +9,7 @@
 
 #include "io/metrics.h"
 #include "methods/method.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
 

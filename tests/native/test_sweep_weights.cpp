@@ -8,9 +8,9 @@
 #include <cstdio>
 
 #include "io/metrics.h"
-#include "methods/sweep_shadow.h"
-#include "methods/sweep_weights.h"
-#include "pipeline/renderer.h"
+#include "methods/sweep/shadow.h"
+#include "methods/sweep/weights.h"
+#include "renderer/renderer.h"
 #include "sampling/light_samples.h"
 #include "test_scenes.h"
 

@@ -8,7 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "pipeline/visibility_contract.h"
+#include "core/visibility_contract.h"
 #include "reference/light_sampler.h"
 
 namespace ss {
@@ -33,7 +33,7 @@ bool samplesReach(const Light& light, const glm::vec3& P, const glm::vec3& N, in
     LightSampler sampler(light);
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
-            LightSample s = sampler.sample(P, {(i + 0.5f) / n, (j + 0.5f) / n});
+            ShadowRay s = sampler.sample(P, {(i + 0.5f) / n, (j + 0.5f) / n});
             if (s.weight > 0.0f && glm::dot(N, s.toLight) > 0.0f) return true;
         }
     return false;

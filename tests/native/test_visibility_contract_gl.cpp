@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "gl/render_thread.h"
-#include "pipeline/frame.h"
-#include "pipeline/renderer.h"
-#include "pipeline/visibility_contract.h"
+#include "frame/frame.h"
+#include "renderer/renderer.h"
+#include "core/visibility_contract.h"
 #include "test_scenes.h"
 
 namespace ss {

@@ -110,10 +110,17 @@ SS_API void ss_render_options_default(ss_render_options* options);
 
 /* GL context. `info_json` describes backend, renderer, GL version and limits. */
 SS_API ss_status ss_context_create(ss_backend backend, ss_context** out);
+/* Safe while an ss_render on the context runs on another thread: that render is cancelled at
+   its next check (it returns SS_ERROR_CANCELLED) and destroy returns once it has. A call that
+   starts on the context after destroy has begun is refused (or, after it returned, invalid). */
 SS_API void ss_context_destroy(ss_context* context);
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size);
 /* Joins every render thread the library started. Call from the host before it exits. */
 SS_API void ss_shutdown(void);
+/* The methods this library has, by name ("auto" is not one): index 0 .. ss_method_count()-1;
+   NULL for an index out of range. */
+SS_API int32_t ss_method_count(void);
+SS_API const char* ss_method_name(int32_t index);
 
 /* Scenes. */
 SS_API ss_status ss_scene_create(ss_scene** out);

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "capi/capi_internal.h"
+#include "core/method_names.h"
 
 namespace ss::capi {
 
@@ -36,6 +37,14 @@ extern "C" {
 SS_API const char* ss_version(void) { return SS_VERSION; }
 
 SS_API const char* ss_last_error(void) { return ss::capi::lastError.c_str(); }
+
+SS_API int32_t ss_method_count(void) { return int32_t(ss::methodNames().size()); }
+
+SS_API const char* ss_method_name(int32_t index) {
+    const auto& names = ss::methodNames();
+    if (index < 0 || size_t(index) >= names.size()) return nullptr;
+    return names[size_t(index)].c_str();
+}
 
 SS_API void ss_render_options_default(ss_render_options* options) {
     if (!options) return;

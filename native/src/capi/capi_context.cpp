@@ -1,8 +1,26 @@
 // How the C API creates, describes and shuts down GL contexts (the library's render threads).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "capi/capi_internal.h"
+#include "core/libstdcxx_baseline.h"
+#include "gl/render_thread.h"
 
 using namespace ss::capi;
+
+namespace ss::capi {
+
+ContextUse::ContextUse(ss_context& context) : context_(context) {
+    std::lock_guard lock(context.m);
+    if (context.closing)
+        ss::fail(SS_ERROR_INVALID_ARGUMENT, "the context is being destroyed (ss_context_destroy)");
+    ++context.callsInFlight;
+}
+
+ContextUse::~ContextUse() {
+    std::lock_guard lock(context_.m);
+    if (--context_.callsInFlight == 0) context_.idle.notify_all();
+}
+
+}  // namespace ss::capi
 
 extern "C" {
 
@@ -18,13 +36,22 @@ SS_API ss_status ss_context_create(ss_backend backend, ss_context** out) {
 }
 
 SS_API void ss_context_destroy(ss_context* context) {
-    guarded([&] { delete context; });
+    guarded([&] {
+        if (!context) return;
+        {
+            std::unique_lock lock(context->m);
+            context->closing = true;  // renders in flight stop at their next check
+            context->idle.wait(lock, [&] { return context->callsInFlight == 0; });
+        }
+        delete context;
+    });
 }
 
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size) {
     return guarded([&] {
         require(context, "ss_context_info", "context");
         // info() starts GL lazily, which changes the renderer but not what the caller sees.
+        ContextUse use(*const_cast<ss_context*>(context));
         std::string info = const_cast<ss_context*>(context)->renderer.info();
         copyOut(info, buffer, buffer_size, "ss_context_info");
     });

@@ -1,19 +1,29 @@
 // What the C API's opaque handles hold, and how every C function turns exceptions into a status.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <atomic>
+#include <condition_variable>
 #include <exception>
+#include <mutex>
 #include <new>
 #include <string>
 
 #include "core/error.h"
 #include "core/image.h"
 #include "core/scene.h"
-#include "pipeline/renderer.h"
+#include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 
+// ss_context_destroy may come from another thread while an ss_render on this context runs (the
+// add-on's preview stops its worker that way): it sets `closing`, which cancels the render at
+// its next check, waits until no call uses the context, and only then deletes it.
 struct ss_context {
     explicit ss_context(ss_backend b) : renderer(b) {}
     ss::Renderer renderer;
+    std::atomic<bool> closing{false};
+    std::mutex m;
+    std::condition_variable idle;
+    int callsInFlight = 0;
 };
 
 struct ss_scene {
@@ -53,6 +63,18 @@ ss_status guarded(Body&& body) noexcept {
         return SS_ERROR_INTERNAL;
     }
 }
+
+// Marks one C call as using a context for its lifetime; refuses a context being destroyed.
+class ContextUse {
+public:
+    explicit ContextUse(ss_context& context);
+    ~ContextUse();
+    ContextUse(const ContextUse&) = delete;
+    ContextUse& operator=(const ContextUse&) = delete;
+
+private:
+    ss_context& context_;
+};
 
 // Throws SS_ERROR_INVALID_ARGUMENT naming the parameter when a required pointer is null.
 inline void require(const void* pointer, const char* function, const char* parameter) {

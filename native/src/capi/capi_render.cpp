@@ -46,6 +46,8 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         ss_render_options defaults;
         ss_render_options_default(&defaults);
         ss::RenderSettings settings = toSettings(options ? *options : defaults);
+        ContextUse use(*context);
+        settings.cancel = &context->closing;
         auto result = std::make_unique<ss_result>();
         result->light = lights[size_t(light_index)].name;
         result->layers = context->renderer.render(scene->scene, light_index, method, settings, &result->method);

@@ -48,6 +48,13 @@ const Camera& Scene::camera() const {
     return *camera_;
 }
 
+const Light& Scene::light(int index) const {
+    if (index < 0 || size_t(index) >= lights_.size())
+        fail(SS_ERROR_INVALID_ARGUMENT, "light index " + std::to_string(index) + " is out of range (the scene has " +
+                                            std::to_string(lights_.size()) + " lights)");
+    return lights_[size_t(index)];
+}
+
 int Scene::findLight(const std::string& name) const {
     for (size_t i = 0; i < lights_.size(); ++i)
         if (lights_[i].name == name) return int(i);

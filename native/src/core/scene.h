@@ -30,14 +30,17 @@ public:
 
     const std::vector<Mesh>& meshes() const { return meshes_; }
     const std::vector<Light>& lights() const { return lights_; }
+    // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) naming the index and the light count.
+    const Light& light(int index) const;
     const Camera& camera() const;  // throws when the scene has no camera
     bool hasCamera() const { return camera_.has_value(); }
     const std::string& viewLayer() const { return viewLayer_; }
     int findLight(const std::string& name) const;  // -1 when absent
     Bounds bounds() const;                         // of all meshes
-    // Changes whenever the scene changes: caches key on (scene id, revision).
+    // Changes whenever the scene changes: caches key on (scene id, revision). A copy is another
+    // scene (the two may diverge with equal revisions), so it gets an id of its own.
     uint64_t revision() const { return revision_; }
-    uint64_t id() const { return id_; }
+    uint64_t id() const { return id_.value; }
 
 private:
     std::vector<Mesh> meshes_;
@@ -45,8 +48,23 @@ private:
     std::optional<Camera> camera_;
     std::string viewLayer_ = "ViewLayer";
     uint64_t revision_ = 0;
-    uint64_t id_ = nextId();
     static uint64_t nextId();
+    // Copying makes a new id; moving hands the id over and gives the emptied source a new one.
+    struct Identity {
+        uint64_t value = nextId();
+        Identity() = default;
+        Identity(const Identity&) : value(nextId()) {}
+        Identity(Identity&& other) noexcept : value(other.value) { other.value = nextId(); }
+        Identity& operator=(const Identity&) {
+            value = nextId();
+            return *this;
+        }
+        Identity& operator=(Identity&& other) noexcept {
+            value = other.value;
+            other.value = nextId();
+            return *this;
+        }
+    } id_;
 };
 
 }  // namespace ss

@@ -149,20 +149,14 @@ DiskSilhouette diskSilhouette(const Mesh& mesh, const Disk& disk) {
     // An open edge's face may be NoneFront (umbra rule flips it) or AllFront; for the open-edge
     // orientation of the penumbra silhouette the "turned towards the light" direction must be
     // the same as for the umbra one, so re-orient open penumbra edges by the centre's side.
-    for (SilhouetteEdge& e : s.penumbraEdges) {
-        if (e.otherFace != kNoFace) continue;
-        uint32_t f = e.face;
-        const glm::vec3& nf = mesh.faceNormals[f];
-        bool centreFront = glm::dot(nf, disk.centre - mesh.positions[mesh.triangles[f][0]]) > 0.0f;
-        e = orient(mesh, e.edge, f, kNoFace, !centreFront);
-    }
-    for (SilhouetteEdge& e : s.umbraEdges) {
-        if (e.otherFace != kNoFace) continue;
-        uint32_t f = e.face;
-        const glm::vec3& nf = mesh.faceNormals[f];
-        bool centreFront = glm::dot(nf, disk.centre - mesh.positions[mesh.triangles[f][0]]) > 0.0f;
-        e = orient(mesh, e.edge, f, kNoFace, !centreFront);
-    }
+    for (std::vector<SilhouetteEdge>* edges : {&s.penumbraEdges, &s.umbraEdges})
+        for (SilhouetteEdge& e : *edges) {
+            if (e.otherFace != kNoFace) continue;
+            uint32_t f = e.face;
+            const glm::vec3& nf = mesh.faceNormals[f];
+            bool centreFront = glm::dot(nf, disk.centre - mesh.positions[mesh.triangles[f][0]]) > 0.0f;
+            e = orient(mesh, e.edge, f, kNoFace, !centreFront);
+        }
     s.umbraVertices = silhouetteVertices(s.umbraEdges);
     s.penumbraVertices = silhouetteVertices(s.penumbraEdges);
     return s;

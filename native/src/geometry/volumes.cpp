@@ -124,6 +124,14 @@ void pushTriangle(std::vector<VolumeVertex>& out, const glm::vec3& p0, const glm
     for (const glm::vec3& p : {p0, p1, p2}) out.push_back(VolumeVertex{p, ea, eb, ext, float(int(kind))});
 }
 
+// A quad from its edge (a, b) out to `length` along its far-end directions, as two triangles.
+void pushQuad(std::vector<VolumeVertex>& out, const Mesh& mesh, const Quad& q, float length) {
+    glm::vec3 a = mesh.positions[q.a], b = mesh.positions[q.b];
+    glm::vec3 af = a + length * q.dirA, bf = b + length * q.dirB;
+    pushTriangle(out, a, b, bf, a, b, q.p);
+    pushTriangle(out, a, bf, af, a, b, q.p);
+}
+
 // Component of d perpendicular to the unit vector e.
 glm::vec3 perp(const glm::vec3& d, const glm::vec3& e) { return d - glm::dot(d, e) * e; }
 
@@ -200,13 +208,8 @@ void extrudeUmbra(const Mesh& mesh, const DiskSilhouette& sil, const Disk& disk,
         else if (uq[i1].b == sv.vertex && uq[i0].a == sv.vertex) in = &uq[i1], out = &uq[i0];
         if (in && trimCorner(mesh, *in, *out, sv.vertex)) ++vol.trimmedCorners;
     }
-    for (const Quad& q : uq) {
-        glm::vec3 a = mesh.positions[q.a], b = mesh.positions[q.b];
-        glm::vec3 af = a + length * q.dirA, bf = b + length * q.dirB;
-        pushTriangle(vol.umbra, a, b, bf, a, b, q.p);
-        pushTriangle(vol.umbra, a, bf, af, a, b, q.p);
-        ++vol.umbraQuads;
-    }
+    for (const Quad& q : uq) pushQuad(vol.umbra, mesh, q, length);
+    vol.umbraQuads += uq.size();
     // Silhouette faces of both kinds close the gap between the two silhouettes (§3.3). Their
     // "edge" for eq. 2 is the line through their vertex nearest to the light, parallel to the
     // light plane within the face (VolumeVertex): seen from a receiver in the hard shadow next to
@@ -231,13 +234,8 @@ void extrudePenumbra(const Mesh& mesh, const DiskSilhouette& sil, const Disk& di
                      float fanStepRadians, ShadowVolumes& vol) {
     // Fans: directions run along the disk rim from one quad's p_p to the next one's.
     std::vector<Quad> pq = buildQuads(mesh, sil.penumbraEdges, disk, false, &vol.insideDiskEdges);
-    for (const Quad& q : pq) {
-        glm::vec3 a = mesh.positions[q.a], b = mesh.positions[q.b];
-        glm::vec3 af = a + length * q.dirA, bf = b + length * q.dirB;
-        pushTriangle(vol.penumbra, a, b, bf, a, b, q.p);
-        pushTriangle(vol.penumbra, a, bf, af, a, b, q.p);
-        ++vol.penumbraQuads;
-    }
+    for (const Quad& q : pq) pushQuad(vol.penumbra, mesh, q, length);
+    vol.penumbraQuads += pq.size();
     glm::vec3 u = glm::normalize(glm::cross(disk.normal, std::abs(disk.normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
     glm::vec3 w = glm::cross(disk.normal, u);
     for (const SilhouetteVertex& sv : sil.penumbraVertices) {

@@ -72,24 +72,19 @@ void Framebuffer::clearDepth(float depth) const {
     gl.ClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &depth);
 }
 
-std::vector<glm::vec4> Framebuffer::readRgba(int index) const {
+void Framebuffer::readGlRows(int index, GLenum format, void* out, size_t bytes) const {
     const Functions& gl = api();
-    std::vector<glm::vec4> glRows(size_t(width_) * height_);
-    gl.NamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0 + index);
+    if (index >= 0) gl.NamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0 + index);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.ReadnPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, GLsizei(glRows.size() * sizeof(glm::vec4)),
-                   glRows.data());
+    gl.ReadnPixels(0, 0, width_, height_, format, GL_FLOAT, GLsizei(bytes), out);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl.check("reading back a colour attachment");
-    // Flipped in place: a second 16 MB vector at 1024² costs more in page faults than the swap.
-    const size_t w = size_t(width_);
-    for (int y = 0; y < height_ / 2; ++y)
-        std::swap_ranges(glRows.begin() + ptrdiff_t(size_t(y) * w), glRows.begin() + ptrdiff_t(size_t(y) * w + w),
-                         glRows.begin() + ptrdiff_t(size_t(height_ - 1 - y) * w));
-    return glRows;
+    gl.check(index >= 0 ? "reading back a colour attachment" : "reading back depth");
 }
 
+namespace {
+
+// Channel `channel` of GL rows (bottom row first, `stride` floats a pixel) as a top-row-first Image.
 Image flipRowsToImage(const float* glRows, int width, int height, int stride, int channel) {
     Image img(width, height);
     for (int y = 0; y < height; ++y) {
@@ -99,48 +94,33 @@ Image flipRowsToImage(const float* glRows, int width, int height, int stride, in
     return img;
 }
 
-Image Framebuffer::readChannel(int index, int channel) const {
-    const Functions& gl = api();
-    std::vector<float> glRows(size_t(width_) * height_);
-    static const GLenum formats[] = {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA};
-    if (channel < 0 || channel > 3) fail(SS_ERROR_INTERNAL, "channel must be 0..3");
-    gl.NamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0 + index);
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.ReadnPixels(0, 0, width_, height_, formats[channel], GL_FLOAT,
-                   GLsizei(glRows.size() * sizeof(float)), glRows.data());
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl.check("reading back a colour channel");
-    return flipRowsToImage(glRows.data(), width_, height_, 1, 0);
+}  // namespace
+
+std::vector<glm::vec4> Framebuffer::readRgba(int index) const {
+    std::vector<glm::vec4> rows(size_t(width_) * height_);
+    readGlRows(index, GL_RGBA, rows.data(), rows.size() * sizeof(glm::vec4));
+    // Flipped in place: a second 16 MB vector at 1024² costs more in page faults than the swap.
+    const size_t w = size_t(width_);
+    for (int y = 0; y < height_ / 2; ++y)
+        std::swap_ranges(rows.begin() + ptrdiff_t(size_t(y) * w), rows.begin() + ptrdiff_t(size_t(y) * w + w),
+                         rows.begin() + ptrdiff_t(size_t(height_ - 1 - y) * w));
+    return rows;
 }
 
 std::vector<Image> Framebuffer::readChannels(int index, int count) const {
-    const Functions& gl = api();
     static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
     if (count < 1 || count > 4) fail(SS_ERROR_INTERNAL, "channel count must be 1..4");
-    std::vector<float> glRows(size_t(width_) * height_ * size_t(count));
-    gl.NamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0 + index);
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.ReadnPixels(0, 0, width_, height_, formats[count - 1], GL_FLOAT, GLsizei(glRows.size() * sizeof(float)),
-                   glRows.data());
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl.check("reading back colour channels");
+    std::vector<float> rows(size_t(width_) * height_ * size_t(count));
+    readGlRows(index, formats[count - 1], rows.data(), rows.size() * sizeof(float));
     std::vector<Image> out;
-    for (int c = 0; c < count; ++c) out.push_back(flipRowsToImage(glRows.data(), width_, height_, count, c));
+    for (int c = 0; c < count; ++c) out.push_back(flipRowsToImage(rows.data(), width_, height_, count, c));
     return out;
 }
 
 Image Framebuffer::readDepth() const {
-    const Functions& gl = api();
-    std::vector<float> glRows(size_t(width_) * height_);
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.ReadnPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT,
-                   GLsizei(glRows.size() * sizeof(float)), glRows.data());
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl.check("reading back depth");
-    return flipRowsToImage(glRows.data(), width_, height_, 1, 0);
+    std::vector<float> rows(size_t(width_) * height_);
+    readGlRows(-1, GL_DEPTH_COMPONENT, rows.data(), rows.size() * sizeof(float));
+    return flipRowsToImage(rows.data(), width_, height_, 1, 0);
 }
 
 }  // namespace ss::gl

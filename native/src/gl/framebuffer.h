@@ -42,8 +42,6 @@ public:
 
     // All four channels of colour attachment i, top row first (missing channels read 0,0,0,1).
     std::vector<glm::vec4> readRgba(int index) const;
-    // One channel (0..3) of colour attachment i as an Image, top row first.
-    Image readChannel(int index, int channel) const;
     // Channels 0..count-1 (count 1..4) of colour attachment i from one read-back, top row first.
     std::vector<Image> readChannels(int index, int count) const;
     // The depth attachment's [0,1] window depth as an Image, top row first.
@@ -51,14 +49,14 @@ public:
 
 private:
     void checkComplete() const;
+    // The one glReadnPixels of this framebuffer: colour attachment `index` (depth when < 0) in
+    // `format`, GL row order (bottom row first), into `out` of `bytes`.
+    void readGlRows(int index, GLenum format, void* out, size_t bytes) const;
     int width_ = 0, height_ = 0;
     FramebufferHandle fbo_;
     std::vector<Texture> colors_;
     std::vector<GLuint> attached_;  // texture per colour attachment (owned or borrowed)
     Texture depth_;
 };
-
-// Flips GL rows (bottom first) into an image's rows (top first).
-Image flipRowsToImage(const float* glRows, int width, int height, int stride, int channel);
 
 }  // namespace ss::gl

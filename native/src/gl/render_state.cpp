@@ -10,8 +10,10 @@ void apply(const RenderState& s) {
     else gl.Disable(GL_DEPTH_TEST);
     gl.DepthFunc(s.depthFunc);
     gl.DepthMask(s.depthWrite ? GL_TRUE : GL_FALSE);
-    GLboolean c = s.colorWrite ? GL_TRUE : GL_FALSE;
-    gl.ColorMask(c, c, c, c);
+    auto channel = [&](int bit) { return s.colorWrite && (s.channels & (1u << bit)) ? GL_TRUE : GL_FALSE; };
+    gl.ColorMask(channel(0), channel(1), channel(2), channel(3));
+    if (s.depthClamp) gl.Enable(GL_DEPTH_CLAMP);
+    else gl.Disable(GL_DEPTH_CLAMP);
     if (s.blend) {
         gl.Enable(GL_BLEND);
         gl.BlendEquation(s.blendEquation);

@@ -15,6 +15,8 @@ struct RenderState {
     GLenum blendEquation;  // GL_FUNC_ADD, GL_MIN, GL_MAX
     GLenum blendSrc, blendDst;
     GLenum cullFace;       // GL_BACK, GL_FRONT, or GL_NONE for two-sided
+    unsigned channels = 0xF;  // with colorWrite: which of R, G, B, A (bits 0..3) are written
+    bool depthClamp = false;  // clamp depth to the far plane instead of clipping there
 };
 
 namespace states {
@@ -27,6 +29,7 @@ inline constexpr RenderState additiveDepthTested{"additive_depth_tested", true, 
 inline constexpr RenderState minimum      {"minimum",      false, GL_ALWAYS, false, true,  true,  GL_MIN,      GL_ONE, GL_ONE,  GL_NONE};
 inline constexpr RenderState maximum      {"maximum",      false, GL_ALWAYS, false, true,  true,  GL_MAX,      GL_ONE, GL_ONE,  GL_NONE};
 inline constexpr RenderState multiply     {"multiply",     false, GL_ALWAYS, false, true,  true,  GL_FUNC_ADD, GL_DST_COLOR, GL_ZERO, GL_NONE};
+inline constexpr RenderState opaqueDepthClamped{"opaque_depth_clamped", true, GL_LESS, true, true, false, GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE, 0xF, true};
 }  // namespace states
 
 // Sets every field of `state` (never relies on what the previous pass left).

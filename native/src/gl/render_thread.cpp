@@ -15,7 +15,6 @@
 #include "gl/context.h"
 #include "gl/gl_functions.h"
 #include "gl/program.h"
-#include "pipeline/renderer.h"
 
 namespace ss::gl {
 

@@ -40,3 +40,8 @@ private:
 };
 
 }  // namespace ss::gl
+
+namespace ss {
+// Joins every render thread still alive (the C API's ss_shutdown and a static destructor).
+void shutdownRenderThreads();
+}  // namespace ss

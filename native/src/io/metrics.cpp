@@ -50,8 +50,8 @@ Metrics compareVisibility(const Image& a, const Image& b, const Image* mask) {
         sumSq += e * e;
         sumAbs += e;
         m.maxAbs = std::max(m.maxAbs, e);
-        umbra.add(va < kUmbraThreshold, vb < kUmbraThreshold);
-        lit.add(va > kLitThreshold, vb > kLitThreshold);
+        umbra.add(isUmbra(va), isUmbra(vb));
+        lit.add(isLit(va), isLit(vb));
     }
     m.pixels = errors.size();
     m.umbraIoU = umbra.iou();

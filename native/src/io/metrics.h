@@ -6,12 +6,9 @@
 #include <string>
 
 #include "core/image.h"
+#include "core/visibility_classes.h"
 
 namespace ss {
-
-// A pixel is umbra when V < kUmbraThreshold and lit when V > kLitThreshold (DESIGN.md).
-inline constexpr float kUmbraThreshold = 0.05f;
-inline constexpr float kLitThreshold = 0.95f;
 
 struct Metrics {
     size_t pixels = 0;      // pixels compared (inside the mask)

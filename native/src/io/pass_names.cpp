@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/pass_names.h"
 
-#include "methods/method.h"
+#include "core/method_names.h"
 
 namespace ss {
 

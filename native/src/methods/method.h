@@ -1,40 +1,19 @@
 // What a shadow method is: prepare (CPU geometry, cacheable) then render (named layers).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-#include <functional>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/image.h"
 #include "core/light.h"
+#include "core/method_names.h"
 #include "core/scene.h"
+#include "core/settings.h"
 
 namespace ss {
 
-class Frame;  // pipeline/frame.h: the scene plus the GL passes shared by every method
-
-// Returns false to cancel. fraction in [0,1].
-using ProgressFn = std::function<bool(float fraction, const char* stage)>;
-
-struct RenderSettings {
-    int samples = 0;  // 0 = the method's default
-    uint32_t seed = 1;
-    bool extraLayers = true;
-    std::map<std::string, std::string> options;  // method quality settings, "key" -> "value"
-    ProgressFn progress;
-
-    // Typed look-ups of `options` with a default; throw ss::Error on a malformed value.
-    float number(const std::string& key, float fallback) const;
-    bool flag(const std::string& key, bool fallback) const;
-    std::string text(const std::string& key, const std::string& fallback) const;
-    // Calls progress; throws ss::Error(SS_ERROR_CANCELLED) when it asks to stop.
-    void report(float fraction, const char* stage) const;
-};
-
-// Parses "key=value;key=value" (the C API's settings string).
-std::map<std::string, std::string> parseSettings(const std::string& text);
+class Frame;  // frame/frame.h: the scene plus the GL passes shared by every method
 
 class Method {
 public:
@@ -42,20 +21,22 @@ public:
     virtual const char* name() const = 0;
     // True when render() needs the GL device (then it runs on the library's render thread).
     virtual bool needsGl() const = 0;
+    // Every key of RenderSettings::options the method reads; any other key is refused before
+    // the method runs (RenderSettings::requireKnownKeys).
+    virtual std::vector<std::string> settingKeys() const = 0;
     // CPU geometry that depends only on the scene and the light. Default: nothing.
     virtual void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) {
         (void)frame, (void)lightIndex, (void)settings;
     }
-    // Produces at least "V" and "mask"; with settings.extraLayers, "umbra", "penumbra" and the
-    // method's debug layers. Every layer: camera resolution, row 0 = top.
+    // Produces at least "V" and "mask"; with settings.extraLayers, the method's debug layers too
+    // (never "umbra"/"penumbra": the renderer adds those, core/visibility_classes.h). Every
+    // layer: camera resolution, row 0 = top.
     virtual Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) = 0;
 };
 
-// The contract names, in a fixed order.
-const std::vector<std::string>& methodNames();
 // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) for an unknown name; "auto" is not accepted here.
 std::unique_ptr<Method> createMethod(const std::string& name);
-// The documented rule behind "auto" (docs/methods.md).
+// The documented rule behind "auto" (docs/methods/README.md).
 std::string chooseAutoMethod(const Scene& scene, int lightIndex);
 
 }  // namespace ss

@@ -13,8 +13,8 @@
 #include "gl/scratch_targets.h"
 #include "methods/method.h"
 #include "methods/penumbra_map.h"
-#include "methods/pcss_common.h"
-#include "pipeline/frame.h"
+#include "methods/receiver_plane.h"
+#include "frame/frame.h"
 
 namespace ss {
 
@@ -41,10 +41,8 @@ ConesSheets buildPenumbraGeometry(const Scene& scene, const ShadowMap& map, floa
 }
 
 PenumbraIntensity intensityRule(const RenderSettings& settings) {
-    const std::string rule = settings.text("intensity", "coverage");
-    if (rule == "coverage") return PenumbraIntensity::Coverage;
-    if (rule == "paper") return PenumbraIntensity::Paper;
-    fail(SS_ERROR_INVALID_ARGUMENT, "penumbra_map: intensity must be coverage or paper, not '" + rule + "'");
+    return settings.choice("intensity", "coverage", {"coverage", "paper"}) == "coverage" ? PenumbraIntensity::Coverage
+                                                                                         : PenumbraIntensity::Paper;
 }
 
 namespace {
@@ -67,17 +65,18 @@ class PenumbraMapMethod final : public Method {
 public:
     const char* name() const override { return "penumbra_map"; }
     bool needsGl() const override { return true; }
+    std::vector<std::string> settingKeys() const override {
+        return {"shadow_map_size", "cone_segments", "intensity", "finish_stages"};
+    }
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
         if (light.type == LightType::Sun)
             fail(SS_ERROR_UNSUPPORTED, "penumbra_map: light '" + light.name +
                                            "' is a sun; penumbra maps need a light centre (use pcss)");
-        const int mapSize = int(settings.number("shadow_map_size", 0.0f));
+        const int mapSize = settings.integer("shadow_map_size", 0, 0, 16384);
         ConeSheetSettings cs;
-        cs.coneSegments = int(settings.number("cone_segments", 16.0f));
-        if (cs.coneSegments < 3 || cs.coneSegments > 256)
-            fail(SS_ERROR_INVALID_ARGUMENT, "penumbra_map: cone_segments must be in 3..256");
+        cs.coneSegments = settings.integer("cone_segments", 16, 3, 256);
         (void)intensityRule(settings);  // a bad value fails before any GL work
         const float radius = penumbraMapLightRadius(light);
         GpuConesSheets& g = geometry_;
@@ -117,7 +116,7 @@ public:
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const gl::Functions& api = frame.gl();
         const ShadowMap& map = frame.shadowMap(lightIndex, geometry_.mapSize);
-        const CameraPass& cam = frame.cameraPass();
+        frame.cameraPass();  // the shared pass drawn (or found) before the stages are timed
         // For the benchmark: wait for each pass so progress reports time the stages.
         const bool finishStages = settings.flag("finish_stages", false);
 
@@ -129,9 +128,8 @@ public:
         pm.clearColor(0, glm::vec4(1.0f));
         pm.clearDepth(1.0f);
         if (geometry_.indexCount > 0) {
-            gl::apply(gl::states::opaque);
             // Cone bases lie on the far plane: clamp rather than clip them there.
-            api.Enable(GL_DEPTH_CLAMP);
+            gl::apply(gl::states::opaqueDepthClamped);
             const gl::Program& p = gl::program("penumbra_map/cones.vert.glsl", "penumbra_map/cones.frag.glsl");
             p.use();
             frame.bindShadowMap(p, map, 0);
@@ -139,42 +137,19 @@ public:
             api.BindVertexArray(geometry_.vao.id());
             api.DrawElements(GL_TRIANGLES, geometry_.indexCount, GL_UNSIGNED_INT, nullptr);
             api.BindVertexArray(0);
-            api.Disable(GL_DEPTH_CLAMP);
             api.check("penumbra_map pass 2");
         }
         if (finishStages) api.Finish();
 
         // Pass 3: the camera lookup.
         settings.report(0.7f, "penumbra_map pass 3");
-        const gl::Framebuffer& out = gl::scratchFramebuffer("penumbra_map.camera", cam.width, cam.height, {GL_RGBA32F});
-        out.bind();
-        out.clearColor(0, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
-        gl::apply(gl::states::overwrite);
-        const gl::Program& p = gl::program("common/fullscreen.vert.glsl", "penumbra_map/camera.frag.glsl");
-        p.use();
-        int unit = frame.bindCameraPass(p, 0);
-        unit = frame.bindShadowMap(p, map, unit);
-        p.setTexture("uPenumbraMap", unit, pm.colorId(0));
-        frame.setLightUniforms(p, lightIndex);
-        setShadowRayBasis(p, map);
-        frame.drawFullscreen();
-        api.check("penumbra_map pass 3");
+        const gl::Framebuffer& out = drawReceiverPlanePass(
+            frame, lightIndex, map, "penumbra_map.camera", "penumbra_map/camera.frag.glsl",
+            glm::vec4(1.0f, 0.0f, 0.0f, 1.0f),
+            [&](const gl::Program& p, int unit) { p.setTexture("uPenumbraMap", unit, pm.colorId(0)); });
         if (finishStages) api.Finish();
         settings.report(0.9f, "penumbra_map readback");
-
-        Layers layers;
-        Channels ch = splitChannels(out.readRgba(0), out.width(), out.height());
-        const Image& v = ch.c[0];
-        const Image& mask = ch.c[1];
-        layers.add("V", v);
-        layers.add("mask", mask);
-        if (settings.extraLayers) {
-            addClassLayers(layers, v, mask);
-            layers.add("penumbra_map", std::move(ch.c[3]));
-            layers.add("hard_shadow", std::move(ch.c[2]));
-        }
-        api.BindFramebuffer(GL_FRAMEBUFFER, 0);
-        return layers;
+        return readReceiverPlaneLayers(out, settings.extraLayers, {{"penumbra_map", 3}, {"hard_shadow", 2}});
     }
 
     // For tests and the benchmark: how many cones and sheets the last prepare() built.

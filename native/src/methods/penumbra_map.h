@@ -5,7 +5,7 @@
 #include "core/scene.h"
 #include "geometry/cones_sheets.h"
 #include "methods/method.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss {
 

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "methods/method.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 #include "reference/render_reference.h"
 #include "reference/trace_scene_cache.h"
 
@@ -17,6 +17,7 @@ class ReferenceMethod final : public Method {
 public:
     const char* name() const override { return "reference"; }
     bool needsGl() const override { return false; }
+    std::vector<std::string> settingKeys() const override { return {"threads"}; }
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         return renderReference(frame.scene(), lightIndex, settings, &cache_);
     }

@@ -4,7 +4,7 @@
 
 #include "core/error.h"
 #include "methods/method.h"
-#include "methods/sweep_receiver.h"
+#include "methods/sweep/receiver.h"
 
 namespace ss {
 
@@ -36,15 +36,6 @@ const std::vector<Entry>& entries() {
 }
 }  // namespace
 
-const std::vector<std::string>& methodNames() {
-    static const std::vector<std::string> names = [] {
-        std::vector<std::string> n;
-        for (const Entry& e : entries()) n.push_back(e.name);
-        return n;
-    }();
-    return names;
-}
-
 std::unique_ptr<Method> createMethod(const std::string& name) {
     for (const Entry& e : entries())
         if (name == e.name) {
@@ -59,9 +50,7 @@ std::unique_ptr<Method> createMethod(const std::string& name) {
 std::string chooseAutoMethod(const Scene& scene, int lightIndex) {
     // The rule (docs/methods/README.md): each light gets the method whose paper models its
     // shape, unless the scene breaks that method's assumptions.
-    if (lightIndex < 0 || lightIndex >= int(scene.lights().size()))
-        fail(SS_ERROR_INVALID_ARGUMENT, "light index " + std::to_string(lightIndex) + " out of range");
-    const Light& light = scene.lights()[lightIndex];
+    const Light& light = scene.light(lightIndex);
     // A flat open caster (a floor, a wall: Blender lets every object cast by default) is not a
     // problem for the volumes: it has no silhouette inside itself and its border's volumes
     // point away from the light, behind it. Any other open or non-manifold caster is.

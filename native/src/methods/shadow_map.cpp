@@ -4,7 +4,7 @@
 #include "gl/render_state.h"
 #include "gl/scratch_targets.h"
 #include "methods/method.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss {
 
@@ -26,12 +26,13 @@ class ShadowMapMethod final : public Method {
 public:
     const char* name() const override { return "shadow_map"; }
     bool needsGl() const override { return true; }
+    std::vector<std::string> settingKeys() const override { return {"shadow_map_size", "bias", "slope_bias"}; }
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const gl::Functions& g = frame.gl();
         settings.report(0.0f, "shadow map");
         const CameraPass& cam = frame.cameraPass();
-        const ShadowMap& map = frame.shadowMap(lightIndex, int(settings.number("shadow_map_size", 0.0f)));
+        const ShadowMap& map = frame.shadowMap(lightIndex, settings.integer("shadow_map_size", 0, 0, 16384));
         settings.report(0.5f, "resolve");
 
         gl::Framebuffer& out = gl::scratchFramebuffer("shadow_map.camera", cam.width, cam.height, {GL_RGBA32F});
@@ -48,24 +49,11 @@ public:
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("resolving the shadow map");
 
-        std::vector<glm::vec4> px = out.readRgba(0);
+        std::vector<Image> ch = out.readChannels(0, settings.extraLayers ? 3 : 2);
         Layers layers;
-        Image& V = layers.add("V", Image(cam.width, cam.height));
-        Image& mask = layers.add("mask", Image(cam.width, cam.height));
-        for (size_t i = 0; i < px.size(); ++i) {
-            V.pixels[i] = px[i].x;
-            mask.pixels[i] = px[i].y;
-        }
-        if (settings.extraLayers) {
-            Image umbra(cam.width, cam.height), lightDistance(cam.width, cam.height);
-            for (size_t i = 0; i < px.size(); ++i) {
-                umbra.pixels[i] = (px[i].y > 0.5f && px[i].x < 0.5f) ? 1.0f : 0.0f;
-                lightDistance.pixels[i] = px[i].z;
-            }
-            layers.add("umbra", std::move(umbra));
-            layers.add("penumbra", Image(cam.width, cam.height, 0.0f));  // a hard shadow has none
-            layers.add("light_distance", std::move(lightDistance));
-        }
+        layers.add("V", std::move(ch[0]));
+        layers.add("mask", std::move(ch[1]));
+        if (settings.extraLayers) layers.add("light_distance", std::move(ch[2]));
         settings.report(1.0f, "done");
         return layers;
     }

@@ -50,7 +50,7 @@ LightSampler::LightSampler(const Light& light)
     sunOneMinusCos_ = 2.0f * s * s;
 }
 
-LightSample LightSampler::sample(const glm::vec3& point, glm::vec2 u) const {
+ShadowRay LightSampler::sample(const glm::vec3& point, glm::vec2 u) const {
     switch (type_) {
         case LightType::Disk:
         case LightType::Ellipse:
@@ -63,14 +63,14 @@ LightSample LightSampler::sample(const glm::vec3& point, glm::vec2 u) const {
     return {};
 }
 
-LightSample LightSampler::sampleArea(const glm::vec3& point, glm::vec2 u) const {
+ShadowRay LightSampler::sampleArea(const glm::vec3& point, glm::vec2 u) const {
     glm::vec2 local = (type_ == LightType::Disk || type_ == LightType::Ellipse)
                           ? concentricDisk(u)
                           : 2.0f * u - 1.0f;
     glm::vec3 onLight = centre_ + local.x * halfX_ + local.y * halfY_;
     glm::vec3 v = onLight - point;
     float d = glm::length(v);
-    LightSample s;
+    ShadowRay s;
     if (!(d > 0.0f)) return s;
     s.toLight = v / d;
     s.distance = d;
@@ -79,10 +79,10 @@ LightSample LightSampler::sampleArea(const glm::vec3& point, glm::vec2 u) const 
     return s;
 }
 
-LightSample LightSampler::sampleSphere(const glm::vec3& point, glm::vec2 u) const {
+ShadowRay LightSampler::sampleSphere(const glm::vec3& point, glm::vec2 u) const {
     glm::vec3 fromCentre = point - centre_;
     float dc = glm::length(fromCentre);
-    LightSample s;
+    ShadowRay s;
     if (!(dc > radius_)) return s;  // inside the sphere (or on the point light itself)
     glm::vec3 onLight = centre_;
     glm::vec3 diskNormal = fromCentre / dc;
@@ -115,7 +115,7 @@ float LightSampler::spotFactor(const glm::vec3& fromLight) const {
     return att;
 }
 
-LightSample LightSampler::sampleSun(glm::vec2 u) const {
+ShadowRay LightSampler::sampleSun(glm::vec2 u) const {
     // The concentric disk point has r^2 uniform; cos(theta) = 1 - r^2 (1 - cos a) maps it onto
     // the spherical cap with equal solid angle per area (Archimedes).
     glm::vec2 q = concentricDisk(u);
@@ -128,7 +128,7 @@ LightSample LightSampler::sampleSun(glm::vec2 u) const {
         float scale = sinTheta / std::sqrt(r2);
         dir += scale * (q.x * sunT_ + q.y * sunB_);
     }
-    LightSample s;
+    ShadowRay s;
     s.toLight = glm::normalize(dir);
     s.distance = std::numeric_limits<float>::infinity();
     s.weight = 1.0f;

@@ -7,10 +7,11 @@
 
 namespace ss {
 
-// One sample of a light as seen from a shading point. The weight is the irradiance the sample
+// One shadow ray: a sample of a light as seen from a shading point (sampling/light_samples.h's
+// LightSample is a point on the light, for the sweep). The weight is the irradiance the sample
 // sends up to the cosine at the receiver (which the caller applies, because only it knows the
 // surface normal) and up to a constant per light, so sums of weights are proportional to E_L.
-struct LightSample {
+struct ShadowRay {
     glm::vec3 toLight{0.0f};  // unit, from the shading point towards the sample
     float distance = 0.0f;    // to the sample point; +infinity for a sun
     float weight = 0.0f;      // >= 0; 0 when this part of the light sends nothing to the point
@@ -31,12 +32,12 @@ class LightSampler {
 public:
     explicit LightSampler(const Light& light);
     // u in [0,1)^2; the mapping is continuous and measure-preserving so stratification survives.
-    LightSample sample(const glm::vec3& point, glm::vec2 u) const;
+    ShadowRay sample(const glm::vec3& point, glm::vec2 u) const;
 
 private:
-    LightSample sampleArea(const glm::vec3& point, glm::vec2 u) const;
-    LightSample sampleSphere(const glm::vec3& point, glm::vec2 u) const;
-    LightSample sampleSun(glm::vec2 u) const;
+    ShadowRay sampleArea(const glm::vec3& point, glm::vec2 u) const;
+    ShadowRay sampleSphere(const glm::vec3& point, glm::vec2 u) const;
+    ShadowRay sampleSun(glm::vec2 u) const;
     float spotFactor(const glm::vec3& fromLight) const;
 
     LightType type_;

@@ -53,7 +53,7 @@ struct CameraRays {
 };
 
 int threadCount(const RenderSettings& settings, int rows) {
-    int n = int(settings.number("threads", 0.0f));
+    int n = settings.integer("threads", 0, 0, 1024);
     if (n <= 0) n = int(std::max(1u, std::thread::hardware_concurrency()));
     return std::clamp(n, 1, std::max(1, rows));
 }
@@ -62,12 +62,8 @@ int threadCount(const RenderSettings& settings, int rows) {
 
 Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings& settings,
                        TraceSceneCache* cache) {
-    if (lightIndex < 0 || lightIndex >= int(scene.lights().size()))
-        fail(SS_ERROR_INVALID_ARGUMENT, "reference: light index " + std::to_string(lightIndex) +
-                                            " is out of range (the scene has " +
-                                            std::to_string(scene.lights().size()) + " lights)");
+    const Light& light = scene.light(lightIndex);
     const Camera& camera = scene.camera();
-    const Light& light = scene.lights()[size_t(lightIndex)];
     const int samples = settings.samples > 0 ? settings.samples : kReferenceDefaultSamples;
     // One pixel's rays are gathered before tracing (~25 bytes each per thread): cap the memory.
     if (samples > (1 << 20))
@@ -141,22 +137,8 @@ Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings&
     settings.report(1.0f, "tracing shadow rays");
 
     Layers layers;
-    if (settings.extraLayers) {
-        Image umbra(width, height, 0.0f), penumbra(width, height, 0.0f);
-        for (size_t i = 0; i < visibility.pixels.size(); ++i) {
-            if (mask.pixels[i] == 0.0f) continue;
-            float v = visibility.pixels[i];
-            umbra.pixels[i] = v < kUmbraBelow ? 1.0f : 0.0f;
-            penumbra.pixels[i] = (v >= kUmbraBelow && v <= kLitAbove) ? 1.0f : 0.0f;
-        }
-        layers.add("V", std::move(visibility));
-        layers.add("mask", std::move(mask));
-        layers.add("umbra", std::move(umbra));
-        layers.add("penumbra", std::move(penumbra));
-    } else {
-        layers.add("V", std::move(visibility));
-        layers.add("mask", std::move(mask));
-    }
+    layers.add("V", std::move(visibility));
+    layers.add("mask", std::move(mask));
     return layers;
 }
 

@@ -23,7 +23,7 @@ PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& 
     thread_local std::vector<uint8_t> hidden;
     dirs.clear(), tFars.clear(), weights.clear();
     for (int i = 0; i < samples; ++i) {
-        LightSample s = light.sample(hit.point, sequence.point(uint32_t(i)));
+        ShadowRay s = light.sample(hit.point, sequence.point(uint32_t(i)));
         float cosSurface = glm::dot(hit.normal, s.toLight);
         if (!(cosSurface > 0.0f) || !(s.weight > 0.0f)) continue;  // below the horizon / dark
         glm::vec3 dir = s.toLight;

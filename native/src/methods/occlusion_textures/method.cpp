@@ -5,31 +5,21 @@
 #include <string>
 
 #include "core/error.h"
-#include "io/metrics.h"
 #include "methods/method.h"
 #include "methods/occlusion_textures/passes.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss {
 
 namespace {
 
-occlusion::Fade parseFade(const std::string& name) {
-    if (name == "below") return occlusion::Fade::Below;
-    if (name == "paper") return occlusion::Fade::Paper;
-    fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: fade = '" + name + "' (known: below, paper)");
-}
-
-int integerSetting(const RenderSettings& settings, const char* key, int fallback) {
-    float v = settings.number(key, float(fallback));
-    if (v != std::floor(v)) fail(SS_ERROR_INVALID_ARGUMENT, std::string("occlusion_textures: ") + key + " must be an integer");
-    return int(v);
-}
-
 class OcclusionTexturesMethod final : public Method {
 public:
     const char* name() const override { return "occlusion_textures"; }
     bool needsGl() const override { return true; }
+    std::vector<std::string> settingKeys() const override {
+        return {"slices", "resolution", "filter", "thin_fix", "fade", "finish_stages", "skip_empty_slices"};
+    }
 
     // Settings: slices (1..16, default 8), resolution (long side of the occlusion textures,
     // default 512), filter (mipmap | nbuffer | sat, default sat: exact and the fastest on llvmpipe), thin_fix (on: every
@@ -38,10 +28,11 @@ public:
     // skip_empty_slices (default on; off only for the test that shows it is exact).
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
-        int sliceCount = integerSetting(settings, "slices", 8);
-        int resolution = integerSetting(settings, "resolution", 512);
+        int sliceCount = settings.integer("slices", 8, 1, 16);
+        int resolution = settings.integer("resolution", 512, 16, 4096);
         occlusion::Filter filter = occlusion::parseFilter(settings.text("filter", "sat"));
-        occlusion::Fade fade = parseFade(settings.text("fade", "below"));
+        occlusion::Fade fade =
+            settings.choice("fade", "below", {"below", "paper"}) == "below" ? occlusion::Fade::Below : occlusion::Fade::Paper;
         bool thinFixAll = settings.flag("thin_fix", false);
         // Tests only: shade every slice, to show that skipping the empty ones changes nothing.
         bool skipEmptySlices = settings.flag("skip_empty_slices", true);
@@ -64,24 +55,10 @@ public:
         stage(1.0f, "done");
 
         Layers layers;
-        int width = out.visibility.width, height = out.visibility.height;
-        if (settings.extraLayers) {
-            Image umbra(width, height, 0.0f), penumbra(width, height, 0.0f);
-            for (size_t i = 0; i < out.visibility.pixels.size(); ++i) {
-                if (out.mask.pixels[i] < 0.5f) continue;
-                float v = out.visibility.pixels[i];
-                umbra.pixels[i] = v < kUmbraThreshold ? 1.0f : 0.0f;
-                penumbra.pixels[i] = (v >= kUmbraThreshold && v <= kLitThreshold) ? 1.0f : 0.0f;
-            }
-            layers.add("V", std::move(out.visibility));
-            layers.add("mask", std::move(out.mask));
-            layers.add("umbra", std::move(umbra));
-            layers.add("penumbra", std::move(penumbra));
+        layers.add("V", std::move(out.visibility));
+        layers.add("mask", std::move(out.mask));
+        if (settings.extraLayers)
             for (size_t k = 0; k < out.slices.size(); ++k) layers.add("slice_" + std::to_string(k), std::move(out.slices[k]));
-        } else {
-            layers.add("V", std::move(out.visibility));
-            layers.add("mask", std::move(out.mask));
-        }
         return layers;
     }
 };

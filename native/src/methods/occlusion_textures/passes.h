@@ -3,7 +3,7 @@
 // And shading the camera G-buffer from the pre-filtered slices.
 #pragma once
 #include "core/image.h"
-#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/prefilter.h"
 #include "methods/occlusion_textures/slicing.h"
 
 namespace ss {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/prefilter.h"
 
 namespace ss::occlusion {
 

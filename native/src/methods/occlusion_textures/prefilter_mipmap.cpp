@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The GL texture unit builds the pyramid of all four packed slices at once; lookups are anisotropic
 // trilinear (filter_mipmap.glsl).
-#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/prefilter.h"
 
 namespace ss::occlusion {
 

@@ -4,7 +4,7 @@
 // texture.
 #include <algorithm>
 
-#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/prefilter.h"
 
 namespace ss::occlusion {
 

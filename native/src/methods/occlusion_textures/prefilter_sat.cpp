@@ -4,7 +4,7 @@
 // R32F table per slice (the layers of one array texture, so shading can pick a slice by index),
 // plus each slice's occupied-texel bounds.
 #include "gl/scratch_targets.h"
-#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/prefilter.h"
 
 namespace ss::occlusion {
 

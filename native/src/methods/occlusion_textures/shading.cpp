@@ -9,11 +9,18 @@
 #include "gl/render_state.h"
 #include "gl/scratch_targets.h"
 #include "methods/occlusion_textures/passes.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss::occlusion {
 
 namespace {
+
+// The two shading passes (shading below): the first marks, at depth 0, the pixels a slice may
+// shadow; the second shades only there (its triangle lies at depth 0.5).
+constexpr gl::RenderState kMarkSlices{"occlusion_mark_slices", true, GL_ALWAYS, true, true, false,
+                                      GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
+constexpr gl::RenderState kWhereMarked{"occlusion_where_marked", true, GL_GREATER, false, true, false,
+                                       GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
 
 const gl::Program& shadingProgram(Filter filter, int sliceCount, bool sliceLayers, bool classify) {
     gl::ProgramDesc desc;
@@ -104,17 +111,13 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     gl::Framebuffer& target = gl::scratchFramebuffer("occlusion_textures.shading", camera.width, camera.height,
                                                      formats, GL_DEPTH_COMPONENT32F);
     target.bind();
-    gl::apply(gl::states::overwrite);
     // Every pixel lit, depth 0 where a slice may shadow it (shade.frag.glsl)...
+    gl::apply(kMarkSlices);
     const gl::Program& marks = shadingProgram(filtered.filter, setup.count(), sliceLayers, true);
     setShadingUniforms(frame, marks, lightIndex, setup, filtered, fade, skipEmptySlices);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_ALWAYS);
-    gl.DepthMask(GL_TRUE);
     frame.drawFullscreen();
     // ...then the full pass there only: its triangle lies at depth 0.5.
-    gl.DepthFunc(GL_GREATER);
-    gl.DepthMask(GL_FALSE);
+    gl::apply(kWhereMarked);
     const gl::Program& program = shadingProgram(filtered.filter, setup.count(), sliceLayers, false);
     setShadingUniforms(frame, program, lightIndex, setup, filtered, fade, skipEmptySlices);
     frame.drawFullscreen();
@@ -126,7 +129,11 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     std::vector<Image> vm = target.readChannels(0, 2);
     out.visibility = std::move(vm[0]);
     out.mask = std::move(vm[1]);
-    for (int k = 0; k < (sliceLayers ? setup.count() : 0); ++k) out.slices.push_back(target.readChannel(1 + k / 4, k % 4));
+    // Slice k is channel k % 4 of attachment 1 + k / 4: one read-back per attachment.
+    for (int group = 0; sliceLayers && group * 4 < setup.count(); ++group) {
+        std::vector<Image> four = target.readChannels(1 + group, std::min(4, setup.count() - group * 4));
+        for (Image& slice : four) out.slices.push_back(std::move(slice));
+    }
     return out;
 }
 

@@ -3,7 +3,7 @@
 // A shader storage buffer the scans fill with atomics, read back as FilteredSlices::bounds.
 #include <climits>
 
-#include "methods/occlusion_textures/gl.h"
+#include "methods/occlusion_textures/prefilter.h"
 
 namespace ss::occlusion {
 

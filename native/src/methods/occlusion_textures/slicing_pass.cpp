@@ -2,8 +2,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // One MAX-blended draw of the casters into up to four RGBA targets, four slices per target.
 #include "gl/framebuffer.h"
+#include "gl/render_state.h"
 #include "methods/occlusion_textures/passes.h"
-#include "pipeline/frame.h"
+#include "frame/frame.h"
 
 namespace ss::occlusion {
 
@@ -35,16 +36,10 @@ SliceTextures renderSlices(Frame& frame, const SliceSetup& setup, Filter filter,
     program.set("sliceCount", setup.count());
     // Every face counts (an occluder blocks light whichever way it faces), no depth test: a
     // texel of a slice is occluded when anything of that slice projects onto it.
-    gl.Disable(GL_DEPTH_TEST);
-    gl.Disable(GL_CULL_FACE);
-    gl.Enable(GL_BLEND);
-    gl.BlendEquation(GL_MAX);
-    gl.BlendFunc(GL_ONE, GL_ONE);
+    gl::apply(gl::states::maximum);
     frame.drawMeshes(SS_MESH_CAST, [&](const GpuMesh& mesh) {
         program.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
     });
-    gl.BlendEquation(GL_FUNC_ADD);
-    gl.Disable(GL_BLEND);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.check("slicing the scene into occlusion textures");
     return slices;

@@ -1,0 +1,62 @@
+# Do the library's #include lines point down the layers only?
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The order (docs/architecture.md, "Layers"): a folder may include its own layer and the ones
+# below it, never one above. Folders of one layer do not include each other either.
+cmake_minimum_required(VERSION 3.20)
+# Usage: cmake -DROOT=<source dir> -P IncludeLayers.cmake
+set(layer_softshadow 0)  # the public C header: plain types and status codes
+set(layer_core 0)
+set(layer_geometry 1)
+set(layer_planar 1)
+set(layer_sampling 1)
+set(layer_io 1)
+set(layer_gl 2)
+set(layer_reference 2)
+set(layer_frame 3)
+set(layer_methods 4)
+set(layer_renderer 5)
+set(layer_capi 6)
+set(layer_cli 7)
+# The CLI still reads and writes images through io/ for `compare` and its PNG previews; the C
+# API has no image functions yet (docs/architecture.md, "Known gaps").
+set(allowed "cli->io")
+
+file(GLOB_RECURSE files ${ROOT}/native/src/*.h ${ROOT}/native/src/*.cpp ${ROOT}/native/cli/*.h
+     ${ROOT}/native/cli/*.cpp)
+set(problems "")
+foreach(path IN LISTS files)
+  file(RELATIVE_PATH rel ${ROOT} ${path})
+  if(rel MATCHES "^native/cli/")
+    set(from cli)
+  elseif(rel MATCHES "^native/src/([^/]+)/")
+    set(from ${CMAKE_MATCH_1})
+  else()
+    continue()
+  endif()
+  if(NOT DEFINED layer_${from})
+    string(APPEND problems "  ${rel}: folder '${from}' has no layer (add it to ${CMAKE_CURRENT_LIST_FILE})\n")
+    continue()
+  endif()
+  file(STRINGS ${path} includes REGEX "^#include \"")
+  foreach(line IN LISTS includes)
+    if(NOT line MATCHES "^#include \"([^/\"]+)/")
+      continue()  # a file of the same folder
+    endif()
+    set(to ${CMAKE_MATCH_1})
+    if(to STREQUAL from OR "${from}->${to}" IN_LIST allowed)
+      continue()
+    endif()
+    if(NOT DEFINED layer_${to})
+      string(APPEND problems "  ${rel}: ${line}: folder '${to}' has no layer\n")
+    elseif(layer_${to} GREATER layer_${from})
+      string(APPEND problems "  ${rel}: ${line}: points up (${from} is layer ${layer_${from}}, ${to} is ${layer_${to}})\n")
+    elseif(layer_${to} EQUAL layer_${from} AND NOT to STREQUAL "softshadow")
+      string(APPEND problems "  ${rel}: ${line}: sideways (${from} and ${to} are both layer ${layer_${to}})\n")
+    endif()
+  endforeach()
+endforeach()
+if(problems)
+  message(FATAL_ERROR "includes against the layer order:\n${problems}")
+endif()
+list(LENGTH files count)
+message(STATUS "every include points down the layers (${count} files read)")

@@ -1,0 +1,40 @@
+# Is every class, struct and enum defined once per namespace across the library and the tests?
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Two definitions of one name (ss::LightSample was two types) break the one-definition rule
+# silently: the linker keeps one, and code built against the other reads the wrong layout.
+# Types inside an anonymous namespace are private to their file and left out.
+cmake_minimum_required(VERSION 3.20)
+# Usage: cmake -DROOT=<source dir> -P UniqueTypeNames.cmake
+file(GLOB_RECURSE files ${ROOT}/native/src/*.h ${ROOT}/native/src/*.cpp ${ROOT}/native/cli/*.h
+     ${ROOT}/native/cli/*.cpp ${ROOT}/tests/native/*.h ${ROOT}/tests/native/*.cpp)
+set(problems "")
+foreach(path IN LISTS files)
+  file(STRINGS ${path} lines)
+  set(ns "")
+  set(anonymous OFF)
+  file(RELATIVE_PATH rel ${ROOT} ${path})
+  foreach(line IN LISTS lines)
+    if(line MATCHES "^namespace ([A-Za-z_:]+) {")
+      set(ns ${CMAKE_MATCH_1})
+    elseif(line MATCHES "^namespace {")
+      set(anonymous ON)
+    elseif(line MATCHES "^}  // namespace$")
+      set(anonymous OFF)
+    elseif(line MATCHES "^}  // namespace ([A-Za-z_:]+)")
+      set(ns "")
+    elseif(NOT anonymous AND line MATCHES "^(struct|class|enum class|enum|union) ([A-Za-z_][A-Za-z0-9_]*)( final)? *({|:[^:]|$)")
+      set(name "${ns}::${CMAKE_MATCH_2}")
+      string(MAKE_C_IDENTIFIER "${name}" key)
+      if(DEFINED seen_${key} AND NOT seen_${key} STREQUAL rel)
+        string(APPEND problems "  ${name}: ${seen_${key}} and ${rel}\n")
+      else()
+        set(seen_${key} ${rel})
+      endif()
+    endif()
+  endforeach()
+endforeach()
+if(problems)
+  message(FATAL_ERROR "types defined twice under one name (rename one):\n${problems}")
+endif()
+list(LENGTH files count)
+message(STATUS "every type name is defined once per namespace (${count} files read)")

@@ -1,0 +1,54 @@
+// What a render is asked for beyond (scene, light, method): samples, seed, layers, the method's
+// own settings ("key=value") and the progress callback, and how those settings are read.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <initializer_list>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ss {
+
+// Returns false to cancel. fraction in [0,1].
+using ProgressFn = std::function<bool(float fraction, const char* stage)>;
+
+struct RenderSettings {
+    int samples = 0;  // 0 = the method's default
+    uint32_t seed = 1;
+    bool extraLayers = true;
+    std::map<std::string, std::string> options;  // method quality settings, "key" -> "value"
+    ProgressFn progress;
+    // Set by the owner of the render (ss_context_destroy) to stop it at the next check; null: never.
+    const std::atomic<bool>* cancel = nullptr;
+
+    // Typed look-ups of `options` with a default. A value that is malformed, not finite or out
+    // of [lo, hi] throws ss::Error(SS_ERROR_INVALID_ARGUMENT) naming the key.
+    float number(const std::string& key, float fallback,
+                 float lo = -std::numeric_limits<float>::max(),
+                 float hi = std::numeric_limits<float>::max()) const;
+    int integer(const std::string& key, int fallback, int lo, int hi) const;
+    bool flag(const std::string& key, bool fallback) const;
+    // One of `allowed`.
+    std::string choice(const std::string& key, const std::string& fallback,
+                       std::initializer_list<const char*> allowed) const;
+    std::string text(const std::string& key, const std::string& fallback) const;
+
+    // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) naming the first key of `options` that is not
+    // in `known`, and listing `known`: a typo must not render the default silently.
+    void requireKnownKeys(const std::string& method, const std::vector<std::string>& known) const;
+
+    // Calls progress; throws ss::Error(SS_ERROR_CANCELLED) when it asks to stop.
+    void report(float fraction, const char* stage) const;
+    // Throws ss::Error(SS_ERROR_CANCELLED) when `cancel` is set: cheap and thread-safe, for the
+    // loops of CPU stages (they poll it between items without reporting progress).
+    void checkCancelled(const char* stage) const;
+};
+
+// Parses "key=value;key=value" (the C API's settings string).
+std::map<std::string, std::string> parseSettings(const std::string& text);
+
+}  // namespace ss

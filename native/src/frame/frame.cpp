@@ -1,0 +1,299 @@
+// How the shared passes are drawn once per frame: mesh upload, camera G-buffer, shadow maps.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "frame/frame.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "gl/render_state.h"
+
+namespace ss {
+
+bool GpuMesh::casts() const { return (flags & SS_MESH_CAST) != 0; }
+bool GpuMesh::receives() const { return (flags & SS_MESH_RECEIVE) != 0; }
+
+float ShadowMap::texelWorldSize(float distanceToLight) const {
+    return orthographic ? 2.0f * halfWidth / float(size)
+                        : 2.0f * tanHalfFov * distanceToLight / float(size);
+}
+
+float ShadowMap::distanceOf(const glm::vec3& world) const {
+    return orthographic ? glm::dot(world - origin, axis) : glm::length(world - origin);
+}
+
+namespace {
+
+glm::vec3 upFor(const glm::vec3& axis) {
+    return std::abs(axis.z) < 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+}
+
+std::vector<glm::vec3> corners(const Bounds& b) {
+    std::vector<glm::vec3> c;
+    for (int i = 0; i < 8; ++i)
+        c.emplace_back(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
+    return c;
+}
+
+// Tangent of the half angle a symmetric frustum along `axis` needs to hold every corner, or
+// infinity when a corner is not in front of the light.
+float tanToHold(const glm::vec3& origin, const glm::vec3& axis, const std::vector<glm::vec3>& pts,
+                float eps) {
+    glm::mat4 view = glm::lookAt(origin, origin + axis, upFor(axis));
+    float t = 0.0f;
+    for (const glm::vec3& p : pts) {
+        glm::vec3 v = glm::vec3(view * glm::vec4(p, 1.0f));
+        float z = -v.z;
+        if (z <= eps) return INFINITY;
+        t = std::max(t, std::max(std::abs(v.x), std::abs(v.y)) / z);
+    }
+    return t;
+}
+
+}  // namespace
+
+ShadowMap fitShadowMap(const Light& light, const Bounds& sceneBounds, int size) {
+    ShadowMap m;
+    m.size = size;
+    Bounds b = sceneBounds;
+    if (b.empty()) {
+        b.extend(glm::vec3(-1.0f));
+        b.extend(glm::vec3(1.0f));
+    }
+    float diag = std::max(b.diagonal(), 1e-6f);
+    std::vector<glm::vec3> pts = corners(b);
+
+    if (light.type == LightType::Sun) {
+        m.orthographic = true;
+        m.axis = light.direction();
+        float radius = 0.5f * diag;
+        m.origin = b.center() - m.axis * (radius * 1.05f);
+        m.worldToLight = glm::lookAt(m.origin, m.origin + m.axis, upFor(m.axis));
+        float hw = 0.0f, far = 0.0f;
+        for (const glm::vec3& p : pts) {
+            glm::vec3 v = glm::vec3(m.worldToLight * glm::vec4(p, 1.0f));
+            hw = std::max(hw, std::max(std::abs(v.x), std::abs(v.y)));
+            far = std::max(far, -v.z);
+        }
+        m.halfWidth = hw * 1.01f + 1e-6f * diag;
+        m.nearPlane = 0.0f;
+        m.farPlane = far * 1.01f + 1e-6f * diag;
+        m.projection = glm::ortho(-m.halfWidth, m.halfWidth, -m.halfWidth, m.halfWidth, m.nearPlane, m.farPlane);
+        return m;
+    }
+
+    m.origin = light.position();
+    float eps = 1e-5f * diag;
+    glm::vec3 toCentre = b.center() - m.origin;
+    std::vector<glm::vec3> axes;
+    if (glm::length(toCentre) > eps) axes.push_back(glm::normalize(toCentre));
+    if (light.type != LightType::Point) axes.push_back(light.direction());
+    if (axes.empty()) axes.push_back(glm::vec3(0, 0, -1));
+    float best = INFINITY;
+    m.axis = axes.back();  // the light's own axis when nothing holds the whole scene
+    for (const glm::vec3& a : axes) {
+        float t = tanToHold(m.origin, a, pts, eps);
+        if (t < best) best = t, m.axis = a;
+    }
+    // Beyond ~80 degrees a single perspective map wastes its texels at the rim; a light inside
+    // the scene gets a partial map and says so.
+    const float maxTan = std::tan(glm::radians(80.0f));
+    m.coversScene = best <= maxTan;
+    m.tanHalfFov = std::min(best, maxTan) * 1.01f;
+    m.worldToLight = glm::lookAt(m.origin, m.origin + m.axis, upFor(m.axis));
+    float nearZ = INFINITY, farZ = 0.0f;
+    for (const glm::vec3& p : pts) {
+        float z = -(m.worldToLight * glm::vec4(p, 1.0f)).z;
+        nearZ = std::min(nearZ, z);
+        farZ = std::max(farZ, z);
+    }
+    m.nearPlane = std::max(nearZ * 0.99f, 1e-4f * diag);
+    m.farPlane = std::max(farZ * 1.01f, m.nearPlane * 2.0f);
+    m.projection = glm::perspective(2.0f * std::atan(m.tanHalfFov), 1.0f, m.nearPlane, m.farPlane);
+    return m;
+}
+
+Frame::Frame(const Scene& scene) : scene_(scene) {}
+Frame::~Frame() = default;
+
+const Light& Frame::light(int index) const { return scene_.light(index); }
+
+const gl::Functions& Frame::gl() const { return gl::api(); }
+
+const std::vector<GpuMesh>& Frame::meshes() {
+    if (meshesUploaded_) return meshes_;
+    const gl::Functions& g = gl();
+    const auto& src = scene_.meshes();
+    meshes_.clear();
+    meshes_.reserve(src.size());
+    for (size_t i = 0; i < src.size(); ++i) {
+        const Mesh& mesh = src[i];
+        GpuMesh gm;
+        gm.meshIndex = int(i);
+        gm.flags = mesh.flags;
+        gm.indexCount = GLsizei(mesh.triangles.size() * 3);
+        gm.positions = gl::makeBuffer(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
+        gm.indices = gl::makeBuffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
+        std::vector<glm::vec4> normals(mesh.triangles.size(), glm::vec4(0.0f));
+        for (size_t f = 0; f < mesh.faceNormals.size() && f < normals.size(); ++f)
+            normals[f] = glm::vec4(mesh.faceNormals[f], 0.0f);
+        gm.faceNormals = gl::makeBuffer(normals.data(), normals.size() * sizeof(glm::vec4));
+        GLuint vao = 0;
+        g.CreateVertexArrays(1, &vao);
+        gm.vao = gl::VertexArrayHandle(vao);
+        g.VertexArrayVertexBuffer(vao, 0, gm.positions.id(), 0, sizeof(glm::vec3));
+        g.VertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+        g.VertexArrayAttribBinding(vao, 0, 0);
+        g.EnableVertexArrayAttrib(vao, 0);
+        g.VertexArrayElementBuffer(vao, gm.indices.id());
+        meshes_.push_back(std::move(gm));
+    }
+    g.check("uploading the scene meshes");
+    meshesUploaded_ = true;
+    ++stats_.meshUploads;
+    return meshes_;
+}
+
+void Frame::drawMeshes(uint32_t requiredFlags, const std::function<void(const GpuMesh&)>& before) {
+    const gl::Functions& g = gl();
+    for (const GpuMesh& m : meshes()) {
+        if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0) continue;
+        if (before) before(m);
+        g.BindVertexArray(m.vao.id());
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.faceNormals.id());
+        g.DrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    g.BindVertexArray(0);
+}
+
+void Frame::drawFullscreen() {
+    const gl::Functions& g = gl();
+    if (!emptyVao_) {
+        GLuint vao = 0;
+        g.CreateVertexArrays(1, &vao);
+        emptyVao_ = gl::VertexArrayHandle(vao);
+    }
+    g.BindVertexArray(emptyVao_.id());
+    g.DrawArrays(GL_TRIANGLES, 0, 3);
+    g.BindVertexArray(0);
+}
+
+const CameraPass& Frame::cameraPass() {
+    if (camera_) return *camera_;
+    const gl::Functions& g = gl();
+    const Camera& cam = camera();
+    auto pass = std::make_unique<CameraPass>();
+    pass->width = cam.width;
+    pass->height = cam.height;
+    pass->framebuffer = gl::Framebuffer(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F},
+                                        GL_DEPTH_COMPONENT32F);
+    const gl::Framebuffer& fb = pass->framebuffer;
+    fb.bind();
+    fb.clearColor(0, glm::vec4(0.0f));
+    fb.clearColor(1, glm::vec4(0.0f));
+    fb.clearColor(2, glm::vec4(-1.0f, -1.0f, 0.0f, 0.0f));
+    fb.clearDepth(1.0f);
+    gl::apply(gl::states::opaque);
+
+    const gl::Program& prog = gl::program("common/mesh.vert.glsl", "camera/gbuffer.frag.glsl");
+    prog.use();
+    glm::mat4 cameraToWorld = glm::inverse(cam.worldToCamera);
+    prog.set("uWorldToClip", cam.worldToClip());
+    prog.set("uWorldToView", cam.worldToCamera);
+    prog.set("uCameraPosition", glm::vec3(cameraToWorld[3]));
+    prog.set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
+    prog.set("uOrthographic", cam.isOrthographic() ? 1 : 0);
+    drawMeshes(0, [&](const GpuMesh& m) {
+        prog.set("uMeshIndex", m.meshIndex);
+        prog.set("uReceives", m.receives() ? 1.0f : 0.0f);
+    });
+    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    g.check("drawing the camera pass");
+    ++stats_.cameraPasses;
+    camera_ = std::move(pass);
+    return *camera_;
+}
+
+const CameraImages& Frame::cameraImages() {
+    if (cameraImages_) return *cameraImages_;
+    const CameraPass& pass = cameraPass();
+    auto img = std::make_unique<CameraImages>();
+    img->width = pass.width;
+    img->height = pass.height;
+    img->positionDepth = pass.framebuffer.readRgba(0);
+    img->normalReceive = pass.framebuffer.readRgba(1);
+    img->ids = pass.framebuffer.readRgba(2);
+    ++stats_.cameraReadbacks;
+    cameraImages_ = std::move(img);
+    return *cameraImages_;
+}
+
+const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
+    if (size <= 0) size = kDefaultShadowMapSize;
+    auto key = std::make_pair(lightIndex, size);
+    auto it = shadowMaps_.find(key);
+    if (it != shadowMaps_.end()) return *it->second;
+    const Light& L = light(lightIndex);
+    const gl::Functions& g = gl();
+    auto map = std::make_unique<ShadowMap>(fitShadowMap(L, scene_.bounds(), size));
+    map->distance = gl::Texture(size, size, GL_R32F, GL_NEAREST);
+    map->depth = gl::Texture(size, size, GL_DEPTH_COMPONENT32F, GL_NEAREST);
+    gl::Framebuffer fb(size, size, {});
+    fb.attachColor(0, map->distance.id());
+    fb.attachDepth(map->depth.id());
+    fb.bind();
+    fb.clearColor(0, glm::vec4(ShadowMap::kEmpty));
+    fb.clearDepth(1.0f);
+    gl::apply(gl::states::opaque);
+    const gl::Program& prog = gl::program("common/mesh.vert.glsl", "shadow_map/distance.frag.glsl");
+    prog.use();
+    prog.set("uWorldToClip", map->worldToClip());
+    bindShadowMapUniforms(prog, *map);
+    drawMeshes(SS_MESH_CAST);
+    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    g.check("drawing a shadow map");
+    ++stats_.shadowMaps;
+    return *shadowMaps_.emplace(key, std::move(map)).first->second;
+}
+
+void Frame::bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const {
+    program.set("uShadowWorldToClip", map.worldToClip());
+    program.set("uShadowOrigin", map.origin);
+    program.set("uShadowAxis", map.axis);
+    program.set("uShadowOrthographic", map.orthographic ? 1 : 0);
+    program.set("uShadowSize", float(map.size));
+    program.set("uShadowTexelScale",
+                map.orthographic ? 2.0f * map.halfWidth / float(map.size) : 2.0f * map.tanHalfFov / float(map.size));
+}
+
+int Frame::bindShadowMap(const gl::Program& program, const ShadowMap& map, int unit) const {
+    program.setTexture("uShadowDistance", unit, map.distance.id());
+    bindShadowMapUniforms(program, map);
+    return unit + 1;
+}
+
+int Frame::bindCameraPass(const gl::Program& program, int firstUnit) {
+    const CameraPass& pass = cameraPass();
+    program.setTexture("uCamPositionDepth", firstUnit, pass.positionDepth());
+    program.setTexture("uCamNormalReceive", firstUnit + 1, pass.normalReceive());
+    program.setTexture("uCamIds", firstUnit + 2, pass.ids());
+    return firstUnit + 3;
+}
+
+void Frame::setLightUniforms(const gl::Program& program, int lightIndex) const {
+    const Light& L = light(lightIndex);
+    program.set("uLight.type", int(L.type));
+    program.set("uLight.position", L.position());
+    program.set("uLight.direction", L.direction());
+    program.set("uLight.halfAxisX", L.isArea() ? L.halfAxisX() : glm::vec3(0.0f));
+    program.set("uLight.halfAxisY", L.isArea() ? L.halfAxisY() : glm::vec3(0.0f));
+    program.set("uLight.radius", L.radius);
+    program.set("uLight.equivalentRadius", L.equivalentRadius());
+    program.set("uLight.cosHalfSpot", std::cos(0.5f * L.spotSize));
+    program.set("uLight.sinHalfSun", std::sin(L.sunHalfAngle()));
+}
+
+}  // namespace ss

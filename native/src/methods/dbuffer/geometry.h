@@ -1,0 +1,30 @@
+// Which umbra/penumbra volumes the dbuffer method draws for a light, cached while nothing changes.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <atomic>
+#include <cstddef>
+#include <memory>
+
+#include "core/scene.h"
+#include "geometry/volumes.h"
+
+namespace ss {
+
+struct DbufferGeometry {
+    Disk disk;              // the light as the method sees it (methods/dbuffer/light.h)
+    ShadowVolumes volumes;  // every casting mesh's volumes, concatenated
+    float extrusionLength = 0.0f;
+    double silhouetteMs = 0.0, extrusionMs = 0.0;  // CPU time of the two stages when built
+};
+
+// The volumes of casting meshes for light `lightIndex`, built on first use and kept for the same
+// (scene id, scene revision, disk) — the scene's revision changes whenever a mesh or light does,
+// so a moved light or edited mesh rebuilds them. A few recent entries are kept (thread-safe).
+// Throws ss::Error(SS_ERROR_CANCELLED) between meshes once `cancel` is set.
+std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex,
+                                                       const std::atomic<bool>* cancel = nullptr);
+
+// How many times volumes were really built (not found in the cache) since the process started.
+size_t dbufferGeometryBuilds();
+
+}  // namespace ss

@@ -1,0 +1,194 @@
+// How the dbuffer method renders: volumes into the D-buffer from the light centre, then eq. 3 per pixel.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+#include <cstddef>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "core/error.h"
+#include "gl/framebuffer.h"
+#include "gl/program.h"
+#include "gl/render_state.h"
+#include "gl/scratch_targets.h"
+#include "methods/dbuffer/geometry.h"
+#include "methods/method.h"
+#include "frame/frame.h"
+
+namespace ss {
+
+namespace {
+
+// Volumes overlap: keep the surface farthest from the light (paper §4, concave and overlapping
+// occluders). Both sides drawn: the soups have no consistent winding.
+constexpr gl::RenderState kFarthest{"dbuffer_farthest", true, GL_GREATER, true, true, false,
+                                    GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
+// The umbra volume writes R, G and the penumbra volume B, A of the one D-buffer target.
+constexpr unsigned kUmbraChannels = 0x3, kPenumbraChannels = 0xC;
+// The umbra "first exit" rule: the nearest umbra surface beyond the first caster.
+constexpr gl::RenderState kNearest{"dbuffer_nearest", true, GL_LESS, true, true, false,
+                                   GL_FUNC_ADD, GL_ONE, GL_ZERO, GL_NONE};
+
+// How far beyond the first caster, relative to its distance, an umbra fragment must lie to count
+// as the ray's exit from the umbra (first-exit rule). The D-buffer is drawn with the shared map's
+// matrix and resolution, so a caster triangle drawn again as a silhouette face lands on the same
+// texels at the same distance up to float rounding (~1e-6 relative); 1e-5 is well above that.
+// It must stay far below a texel (~6e-4 of the distance at 2048² on the demo scene): where a ray
+// grazes the occluder next to its silhouette the real exit (a silhouette face on the far side)
+// lies a millimetre or less behind the caster, and the former threshold of 1.5 texels discarded
+// it, leaving "no exit" = umbra: V = 0 dots along the centre's hard-shadow boundary.
+constexpr float kExitEpsilon = 1e-5f;
+
+// One volume soup on the GPU.
+struct GpuSoup {
+    gl::BufferHandle buffer;
+    gl::VertexArrayHandle vao;
+    GLsizei count = 0;
+};
+
+GpuSoup upload(const std::vector<VolumeVertex>& soup) {
+    GpuSoup s;
+    s.count = GLsizei(soup.size());
+    if (soup.empty()) return s;
+    const gl::Functions& g = gl::api();
+    s.buffer = gl::makeBuffer(soup.data(), soup.size() * sizeof(VolumeVertex));
+    GLuint vao = 0;
+    g.CreateVertexArrays(1, &vao);
+    s.vao = gl::VertexArrayHandle(vao);
+    g.VertexArrayVertexBuffer(vao, 0, s.buffer.id(), 0, sizeof(VolumeVertex));
+    const GLuint offsets[4] = {offsetof(VolumeVertex, position), offsetof(VolumeVertex, edgeA),
+                               offsetof(VolumeVertex, edgeB), offsetof(VolumeVertex, extrusion)};
+    for (GLuint i = 0; i < 5; ++i) {
+        if (i < 4) g.VertexArrayAttribFormat(vao, i, 3, GL_FLOAT, GL_FALSE, offsets[i]);
+        else g.VertexArrayAttribFormat(vao, i, 1, GL_FLOAT, GL_FALSE, offsetof(VolumeVertex, kind));
+        g.VertexArrayAttribBinding(vao, i, 0);
+        g.EnableVertexArrayAttrib(vao, i);
+    }
+    return s;
+}
+
+void draw(const GpuSoup& s) {
+    if (s.count == 0) return;
+    const gl::Functions& g = gl::api();
+    g.BindVertexArray(s.vao.id());
+    g.DrawArrays(GL_TRIANGLES, 0, s.count);
+    g.BindVertexArray(0);
+}
+
+class DbufferMethod final : public Method {
+public:
+    const char* name() const override { return "dbuffer"; }
+    bool needsGl() const override { return true; }
+    std::vector<std::string> settingKeys() const override {
+        return {"shadow_map_size", "umbra_rule", "small_occluders", "profile", "bias_texels", "finish_stages"};
+    }
+
+    void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        settings.report(0.0f, "silhouettes and volumes");
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex, settings.cancel);
+    }
+
+    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        // A cache hit when prepare() ran for this light (the cache keys on scene and light).
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex, settings.cancel);
+        const DbufferGeometry& geo = *geometry_;
+        const gl::Functions& g = frame.gl();
+        // finish_stages (benchmark): glFinish at each stage so the progress marks time the GPU.
+        const bool finishStages = settings.flag("finish_stages", false);
+        auto finishStage = [&] {
+            if (finishStages) g.Finish();
+        };
+        finishStage();
+        const CameraPass& cam = frame.cameraPass();
+        finishStage();
+        const ShadowMap& map = frame.shadowMap(lightIndex, settings.integer("shadow_map_size", 0, 0, 16384));
+        finishStage();
+
+        // D-buffer: the shared map's view, so its texels are the shadow map's texels.
+        settings.report(0.3f, "D-buffer pass");
+        gl::Framebuffer& dbuf =
+            gl::scratchFramebuffer("dbuffer.distances", map.size, map.size, {GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
+        dbuf.bind();
+        gl::apply(kFarthest);  // every channel written: clears honour the colour mask
+        dbuf.clearColor(0, glm::vec4(0.0f));
+        const gl::Program& vol = gl::program("dbuffer/volume.vert.glsl", "dbuffer/volume.frag.glsl");
+        vol.use();
+        frame.bindShadowMap(vol, map, 0);  // the first-exit rule reads the casters' distances
+        vol.set("uWorldToClip", map.worldToClip());
+        vol.set("uCentre", geo.disk.centre);
+        vol.set("uNormal", geo.disk.normal);
+        vol.set("uRadius", geo.disk.radius);
+        // Depth = distance / uFar: anything past the far plane is clipped anyway.
+        float far = glm::length(map.origin - geo.disk.centre) + map.farPlane * 2.0f + 1e-6f;
+        vol.set("uFar", far);
+        GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
+        // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
+        std::string rule = settings.choice("umbra_rule", "first_exit", {"first_exit", "farthest"});
+        bool firstExit = rule == "first_exit";
+        gl::RenderState umbraState = firstExit ? kNearest : kFarthest;
+        umbraState.channels = kUmbraChannels;
+        gl::apply(umbraState);
+        vol.set("uBeyondOccluder", firstExit ? 1 : 0);
+        vol.set("uExitEpsilon", kExitEpsilon);
+        dbuf.clearDepth(firstExit ? 1.0f : 0.0f);
+        draw(umbra);
+        gl::RenderState penumbraState = kFarthest;
+        penumbraState.channels = kPenumbraChannels;
+        gl::apply(penumbraState);
+        vol.set("uBeyondOccluder", 0);
+        dbuf.clearDepth(0.0f);
+        draw(penumbra);
+        g.check("drawing the D-buffer");
+        finishStage();
+
+        // Camera pass: eq. 3 and eq. 4 per pixel.
+        settings.report(0.7f, "camera pass");
+        gl::Framebuffer& out = gl::scratchFramebuffer("dbuffer.camera", cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F});
+        out.bind();
+        gl::apply(gl::states::overwrite);  // writes every pixel: no clear needed
+        const gl::Program& shade = gl::program("common/fullscreen.vert.glsl", "dbuffer/camera.frag.glsl");
+        shade.use();
+        int unit = frame.bindCameraPass(shade, 0);
+        unit = frame.bindShadowMap(shade, map, unit);
+        shade.setTexture("uDBuffer", unit++, dbuf.colorId(0));
+        frame.setLightUniforms(shade, lightIndex);
+        shade.set("uCentre", geo.disk.centre);
+        shade.set("uSmallOccluders", settings.flag("small_occluders", false) ? 1 : 0);
+        std::string profile = settings.choice("profile", "smoothstep", {"smoothstep", "segment"});
+        shade.set("uSegmentProfile", profile == "segment" ? 1 : 0);
+        shade.set("uBiasTexels", settings.number("bias_texels", 1.5f));
+        frame.drawFullscreen();
+        g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        g.check("drawing the dbuffer camera pass");
+        finishStage();
+
+        // One read-back per attachment (top row first); without extra layers only V and mask.
+        Layers layers;
+        std::vector<Image> result = out.readChannels(0, settings.extraLayers ? 4 : 2);
+        layers.add("V", std::move(result[0]));
+        layers.add("mask", std::move(result[1]));
+        if (settings.extraLayers) {
+            std::vector<Image> dist = out.readChannels(1, 4);
+            // Where the camera point lies inside the geometric volumes: not the umbra/penumbra
+            // classes of V (core/visibility_classes.h), which the renderer adds.
+            layers.add("umbra_volume", std::move(result[2]));
+            layers.add("penumbra_volume", std::move(result[3]));
+            layers.add("dist_occluder", std::move(dist[0]));
+            layers.add("dist_umbra", std::move(dist[1]));
+            layers.add("dist_penumbra", std::move(dist[2]));
+            layers.add("dist_silhouette", std::move(dist[3]));
+        }
+        finishStage();
+        settings.report(1.0f, "done");
+        return layers;
+    }
+
+private:
+    std::shared_ptr<const DbufferGeometry> geometry_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makeDbufferMethod() { return std::make_unique<DbufferMethod>(); }
+
+}  // namespace ss

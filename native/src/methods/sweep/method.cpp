@@ -1,0 +1,111 @@
+// What the `sweep` method is: geometric soft shadows on a planar receiver from light samples,
+// sweep-line outlines, rings and a triangulated penumbra (paper 2), drawn into the camera view.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/error.h"
+#include "methods/method.h"
+#include "methods/sweep/lookup.h"
+#include "methods/sweep/raster.h"
+#include "methods/sweep/shadow.h"
+#include "frame/frame.h"
+#include "core/visibility_contract.h"
+
+namespace ss {
+
+namespace {
+
+class SweepMethod final : public Method {
+public:
+    const char* name() const override { return "sweep"; }
+    // GL for the shared camera pass and for drawing the shadow mesh; the mesh is CPU geometry.
+    bool needsGl() const override { return true; }
+    std::vector<std::string> settingKeys() const override { return sweepSettingKeys(); }
+
+    void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        shadowFor(frame.scene(), lightIndex, settings);
+    }
+
+    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+        const SweepShadow& shadow = shadowFor(frame.scene(), lightIndex, settings);
+        const Light& light = frame.light(lightIndex);
+        settings.report(0.5f, "sweep: camera pass");
+        const CameraImages& cam = frame.cameraImages();
+        const int w = cam.width, h = cam.height;
+        Image V(w, h, 1.0f), mask(w, h, 0.0f);
+        // raster=gl (default): the shadow triangles drawn with the camera's matrices;
+        // raster=cpu: the same triangles looked up per pixel (no GL draw; a cross-check).
+        std::string raster = settings.choice("raster", "gl", {"gl", "cpu"});
+        // Clusters: one lookup per cluster's mesh, their weighted intensities added.
+        std::vector<ShadowLookup> lookups;
+        Image drawn;
+        if (raster == "gl") drawn = rasterSweepShadow(frame, shadow);
+        else if (shadow.parts.empty()) lookups.emplace_back(shadow.mesh);
+        else
+            for (const planar::ShadowMesh& part : shadow.parts) lookups.emplace_back(part);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                size_t i = cam.index(x, y);
+                // Pixels that do not see the receiver plane are outside this method's mask.
+                if (!cam.covered(x, y) || !cam.receives(x, y) || int(cam.ids[i].x) != shadow.plane.mesh) continue;
+                glm::vec3 P = cam.position(x, y);
+                if (!lightReaches(light, P, cam.normal(x, y))) continue;
+                mask.at(x, y) = 1.0f;
+                float intensity;
+                if (!lookups.empty()) {
+                    glm::dvec2 q = shadow.plane.toPlane(glm::dvec3(P));
+                    double gx = (q.x - shadow.plane.cu) * shadow.snap.scale();
+                    double gy = (q.y - shadow.plane.cv) * shadow.snap.scale();
+                    intensity = 0.0f;
+                    for (const ShadowLookup& l : lookups) intensity += l.intensity(gx, gy);
+                } else {
+                    intensity = drawn.at(x, y);
+                }
+                // std::clamp keeps a NaN: a broken shadow mesh shows as V = NaN, which the
+                // finiteness tests catch, instead of passing for lit.
+                V.at(x, y) = 1.0f - std::clamp(intensity, 0.0f, 1.0f);
+            }
+        Layers layers;
+        layers.add("V", std::move(V));
+        layers.add("mask", std::move(mask));
+        settings.report(1.0f, "sweep: done");
+        return layers;
+    }
+
+private:
+    struct Key {
+        uint64_t scene = 0, revision = 0;
+        int light = -1, samples = 0, clusters = 1;
+        uint32_t seed = 0;
+        double border = 0;
+        planar::FillMode fill{};
+        std::string receiver;
+        bool weights = true;
+        bool operator==(const Key&) const = default;
+    };
+
+    const SweepShadow& shadowFor(const Scene& scene, int lightIndex, const RenderSettings& settings) {
+        SweepOptions o = sweepOptions(settings);
+        Key k{scene.id(), scene.revision(), lightIndex, o.samples, o.clusters, o.seed, o.borderShare, o.fill, o.receiver,
+              o.irradianceWeights};
+        if (!cached_ || !(key_ == k)) {
+            settings.report(0.0f, "sweep: geometry");
+            cached_ = computeSweepShadow(scene, lightIndex, o);
+            key_ = k;
+        }
+        return *cached_;
+    }
+
+    Key key_;
+    std::optional<SweepShadow> cached_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makeSweepMethod() { return std::make_unique<SweepMethod>(); }
+
+}  // namespace ss

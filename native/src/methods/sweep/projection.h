@@ -1,0 +1,32 @@
+// How one light sample's shadow edges reach the receiver plane: potential silhouette edges of
+// closed meshes (front/back facing change, open edges too), or every front-facing triangle of
+// other meshes, projected as directed edges with the shadow on the right.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <vector>
+
+#include "core/scene.h"
+#include "methods/sweep/receiver.h"
+#include "planar/snap.h"
+#include "sampling/light_samples.h"
+
+namespace ss {
+
+struct ProjectionStats {
+    size_t silhouetteEdges = 0;     // from closed meshes
+    size_t fallbackTriangles = 0;   // front faces projected whole (open, inconsistent, clipped)
+};
+
+// Occluders: casting meshes other than the receiver.
+std::vector<int> sweepOccluders(const Scene& scene, const ReceiverPlane& plane);
+
+// Whether a mesh can use silhouette edges (closed, consistently oriented, manifold).
+bool usesSilhouettes(const Mesh& mesh);
+
+// Appends the sample's shadow edges in grid coordinates. A sample not above the plane casts
+// nothing (returns false): it is below the receiver's horizon and counts in neither irradiance.
+bool projectSample(const Scene& scene, const std::vector<int>& occluders, const ReceiverPlane& plane,
+                   const planar::Snap& snap, const LightSample& sample,
+                   std::vector<planar::DirectedEdge>* out, ProjectionStats* stats);
+
+}  // namespace ss

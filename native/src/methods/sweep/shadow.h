@@ -1,0 +1,78 @@
+// What the sweep method computes on the CPU for one light: the light samples, each sample's
+// hard outline, the merged rings and the shadow mesh on the receiver plane, with stage timings.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+#include "methods/method.h"
+#include "methods/sweep/projection.h"
+#include "methods/sweep/receiver.h"
+#include "planar/penumbra_fill.h"
+
+namespace ss {
+
+constexpr int kSweepDefaultSamples = 16;
+
+struct SweepOptions {
+    int samples = kSweepDefaultSamples;
+    uint32_t seed = 1;
+    double borderShare = 0.25;
+    planar::FillMode fill = planar::FillMode::Smooth;
+    std::string receiver;  // mesh name; empty = the largest planar receiver
+    // Square/rectangle lights split into this many equal convex strips along their longer side,
+    // each shadowed on its own and merged without interpolation (paper 2, section 6).
+    int clusters = 1;
+    // Each sample weighed by the irradiance it sends to each shadow-mesh corner (the contract);
+    // false: every sample counts the same (the paper).
+    bool irradianceWeights = true;
+    // RenderSettings::cancel: checked between light samples (null: never cancelled).
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+// The keys of RenderSettings::options the sweep reads (its shadow mesh and its camera pass).
+std::vector<std::string> sweepSettingKeys();
+// Reads RenderSettings: samples (0 = 16), seed, options "receiver", "fill" (smooth|steps),
+// "border" (share of samples on the light's border, 0..1), "clusters" (1..64), "weights"
+// (irradiance|equal). Throws ss::Error on an unknown key or a bad value.
+SweepOptions sweepOptions(const RenderSettings& settings);
+
+struct SweepTimings {
+    double silhouettesMs = 0, sweepMs = 0, mergeMs = 0, fillMs = 0;
+    double weightsMs = 0;  // irradiance weights (not part of fillMs)
+};
+
+// A convex part of the light (the whole light when there is one cluster): its share of the
+// light's emitted power and the light it stands for.
+struct LightCluster {
+    Light light;
+    double weight = 1.0;
+};
+
+// The light cut into `clusters` equal strips along its longer side (square/rectangle lights);
+// one cluster returns the light itself. Throws SS_ERROR_UNSUPPORTED for other shapes.
+std::vector<LightCluster> splitLight(const Light& light, int clusters);
+
+struct SweepShadow {
+    ReceiverPlane plane;
+    planar::Snap snap{0, 0, 1};
+    // Grid coordinates. With one cluster the triangles tile the shadow (no overlaps). With
+    // several, this is every cluster's mesh, intensities already multiplied by its weight,
+    // concatenated: the triangles of different clusters overlap and their intensities ADD
+    // (V = 1 - sum_k w_k I_k, no interpolation between clusters); `parts` holds them apart.
+    planar::ShadowMesh mesh;
+    std::vector<planar::ShadowMesh> parts;  // empty with one cluster
+    int samplesUsed = 0;            // samples above the receiver plane
+    ProjectionStats projection;
+    SweepTimings timings;
+    // World position of a shadow-mesh vertex.
+    glm::dvec3 worldVertex(size_t i) const {
+        return plane.toWorld(snap.toU(mesh.vertices[i].x), snap.toV(mesh.vertices[i].y));
+    }
+};
+
+SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOptions& options);
+
+}  // namespace ss

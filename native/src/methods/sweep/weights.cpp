@@ -1,0 +1,179 @@
+// How each shadow-mesh corner gets the irradiance-weighted share of the light its region's
+// shadowing samples stand for.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "methods/sweep/weights.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <unordered_map>
+#include <utility>
+
+namespace ss {
+
+namespace {
+
+// One sample's outline cut into horizontal bands, so a point's winding number reads only the
+// edges spanning its band (about 2 per band) rather than the whole outline.
+class BandedOutline {
+public:
+    explicit BandedOutline(std::span<const planar::DirectedEdge> edges) : edges_(edges.begin(), edges.end()) {
+        if (edges_.empty()) return;
+        y0_ = y1_ = double(edges_[0].a.y);
+        x0_ = x1_ = double(edges_[0].a.x);
+        for (const planar::DirectedEdge& e : edges_) {
+            y0_ = std::min({y0_, double(e.a.y), double(e.b.y)});
+            y1_ = std::max({y1_, double(e.a.y), double(e.b.y)});
+            x0_ = std::min({x0_, double(e.a.x), double(e.b.x)});
+            x1_ = std::max({x1_, double(e.a.x), double(e.b.x)});
+        }
+        bands_ = std::max<size_t>(1, edges_.size() / 2);
+        height_ = std::max(1.0, (y1_ - y0_) / double(bands_));
+        std::vector<uint32_t> count(bands_ + 1, 0);
+        auto range = [&](const planar::DirectedEdge& e, size_t* lo, size_t* hi) {
+            *lo = band(std::min(e.a.y, e.b.y));
+            *hi = band(std::max(e.a.y, e.b.y));
+        };
+        for (const planar::DirectedEdge& e : edges_) {
+            size_t lo, hi;
+            range(e, &lo, &hi);
+            for (size_t k = lo; k <= hi; ++k) ++count[k + 1];
+        }
+        for (size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
+        start_ = count;
+        items_.resize(count.back());
+        for (const planar::DirectedEdge& e : edges_) {
+            size_t lo, hi;
+            range(e, &lo, &hi);
+            const Item item{double(e.a.x), double(e.a.y), double(e.b.x), double(e.b.y), e.weight};
+            for (size_t k = lo; k <= hi; ++k) items_[count[k]++] = item;
+        }
+    }
+
+    // Winding number around (x, y), a point on none of the edges.
+    int winding(double x, double y) const {
+        if (edges_.empty() || y < y0_ || y > y1_ || x < x0_ || x > x1_) return 0;
+        size_t k = band(y);
+        int w = 0;
+        for (uint32_t i = start_[k]; i < start_[k + 1]; ++i) {
+            const Item& e = items_[i];
+            if ((e.ay <= y) == (e.by <= y)) continue;
+            double side = (e.bx - e.ax) * (y - e.ay) - (e.by - e.ay) * (x - e.ax);
+            if (e.by > e.ay && side > 0) w += e.weight;
+            else if (e.by <= e.ay && side < 0) w -= e.weight;
+        }
+        return w;
+    }
+
+private:
+    size_t band(double y) const {
+        return std::min(bands_ - 1, size_t(std::max(0.0, std::floor((y - y0_) / height_))));
+    }
+    std::vector<planar::DirectedEdge> edges_;
+    double x0_ = 0, x1_ = 0, y0_ = 0, y1_ = 0, height_ = 1;
+    size_t bands_ = 1;
+    // Each band's edges stored in place (as doubles), so a query reads one contiguous run.
+    struct Item {
+        double ax, ay, bx, by;
+        int weight;
+    };
+    std::vector<uint32_t> start_;
+    std::vector<Item> items_;
+};
+
+}  // namespace
+
+namespace {
+
+// sampleIrradianceWeight with the emitter's direction computed once (null: no cosine there).
+double weightTowards(const glm::dvec3* emits, const LightSample& s, const glm::dvec3& p, const glm::dvec3& n) {
+    if (s.directional) return std::max(0.0, glm::dot(n, s.toLight));
+    glm::dvec3 r = s.point - p;
+    double d2 = glm::dot(r, r);
+    if (!(d2 > 0)) return 0.0;
+    double d = std::sqrt(d2);
+    double cosR = glm::dot(n, r) / d;
+    if (cosR <= 0) return 0.0;
+    double cosL = 1.0;
+    if (emits) {
+        cosL = glm::dot(*emits, -r) / d;
+        if (cosL <= 0) return 0.0;  // behind the one-sided emitter
+    }
+    return cosL * cosR / d2;
+}
+
+}  // namespace
+
+double sampleIrradianceWeight(const Light& light, const LightSample& s, const glm::dvec3& p, const glm::dvec3& n) {
+    const glm::dvec3 emits(light.direction());
+    return weightTowards(light.isArea() ? &emits : nullptr, s, p, n);
+}
+
+void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<planar::DirectedEdge>> outlines,
+                     std::span<const LightSample> samples, const Light& light, const ReceiverPlane& plane,
+                     const planar::Snap& snap, planar::FillMode fill) {
+    const size_t n = samples.size();
+    if (n == 0 || outlines.size() != n) return;
+    std::vector<BandedOutline> bands;
+    bands.reserve(n);
+    for (size_t s = 0; s < n; ++s) bands.emplace_back(outlines[s]);
+    const glm::dvec3 emitDir(light.direction());
+    const glm::dvec3* emits = light.isArea() ? &emitDir : nullptr;
+    // The fill emits every triangle's corners separately; a corner's n weights are computed once
+    // per distinct position (about a sixth of the corners) and kept in `weights`.
+    struct PosHash {
+        size_t operator()(const std::pair<double, double>& k) const {
+            return std::hash<double>()(k.first) * 0x9E3779B97F4A7C15ull ^ std::hash<double>()(k.second);
+        }
+    };
+    std::unordered_map<std::pair<double, double>, uint32_t, PosHash> corner;
+    std::vector<double> weights;
+    auto weightsAt = [&](const planar::ShadowVertex& c) -> const double* {
+        auto [it, inserted] = corner.emplace(std::pair{c.x, c.y}, uint32_t(weights.size() / (n + 1)));
+        if (inserted) {
+            glm::dvec3 p = plane.toWorld(snap.toU(c.x), snap.toV(c.y));
+            double all = 0;
+            for (size_t s = 0; s < n; ++s) {
+                weights.push_back(weightTowards(emits, samples[s], p, plane.normal));
+                all += weights.back();
+            }
+            weights.push_back(all);
+        }
+        return weights.data() + size_t(it->second) * (n + 1);
+    };
+    std::vector<planar::ShadowVertex> out;
+    out.reserve(mesh.indices.size());
+    std::vector<char> inShadow(n);
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const planar::ShadowVertex* v[3] = {&mesh.vertices[mesh.indices[t]], &mesh.vertices[mesh.indices[t + 1]],
+                                            &mesh.vertices[mesh.indices[t + 2]]};
+        double cx = (v[0]->x + v[1]->x + v[2]->x) / 3.0, cy = (v[0]->y + v[1]->y + v[2]->y) / 3.0;
+        int count = 0;
+        for (size_t s = 0; s < n; ++s) {
+            bool in = bands[s].winding(cx, cy) != 0;
+            inShadow[s] = in;
+            count += in;
+        }
+        for (const planar::ShadowVertex* c : v) {
+            planar::ShadowVertex o = *c;
+            // The umbra (every sample) keeps 1 and the lit part 0 whatever the weights.
+            if (count > 0 && size_t(count) < n) {
+                const double* w = weightsAt(*c);
+                double all = w[n], shadowed = 0;
+                for (size_t s = 0; s < n; ++s)
+                    if (inShadow[s]) shadowed += w[s];
+                // A corner every sample is below the horizon of keeps its count-based value.
+                double share = all > 0 ? shadowed / all : double(count) / double(n);
+                double value = fill == planar::FillMode::Steps ? share
+                                                                : c->intensity * share * double(n) / double(count);
+                o.intensity = float(std::clamp(value, 0.0, 1.0));
+            }
+            out.push_back(o);
+        }
+    }
+    mesh.vertices = std::move(out);
+    mesh.indices.resize(mesh.vertices.size());
+    for (size_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = uint32_t(i);
+}
+
+}  // namespace ss

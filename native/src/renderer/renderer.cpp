@@ -1,0 +1,175 @@
+// How a (light, method) render is dispatched: lazy GL start, the frame cache, CPU vs GL methods.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "renderer/renderer.h"
+
+#include <map>
+#include <mutex>
+
+#include "core/error.h"
+#include "core/visibility_classes.h"
+#include "gl/capabilities.h"
+#include "gl/context.h"
+#include "gl/render_thread.h"
+#include "frame/frame.h"
+
+namespace ss {
+
+struct Renderer::Impl {
+    ss_backend backend;
+    std::mutex m;  // one render at a time per renderer: frames and methods are not thread-safe
+    std::unique_ptr<gl::RenderThread> thread;
+    std::string infoJson;
+    std::function<void()> cacheTakenHook;
+
+    // The shared passes and the method objects (with whatever they prepared) of the last
+    // scene revision rendered; a new (scene id, revision) replaces them.
+    struct Cached {
+        uint64_t sceneId = 0, revision = 0;
+        std::unique_ptr<Frame> frame;
+        std::map<std::string, std::unique_ptr<Method>> methods;
+    };
+    std::unique_ptr<Cached> cache;
+    CacheStats finished;  // of frames already dropped
+
+    void count(const Frame& f, CacheStats& into) const {
+        into.meshUploads += f.stats().meshUploads;
+        into.cameraPasses += f.stats().cameraPasses;
+        into.shadowMaps += f.stats().shadowMaps;
+    }
+
+    // ss_shutdown() stopped the thread: everything GL died with its context, so the frame
+    // cache goes too and the next GL use starts afresh. Called only before any cache reference
+    // is taken, since it may drop the cache.
+    void forgetStoppedThread() {
+        if (thread && !thread->running()) {
+            dropCache();
+            thread.reset();
+            infoJson.clear();
+        }
+    }
+
+    // The thread, started if there is none. A thread stopped by a shutdown since the last
+    // forgetStoppedThread() is kept as it is: its run() throws SS_ERROR_GL, so a render that
+    // already holds cache references fails cleanly instead of having them freed under it.
+    gl::RenderThread& glThread() {
+        if (!thread) thread = std::make_unique<gl::RenderThread>(backend);
+        return *thread;
+    }
+
+    // GL objects are deleted on the thread that owns their context; off it (after shutdown)
+    // their handles just forget them.
+    void dropCache() {
+        if (!cache) return;
+        count(*cache->frame, finished);
+        if (thread && thread->running()) {
+            try {
+                thread->run([&] { cache.reset(); });
+            } catch (const Error&) {
+                // Shut down in between: the context is gone and the handles just forget.
+            }
+        }
+        cache.reset();
+    }
+
+    Cached& cacheFor(const Scene& scene) {
+        if (cache && cache->sceneId == scene.id() && cache->revision == scene.revision()) return *cache;
+        dropCache();
+        cache = std::make_unique<Cached>();
+        cache->sceneId = scene.id();
+        cache->revision = scene.revision();
+        cache->frame = std::make_unique<Frame>(scene);
+        ++finished.frames;
+        return *cache;
+    }
+};
+
+Renderer::Renderer(ss_backend backend) : impl_(std::make_unique<Impl>()) {
+    gl::backendName(backend);  // throws for an unknown backend now, not at the first render
+    impl_->backend = backend;
+}
+
+Renderer::~Renderer() {
+    try {
+        impl_->dropCache();
+    } catch (...) {
+        // A destructor must not throw; GL objects of a broken context are gone anyway.
+    }
+    impl_->thread.reset();
+}
+
+std::string Renderer::info() {
+    std::lock_guard lock(impl_->m);
+    if (impl_->infoJson.empty()) {
+        impl_->forgetStoppedThread();
+        gl::RenderThread& t = impl_->glThread();
+        gl::Capabilities caps;
+        t.run([&] { caps = gl::probeCapabilities(); });
+        impl_->infoJson = caps.toJson(t.backendName());
+    }
+    return impl_->infoJson;
+}
+
+void Renderer::setCacheTakenHook(std::function<void()> hook) {
+    std::lock_guard lock(impl_->m);
+    impl_->cacheTakenHook = std::move(hook);
+}
+
+Renderer::CacheStats Renderer::cacheStats() const {
+    std::lock_guard lock(impl_->m);
+    CacheStats s = impl_->finished;
+    if (impl_->cache) impl_->count(*impl_->cache->frame, s);
+    return s;
+}
+
+namespace {
+
+void checkLayers(const Layers& layers, const Camera& camera, const std::string& method) {
+    if (!layers.find("V") || !layers.find("mask"))
+        fail(SS_ERROR_INTERNAL, "method '" + method + "' did not produce the V and mask layers");
+    for (const char* reserved : {"umbra", "penumbra"})
+        if (layers.find(reserved))
+            fail(SS_ERROR_INTERNAL, "method '" + method + "' made the '" + reserved +
+                                        "' layer, which the renderer draws from V for every method");
+    for (const auto& [name, img] : layers.items)
+        if (img.width != camera.width || img.height != camera.height ||
+            img.pixels.size() != size_t(img.width) * size_t(img.height))
+            fail(SS_ERROR_INTERNAL, "method '" + method + "' layer '" + name + "' is " +
+                                        std::to_string(img.width) + "x" + std::to_string(img.height) +
+                                        ", not the camera's " + std::to_string(camera.width) + "x" +
+                                        std::to_string(camera.height));
+}
+
+}  // namespace
+
+Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& method,
+                        const RenderSettings& settings, std::string* methodUsed) {
+    std::lock_guard lock(impl_->m);
+    const Camera& camera = scene.camera();  // throws when the scene has no camera
+    (void)scene.light(lightIndex);  // throws for an index out of range, before any work
+    std::string name = method == "auto" ? chooseAutoMethod(scene, lightIndex) : method;
+    impl_->forgetStoppedThread();
+    auto& cached = impl_->cacheFor(scene);
+    auto it = cached.methods.find(name);
+    if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
+    Method& m = *it->second;
+    Frame& frame = *cached.frame;
+    settings.requireKnownKeys(name, m.settingKeys());
+    if (impl_->cacheTakenHook) impl_->cacheTakenHook();
+
+    Layers layers;
+    if (!m.needsGl()) {
+        m.prepare(frame, lightIndex, settings);
+        layers = m.render(frame, lightIndex, settings);
+    } else {
+        impl_->glThread().run([&] {
+            m.prepare(frame, lightIndex, settings);
+            layers = m.render(frame, lightIndex, settings);
+        });
+    }
+    checkLayers(layers, camera, name);
+    if (settings.extraLayers) addClassLayers(layers);
+    if (methodUsed) *methodUsed = name;
+    return layers;
+}
+
+}  // namespace ss

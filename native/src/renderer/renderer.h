@@ -1,0 +1,50 @@
+// How one (light, method) render is run: the GL render thread, the shared frame passes, "auto".
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "methods/method.h"
+#include "softshadow/softshadow.h"
+
+namespace ss {
+
+// Owns (lazily) the GL context on the library's own render thread and the per-scene cache of
+// shared passes (one camera pass per frame, one light-centre shadow map per light), so that a
+// series of render() calls on the same unchanged scene draws each shared pass once.
+// CPU-only methods (reference) never start GL.
+class Renderer {
+public:
+    explicit Renderer(ss_backend backend);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Starts GL if needed; throws ss::Error(SS_ERROR_GL) naming every backend tried.
+    // JSON: {"backend", "renderer", "vendor", "version", "limits": {...}}.
+    std::string info();
+
+    // `method` may be "auto"; *methodUsed receives the method that ran.
+    Layers render(const Scene& scene, int lightIndex, const std::string& method,
+                  const RenderSettings& settings, std::string* methodUsed);
+
+    // How many frames were made and how often their shared passes were drawn, over the
+    // renderer's life (tests of the frame cache; the benchmark's stage counts).
+    struct CacheStats {
+        int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0;
+    };
+    CacheStats cacheStats() const;
+
+    // Tests only: runs inside render() once the cache entry and the method are taken and before
+    // GL work starts, so a test can shut the render threads down at exactly that point.
+    void setCacheTakenHook(std::function<void()> hook);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ss
