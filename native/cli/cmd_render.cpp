@@ -8,8 +8,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
 
 #include "cli_common.h"
+#include "io/atomic_file.h"
 #include "io/pass_names.h"
 #include "io/png_preview.h"
 #include "progress_bar.h"
@@ -68,16 +70,39 @@ std::vector<int32_t> chooseLights(ss_scene* scene, const std::vector<std::string
     return out;
 }
 
-// Fails before a long render when the output obviously cannot be written.
+// Fails before a long render when the output obviously cannot be written: not a regular file
+// (after symlinks), or no writable folder.
 void checkWritable(const std::string& out) {
-    fs::path p(out);
-    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-    std::error_code ec;
-    if (fs::is_directory(p, ec)) throw CliError("cannot write '" + out + "': it is a directory");
-    if (!fs::is_directory(dir, ec))
-        throw CliError("cannot write '" + out + "': folder '" + dir.string() + "' does not exist");
+    fs::path target(resolveOutputPath(out));
+    fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     if (access(dir.c_str(), W_OK) != 0)
         throw CliError("cannot write '" + out + "': folder '" + dir.string() + "' is not writable");
+}
+
+// Creates the preview folder before the render, so a bad one fails before anything is written.
+void preparePreviewFolder(const std::string& dir) {
+    std::error_code ec;
+    fs::file_status st = fs::status(dir, ec);
+    if (fs::exists(st) && !fs::is_directory(st))
+        throw CliError("cannot write previews to '" + dir + "': it exists and is not a folder");
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir))
+        throw CliError("cannot write previews to '" + dir + "': " +
+                       (ec ? ec.message() : std::string("not a folder")));
+    if (access(dir.c_str(), W_OK) != 0)
+        throw CliError("cannot write previews to '" + dir + "': the folder is not writable");
+}
+
+// A pass name as a file name inside the preview folder: path separators, control characters
+// and a leading dot become "_", so no light name reaches outside the folder or hides a file.
+std::string previewFileName(const std::string& pass) {
+    std::string name = pass;
+    for (char& c : name) {
+        unsigned char u = (unsigned char)c;
+        if (c == '/' || c == '\\' || u < 0x20 || u == 0x7F) c = '_';
+    }
+    if (!name.empty() && name[0] == '.') name[0] = '_';
+    return name + ".png";
 }
 
 }  // namespace
@@ -87,6 +112,7 @@ int runRender(const std::vector<std::string>& argv) {
                      "--set", "--backend", "--png-dir", "-o", "--output"},
               {"--no-extra"});
     if (args.positional().size() != 1) throw CliError("render needs exactly one SCENE file");
+    if (args.has("-o") && args.has("--output")) throw CliError("give -o or --output, not both");
     std::string out = args.value("-o", args.value("--output"));
     if (out.empty()) throw CliError("render needs an output file: -o OUT.exr");
     std::vector<std::string> methods;
@@ -96,6 +122,7 @@ int runRender(const std::vector<std::string>& argv) {
     if (methods.empty()) throw CliError("render needs a method: -m reference|shadow_map|...|auto");
 
     checkWritable(out);
+    if (args.has("--png-dir")) preparePreviewFolder(args.value("--png-dir"));
 
     ss_scene* rawScene = nullptr;
     check(ss_scene_load(args.positional()[0].c_str(), &rawScene));
@@ -139,38 +166,35 @@ int runRender(const std::vector<std::string>& argv) {
             results.emplace_back(raw, ss_result_destroy);
         }
 
-    std::vector<const ss_result*> raws;
-    for (auto& r : results) raws.push_back(r.get());
-    check(ss_write_exr(out.c_str(), ss_scene_view_layer(scene.get()), raws.data(), int32_t(raws.size())));
-
+    // Previews first under temporary names, then the EXR, then the previews into place: any
+    // failure before the last step leaves every old file as it was.
+    std::vector<StagedFile> previews;
     std::vector<std::string> pngs;
     if (args.has("--png-dir")) {
         std::string dir = args.value("--png-dir");
-        try {
-            std::error_code ec;
-            fs::create_directories(dir, ec);
-            for (auto& r : results)
-                for (int32_t i = 0; i < ss_result_layer_count(r.get()); ++i) {
-                    const char* name;
-                    const float* pixels;
-                    int32_t w, h;
-                    check(ss_result_layer(r.get(), i, &name, &pixels, &w, &h));
-                    Image img(w, h);
-                    img.pixels.assign(pixels, pixels + size_t(w) * h);
-                    std::string path = (fs::path(dir) / (passName(ss_result_light(r.get()),
-                                                                  ss_result_method(r.get()), name) +
-                                                         ".png")).string();
-                    writePngPreview(path, img);
-                    pngs.push_back(path);
-                }
-        } catch (const std::exception&) {
-            // No output left behind: a failed preview takes the EXR and earlier previews with it.
-            std::error_code ignored;
-            for (const std::string& p : pngs) fs::remove(p, ignored);
-            fs::remove(out, ignored);
-            throw;
-        }
+        std::set<std::string> seen;
+        for (auto& r : results)
+            for (int32_t i = 0; i < ss_result_layer_count(r.get()); ++i) {
+                const char* name;
+                const float* pixels;
+                int32_t w, h;
+                check(ss_result_layer(r.get(), i, &name, &pixels, &w, &h));
+                Image img(w, h);
+                img.pixels.assign(pixels, pixels + size_t(w) * h);
+                std::string file = previewFileName(passName(ss_result_light(r.get()), ss_result_method(r.get()), name));
+                if (!seen.insert(file).second)
+                    throw CliError("two passes would share the preview '" + file + "' in '" + dir +
+                                   "' (light names that differ only in '/', '.' or control characters)");
+                std::string path = (fs::path(dir) / file).string();
+                previews.push_back(stagePngPreview(path, img));
+                pngs.push_back(path);
+            }
     }
+
+    std::vector<const ss_result*> raws;
+    for (auto& r : results) raws.push_back(r.get());
+    check(ss_write_exr(out.c_str(), ss_scene_view_layer(scene.get()), raws.data(), int32_t(raws.size())));
+    for (StagedFile& f : previews) f.commit();
 
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - total0).count();
     int32_t w = 0, h = 0;

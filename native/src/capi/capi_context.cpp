@@ -18,12 +18,17 @@ SS_API ss_status ss_context_create(ss_backend backend, ss_context** out) {
 }
 
 SS_API void ss_context_destroy(ss_context* context) {
-    guarded([&] { delete context; });
+    // Refused (the context stays alive) rather than deadlocking on its own render.
+    guarded([&] {
+        if (context) refuseInsideProgressCallback("ss_context_destroy");
+        delete context;
+    });
 }
 
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size) {
     return guarded([&] {
         require(context, "ss_context_info", "context");
+        refuseInsideProgressCallback("ss_context_info");
         // info() starts GL lazily, which changes the renderer but not what the caller sees.
         std::string info = const_cast<ss_context*>(context)->renderer.info();
         copyOut(info, buffer, buffer_size, "ss_context_info");
@@ -31,7 +36,10 @@ SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t
 }
 
 SS_API void ss_shutdown(void) {
-    guarded([] { ss::shutdownRenderThreads(); });
+    guarded([] {
+        refuseInsideProgressCallback("ss_shutdown");
+        ss::shutdownRenderThreads();
+    });
 }
 
 }  // extern "C"

@@ -102,7 +102,7 @@ public:
         finishStage();
         const CameraPass& cam = frame.cameraPass();
         finishStage();
-        const ShadowMap& map = frame.shadowMap(lightIndex, int(settings.number("shadow_map_size", 0.0f)));
+        const ShadowMap& map = frame.shadowMap(lightIndex, shadowMapSizeSetting(settings));
         finishStage();
 
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
@@ -161,7 +161,7 @@ public:
         if (profile != "smoothstep" && profile != "segment")
             fail(SS_ERROR_INVALID_ARGUMENT, "dbuffer: profile must be 'smoothstep' or 'segment', not '" + profile + "'");
         shade.set("uSegmentProfile", profile == "segment" ? 1 : 0);
-        shade.set("uBiasTexels", settings.number("bias_texels", 1.5f));
+        shade.set("uBiasTexels", settings.number("bias_texels", 1.5f, 0.0f, 1000.0f));
         frame.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("drawing the dbuffer camera pass");

@@ -25,13 +25,21 @@ struct RenderSettings {
     std::map<std::string, std::string> options;  // method quality settings, "key" -> "value"
     ProgressFn progress;
 
-    // Typed look-ups of `options` with a default; throw ss::Error on a malformed value.
+    // Typed look-ups of `options` with a default; throw ss::Error(SS_ERROR_INVALID_ARGUMENT)
+    // naming the key, the value and what is allowed on a malformed value. Numbers are finite.
     float number(const std::string& key, float fallback) const;
+    float number(const std::string& key, float fallback, float lo, float hi) const;
+    // A whole number in [lo, hi], or `fallback` when absent; `orZero` also allows 0 (the
+    // "default" of shadow_map_size and threads).
+    int whole(const std::string& key, int fallback, int lo, int hi, bool orZero = false) const;
     bool flag(const std::string& key, bool fallback) const;
     std::string text(const std::string& key, const std::string& fallback) const;
     // Calls progress; throws ss::Error(SS_ERROR_CANCELLED) when it asks to stop.
     void report(float fraction, const char* stage) const;
 };
+
+// The shared shadow map's size setting: 0 (Frame's default) or 16..8192 texels.
+int shadowMapSizeSetting(const RenderSettings& settings);
 
 // Parses "key=value;key=value" (the C API's settings string).
 std::map<std::string, std::string> parseSettings(const std::string& text);

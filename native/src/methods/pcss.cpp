@@ -34,8 +34,8 @@ public:
         const int blockerSamples = positiveSetting(settings, "blocker_samples", 16, 1024);
         const int pcfSamples =
             positiveSetting(settings, "pcf_samples", settings.samples > 0 ? settings.samples : 32, 4096);
-        const int mapSize = int(settings.number("shadow_map_size", 0.0f));
-        const float maxSearch = settings.number("max_search", 0.25f);
+        const int mapSize = shadowMapSizeSetting(settings);
+        const float maxSearch = settings.number("max_search", 0.25f, 0.0f, 1.0f);
 
         const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
         const CameraPass& cam = frame.cameraPass();

@@ -73,11 +73,9 @@ public:
         if (light.type == LightType::Sun)
             fail(SS_ERROR_UNSUPPORTED, "penumbra_map: light '" + light.name +
                                            "' is a sun; penumbra maps need a light centre (use pcss)");
-        const int mapSize = int(settings.number("shadow_map_size", 0.0f));
+        const int mapSize = shadowMapSizeSetting(settings);
         ConeSheetSettings cs;
-        cs.coneSegments = int(settings.number("cone_segments", 16.0f));
-        if (cs.coneSegments < 3 || cs.coneSegments > 256)
-            fail(SS_ERROR_INVALID_ARGUMENT, "penumbra_map: cone_segments must be in 3..256");
+        cs.coneSegments = settings.whole("cone_segments", 16, 3, 256);
         (void)intensityRule(settings);  // a bad value fails before any GL work
         const float radius = penumbraMapLightRadius(light);
         GpuConesSheets& g = geometry_;

@@ -52,7 +52,7 @@ struct CameraRays {
 };
 
 int threadCount(const RenderSettings& settings, int rows) {
-    int n = int(settings.number("threads", 0.0f));
+    int n = settings.whole("threads", 0, 1, 1024, true);
     if (n <= 0) n = int(std::max(1u, std::thread::hardware_concurrency()));
     return std::clamp(n, 1, std::max(1, rows));
 }
