@@ -3,11 +3,15 @@
 """Version differences, written against duck-typed objects so they test without Blender.
 
 - 5.0 moved the compositor tree from `scene.node_tree` (with `scene.use_nodes`) to a node
-  group assigned to `scene.compositing_node_group`.
+  group assigned to `scene.compositing_node_group`; its final image goes to the group's Group
+  Output (an `Image` output socket) instead of a Composite node, and the compositor's MixRGB
+  became the shared `ShaderNodeMix` (sockets by identifier: Factor_Float, A_Color, B_Color).
+- EEVEE's engine id is BLENDER_EEVEE in 3.x and 5.x, BLENDER_EEVEE_NEXT in 4.2-4.5.
 - 4.0 removed `bgl`: the preview draws with the `gpu` module only (never import bgl).
 - Point/spot/area radius is `shadow_soft_size` in 3.x and 4.x (`radius` in the UI).
 - 3.0+ objects carry `visible_shadow` / `visible_camera`; older files had `cycles_visibility`.
-- Materials lost `shadow_method` in 4.2 (EEVEE Next); objects gained `visible_shadow` use there.
+- Materials' EEVEE `shadow_method` went with EEVEE Next (4.2): from then on an object casts
+  in both engines when its `visible_shadow` says so.
 """
 
 
@@ -29,6 +33,51 @@ def compositor_tree(scene, create=False, bpy_data=None):
     if create and hasattr(scene, "use_nodes") and not scene.use_nodes:
         scene.use_nodes = True
     return getattr(scene, "node_tree", None)
+
+
+def _first(tree, bl_idname):
+    return next((n for n in tree.nodes if n.bl_idname == bl_idname), None)
+
+
+def compositor_output(tree, types):
+    """(node, socket) that takes the compositor's final image: the Composite node before 5.0,
+    the tree's Group Output after (its `Image` output socket made when missing). `types` is
+    bpy.types. Returns (node, created)."""
+    if hasattr(types, "CompositorNodeComposite"):
+        node = _first(tree, "CompositorNodeComposite")
+        created = node is None
+        if created:
+            node = tree.nodes.new("CompositorNodeComposite")
+        return node, created
+    if "Image" not in group_sockets(tree, "OUTPUT"):
+        add_group_socket(tree, "OUTPUT", "NodeSocketColor", "Image")
+    node = _first(tree, "NodeGroupOutput")
+    created = node is None
+    if created:
+        node = tree.nodes.new("NodeGroupOutput")
+    return node, created
+
+
+def new_color_mix(nodes, types, blend_type):
+    """A colour mix node in a compositor tree: (node, factor, a, b, result) sockets."""
+    if hasattr(types, "CompositorNodeMixRGB"):
+        node = nodes.new("CompositorNodeMixRGB")
+        node.blend_type = blend_type
+        return node, node.inputs[0], node.inputs[1], node.inputs[2], node.outputs[0]
+    node = nodes.new("ShaderNodeMix")
+    node.data_type = "RGBA"
+    node.blend_type = blend_type
+
+    def socket(sockets, identifier):
+        return next(s for s in sockets if s.identifier == identifier)
+    return (node, socket(node.inputs, "Factor_Float"), socket(node.inputs, "A_Color"),
+            socket(node.inputs, "B_Color"), socket(node.outputs, "Result_Color"))
+
+
+def eevee_engine_id(render):
+    """The identifier of EEVEE among `render.engine`'s choices (scene.render)."""
+    items = {item.identifier for item in render.bl_rna.properties["engine"].enum_items}
+    return "BLENDER_EEVEE_NEXT" if "BLENDER_EEVEE_NEXT" in items else "BLENDER_EEVEE"
 
 
 def has_bgl(app):

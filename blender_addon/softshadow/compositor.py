@@ -73,21 +73,19 @@ def darken_group():
     inputs.location = (-400, 0)
     outputs = nodes.new("NodeGroupOutput")
     outputs.location = (400, 0)
-    factor = nodes.new("CompositorNodeMixRGB")
+    factor, strength_in, lit_in, visibility_in, factor_out = compat.new_color_mix(nodes, bpy.types, "MIX")
     factor.name = "Shadow Factor"
-    factor.blend_type = "MIX"
-    factor.inputs[1].default_value = (1.0, 1.0, 1.0, 1.0)
+    lit_in.default_value = (1.0, 1.0, 1.0, 1.0)
     factor.location = (-100, -150)
-    multiply = nodes.new("CompositorNodeMixRGB")
+    multiply, one_in, image_in, shadow_in, image_out = compat.new_color_mix(nodes, bpy.types, "MULTIPLY")
     multiply.name = "Darken"
-    multiply.blend_type = "MULTIPLY"
-    multiply.inputs[0].default_value = 1.0
+    one_in.default_value = 1.0
     multiply.location = (150, 0)
-    links.new(inputs.outputs["Strength"], factor.inputs[0])
-    links.new(inputs.outputs["Visibility"], factor.inputs[2])
-    links.new(inputs.outputs["Image"], multiply.inputs[1])
-    links.new(factor.outputs[0], multiply.inputs[2])
-    links.new(multiply.outputs[0], outputs.inputs["Image"])
+    links.new(inputs.outputs["Strength"], strength_in)
+    links.new(inputs.outputs["Visibility"], visibility_in)
+    links.new(inputs.outputs["Image"], image_in)
+    links.new(factor_out, shadow_in)
+    links.new(image_out, outputs.inputs["Image"])
     return group
 
 
@@ -114,8 +112,17 @@ def _relink(tree, group_node, node, pass_name):
     return chosen
 
 
+def final_output(scene):
+    """The node that takes the compositor's final image (Composite, or Group Output in 5.0+)."""
+    tree = _tree(scene)
+    node, created = compat.compositor_output(tree, bpy.types)
+    if created:
+        node.location = (400, 100)
+    return node
+
+
 def setup(scene, exr_path=None):
-    """Render Layers -> darken group (by the chosen pass) -> Composite, plus the Image node."""
+    """Render Layers -> darken group (by the chosen pass) -> final output, plus the Image node."""
     tree = _tree(scene)
     image = passes_image(exr_path) if exr_path and os.path.exists(exr_path) else bpy.data.images.get(IMAGE_NAME)
     node = image_node(scene, image)
@@ -123,10 +130,7 @@ def setup(scene, exr_path=None):
     if layers is None:
         layers = tree.nodes.new("CompositorNodeRLayers")
         layers.location = (-300, 100)
-    composite = _find(tree, "CompositorNodeComposite")
-    if composite is None:
-        composite = tree.nodes.new("CompositorNodeComposite")
-        composite.location = (400, 100)
+    composite = final_output(scene)
     group_node = tree.nodes.get(GROUP_NODE)
     if group_node is None:
         group_node = tree.nodes.new("CompositorNodeGroup")

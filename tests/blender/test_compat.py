@@ -6,7 +6,7 @@ from types import SimpleNamespace as NS
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sstest  # noqa: E402
-from softshadow import compat  # noqa: E402
+compat = sstest.addon().compat
 
 
 class FakeGroups:
@@ -95,6 +95,27 @@ def test_group_sockets_both_shapes():
     compat.add_group_socket(new, "OUTPUT", "NodeSocketColor", "Image")
     sstest.check(compat.group_sockets(new, "INPUT") == ["Visibility"], "4.x interface inputs")
     sstest.check(compat.group_sockets(new, "OUTPUT") == ["Image"], "4.x interface outputs")
+
+
+def test_this_blenders_shapes():
+    # The real API of the Blender running the test (the version matrix runs it in each).
+    import bpy
+    scene = bpy.context.scene
+    scene.render.engine = compat.eevee_engine_id(scene.render)
+    sstest.check(scene.render.engine.startswith("BLENDER_EEVEE"), "EEVEE chosen: %s" % scene.render.engine)
+    tree = compat.compositor_tree(scene, create=True, bpy_data=bpy.data)
+    sstest.check(tree is not None and tree.bl_idname == "CompositorNodeTree", "a compositor tree")
+    output, _ = compat.compositor_output(tree, bpy.types)
+    again, created_again = compat.compositor_output(tree, bpy.types)
+    sstest.check(again == output and not created_again, "one final output node")
+    sstest.check("Image" in output.inputs, "the final output takes an Image")
+    node, factor, a, b, result = compat.new_color_mix(tree.nodes, bpy.types, "MULTIPLY")
+    sstest.check(node.blend_type == "MULTIPLY", "mix node blend type")
+    sstest.check(a.type == "RGBA" and b.type == "RGBA" and result.type == "RGBA" and factor.type == "VALUE",
+                 "colour sockets: %s %s %s %s" % (factor.type, a.type, b.type, result.type))
+    light = bpy.data.lights.new("compat-light", "POINT")
+    sstest.check(compat.light_radius(light) >= 0.0, "point light radius readable")
+    bpy.data.lights.remove(light)
 
 
 if __name__ == "__main__":

@@ -29,11 +29,11 @@ def _image_node_outputs(path):
     image.size[:]  # Blender decides MULTILAYER only once the buffer is read (DESIGN.md)
     kind = image.type
     scene = bpy.context.scene
-    scene.use_nodes = True
-    node = scene.node_tree.nodes.new("CompositorNodeImage")
+    tree = ss.compat.compositor_tree(scene, create=True, bpy_data=bpy.data)
+    node = tree.nodes.new("CompositorNodeImage")
     node.image = image
     names = [s.name for s in node.outputs if s.enabled]
-    scene.node_tree.nodes.remove(node)
+    tree.nodes.remove(node)
     return kind, names
 
 
