@@ -2,6 +2,7 @@
 // passes of one image (channel "<view_layer>.<pass>.V", float32, written atomically).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,7 +37,12 @@ struct ExrContents {
     const ExrPass* find(const std::string& pass) const;
 };
 
-// Reads every channel of an EXR. A channel name without two dots is kept with an empty layer
+// What readMultilayerExr accepts (docs/reliability.md): the pixel count of a camera
+// (core/camera.h), these many channels, these many bytes of float pixels in all.
+inline constexpr size_t kMaxExrChannels = 4096;
+inline constexpr uint64_t kMaxExrReadBytes = 4ull << 30;
+
+// Reads every channel of an EXR (header checked against the limits before any pixel buffer). A channel name without two dots is kept with an empty layer
 // (and pass = the name before the last dot, or the whole name). Throws SS_ERROR_IO naming the path.
 ExrContents readMultilayerExr(const std::string& path);
 

@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <utility>
 
 #include "core/error.h"
 
@@ -36,23 +37,35 @@ const char* kindOf(mode_t mode) {
 }
 
 struct Fd {
-    int fd;
+    int fd = -1;
     ~Fd() {
         if (fd >= 0) close(fd);
     }
 };
 
+// Opens without blocking (so a FIFO cannot hang the open) and refuses anything but a regular file.
+Fd openRegular(const std::string& path, const std::string& what, struct stat& st) {
+    auto bad = [&](const std::string& problem) { fail(SS_ERROR_IO, what + " '" + path + "' " + problem); };
+    if (path.empty()) fail(SS_ERROR_IO, what + ": the path is empty");
+    Fd f{open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+    if (f.fd < 0) bad(whyNotOpened(errno));
+    if (fstat(f.fd, &st) != 0) bad(std::string("cannot be read: ") + std::strerror(errno));
+    if (!S_ISREG(st.st_mode)) bad(std::string("is ") + kindOf(st.st_mode) + " (allowed: a regular file)");
+    return Fd{std::exchange(f.fd, -1)};
+}
+
 }  // namespace
+
+uint64_t checkInputFile(const std::string& path, const std::string& what) {
+    struct stat st {};
+    Fd f = openRegular(path, what, st);
+    return uint64_t(st.st_size);
+}
 
 std::string readInputFile(const std::string& path, const std::string& what, uint64_t maxBytes) {
     auto bad = [&](const std::string& problem) { fail(SS_ERROR_IO, what + " '" + path + "' " + problem); };
-    if (path.empty()) fail(SS_ERROR_IO, what + ": the path is empty");
-    // Non-blocking, so a FIFO cannot hang the open; fstat then refuses it.
-    Fd f{open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
-    if (f.fd < 0) bad(whyNotOpened(errno));
     struct stat st {};
-    if (fstat(f.fd, &st) != 0) bad(std::string("cannot be read: ") + std::strerror(errno));
-    if (!S_ISREG(st.st_mode)) bad(std::string("is ") + kindOf(st.st_mode) + " (allowed: a regular file)");
+    Fd f = openRegular(path, what, st);
     if (uint64_t(st.st_size) > maxBytes)
         bad("is " + std::to_string(uint64_t(st.st_size)) + " bytes (the limit is " + std::to_string(maxBytes) +
             " bytes)");

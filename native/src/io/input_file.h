@@ -12,4 +12,7 @@ namespace ss {
 // loop, not a regular file (a folder, FIFO, device...), larger than maxBytes, unreadable.
 std::string readInputFile(const std::string& path, const std::string& what, uint64_t maxBytes);
 
+// The same checks without reading, for files another library opens; returns the size in bytes.
+uint64_t checkInputFile(const std::string& path, const std::string& what);
+
 }  // namespace ss
