@@ -105,6 +105,14 @@ std::string previewFileName(const std::string& pass) {
     return name + ".png";
 }
 
+// The passes of one EXR are all held until it is written (docs/reliability.md).
+constexpr uint64_t kMaxOutputBytes = uint64_t(4) << 30;
+
+[[noreturn]] void outputTooLarge(uint64_t bytes, const std::string& what) {
+    throw CliError("the EXR would hold " + what + std::to_string(bytes) + " bytes of passes (at most " +
+                   std::to_string(kMaxOutputBytes) + "): render fewer lights or methods, or fewer pixels");
+}
+
 }  // namespace
 
 int runRender(const std::vector<std::string>& argv) {
@@ -148,8 +156,17 @@ int runRender(const std::vector<std::string>& argv) {
     check(ss_context_create(parseBackend(args.value("--backend", "auto")), &rawContext));
     ContextPtr context(rawContext, ss_context_destroy);
 
+    {
+        ss_camera_desc cam;
+        check(ss_scene_get_camera(scene.get(), &cam));
+        // Every method gives at least V and mask.
+        uint64_t least = uint64_t(cam.width) * uint64_t(cam.height) * sizeof(float) * 2 * lights.size() * methods.size();
+        if (least > kMaxOutputBytes) outputTooLarge(least, "at least ");
+    }
+
     std::vector<ResultPtr> results;
     std::vector<double> seconds;
+    uint64_t heldBytes = 0;
     auto total0 = std::chrono::steady_clock::now();
     for (int32_t light : lights)
         for (const std::string& method : methods) {
@@ -164,6 +181,12 @@ int runRender(const std::vector<std::string>& argv) {
             check(status);
             seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
             results.emplace_back(raw, ss_result_destroy);
+            for (int32_t i = 0; i < ss_result_layer_count(raw); ++i) {
+                int32_t w = 0, h = 0;
+                check(ss_result_layer(raw, i, nullptr, nullptr, &w, &h));
+                heldBytes += uint64_t(w) * uint64_t(h) * sizeof(float);
+            }
+            if (heldBytes > kMaxOutputBytes) outputTooLarge(heldBytes, "");
         }
 
     // Previews first under temporary names, then the EXR, then the previews into place: any

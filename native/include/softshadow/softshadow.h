@@ -69,7 +69,7 @@ typedef enum ss_light_type {
 #define SS_MESH_THIN 4u    /* a thin occluder (occlusion_textures' leak fix) */
 
 typedef struct ss_light_desc {
-    const char* name;          /* unique within the scene; 1..63 bytes of UTF-8, no control chars */
+    const char* name;          /* unique within the scene; 1..131 bytes of UTF-8, no control chars */
     ss_light_type type;
     float light_to_world[16];  /* Blender's matrix_world: the light emits along local -Z */
     float size;                /* area: size (diameter for disk/ellipse) */

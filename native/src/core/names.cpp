@@ -60,12 +60,11 @@ std::string quoted(const std::string& text) {
     return out + "'";
 }
 
-void checkName(const std::string& what, const std::string& name) {
+void checkName(const std::string& what, const std::string& name, size_t maxBytes) {
     if (name.empty()) fail(SS_ERROR_INVALID_SCENE, "a " + what + " has an empty name");
-    if (name.size() > kMaxNameBytes)
+    if (name.size() > maxBytes)
         fail(SS_ERROR_INVALID_SCENE, what + " name " + quoted(name) + " is " + std::to_string(name.size()) +
-                                         " bytes long (at most " + std::to_string(kMaxNameBytes) +
-                                         ", as in Blender)");
+                                         " bytes long (at most " + std::to_string(maxBytes) + ")");
     if (!isValidUtf8(name))
         fail(SS_ERROR_INVALID_SCENE, what + " name " + quoted(name) + " is not valid UTF-8");
     for (unsigned char c : name)
@@ -76,7 +75,7 @@ void checkName(const std::string& what, const std::string& name) {
 
 void checkViewLayerName(const std::string& name) {
     try {
-        checkName("view layer", name);
+        checkName("view layer", name, kMaxViewLayerBytes);
     } catch (const Error& e) {
         fail(SS_ERROR_INVALID_ARGUMENT, e.what());
     }

@@ -7,13 +7,16 @@
 namespace ss {
 
 // Blender's own limit for an object or view layer name (MAX_NAME - 1), in bytes.
-constexpr size_t kMaxNameBytes = 63;
+constexpr size_t kMaxViewLayerBytes = 63;
+// A light or mesh: a Blender name, or an instance's "<parent>/<object>" with a ".NNN" suffix
+// (63 + 1 + 63 + 4). The longest EXR channel such a light gets stays within EXR's 255 bytes.
+constexpr size_t kMaxNameBytes = 131;
 
-// Throws ss::Error(SS_ERROR_INVALID_SCENE) naming `what` (e.g. "light") unless `name` is 1..63
-// bytes of valid UTF-8 without control characters.
-void checkName(const std::string& what, const std::string& name);
+// Throws ss::Error(SS_ERROR_INVALID_SCENE) naming `what` (e.g. "light") unless `name` is
+// 1..maxBytes bytes of valid UTF-8 without control characters.
+void checkName(const std::string& what, const std::string& name, size_t maxBytes = kMaxNameBytes);
 
-// As checkName("view layer", ...), and no dot (Blender splits channel names at dots); throws
+// As checkName("view layer", ..., kMaxViewLayerBytes), and no dot (Blender splits channel names at dots); throws
 // ss::Error(SS_ERROR_INVALID_ARGUMENT).
 void checkViewLayerName(const std::string& name);
 

@@ -3,7 +3,9 @@
 #include "io/exr_file.h"
 
 #include <algorithm>
+#include <cstring>
 #include <exception>
+#include <fstream>
 #include <set>
 
 #include <OpenEXR/ImfChannelList.h>
@@ -141,6 +143,49 @@ DeclaredSize readDeclaredSize(const std::string& path) {
     return d;
 }
 
+// OpenEXR's C++ reader allocates each header attribute at its declared size before reading it:
+// walk the header(s) first and refuse an attribute larger than the rest of the file.
+void checkAttributeSizes(const std::string& path, uint64_t fileBytes) {
+    auto bad = [&](const std::string& what) { fail(SS_ERROR_IO, "cannot read EXR '" + path + "': " + what); };
+    constexpr uint64_t kMaxHeaderBytes = 16u << 20;
+    std::string head(size_t(std::min(fileBytes, kMaxHeaderBytes)), '\0');
+    {
+        std::ifstream in(path, std::ios::binary);
+        in.read(head.data(), std::streamsize(head.size()));
+        head.resize(size_t(std::max<std::streamsize>(0, in.gcount())));
+    }
+    if (head.size() < 8) bad("it is too short for an OpenEXR file");
+    // Version flags (bits 9, 11, 12): tiled, deep and multi-part files size tables from their
+    // headers in ways the checks below do not bound; softshadow and Blender write neither.
+    const uint8_t flags = uint8_t(head[5]);
+    if (flags & 0x02) bad("it is tiled (allowed: single-part scanline EXRs, as softshadow and Blender write)");
+    if (flags & 0x08) bad("it holds deep data (allowed: single-part scanline EXRs, as softshadow and Blender write)");
+    if (flags & 0x10) bad("it is multi-part (allowed: single-part scanline EXRs, as softshadow and Blender write)");
+    size_t at = 8;
+    auto token = [&](const char* what) {
+        size_t end = head.find('\0', at);
+        if (end == std::string::npos || end - at > 255)
+            bad(std::string("its header has no proper ") + what + " (or is longer than 16 MiB)");
+        at = end + 1;
+    };
+    while (at < head.size() && head[at] != '\0') {
+        size_t nameAt = at;
+        token("attribute name");
+        std::string name = head.substr(nameAt, at - nameAt - 1);
+        token("attribute type");
+        if (at + 4 > head.size()) bad("its header ends inside attribute '" + name + "'");
+        int32_t size = 0;
+        std::memcpy(&size, head.data() + at, 4);
+        at += 4;
+        if (size < 0 || uint64_t(size) > fileBytes - at)
+            bad("header attribute '" + name + "' declares " + std::to_string(size) + " bytes, more than the " +
+                std::to_string(fileBytes - at) + " left in the file");
+        if (at + size_t(size) > head.size()) bad("its header is longer than 16 MiB");
+        at += size_t(size);
+    }
+    if (at >= head.size()) bad("its header ends early (or is longer than 16 MiB)");
+}
+
 // Refuses, before any pixel buffer exists, a header whose pixels would not fit the limits or
 // could not have come from a file this size (a small file declaring a huge image).
 void checkDeclaredSize(const std::string& path, uint64_t fileBytes, const DeclaredSize& d) {
@@ -179,6 +224,7 @@ const ExrPass* ExrContents::find(const std::string& pass) const {
 ExrContents readMultilayerExr(const std::string& path) {
     ExrContents contents;
     const uint64_t fileBytes = checkInputFile(path, "EXR");
+    checkAttributeSizes(path, fileBytes);
     checkDeclaredSize(path, fileBytes, readDeclaredSize(path));
     try {
         Imf::InputFile in(path.c_str());
