@@ -8,11 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/exr_file.h"
 #include "methods/method.h"
 #include "pipeline/renderer.h"
 #include "softshadow/softshadow.h"
@@ -160,6 +162,70 @@ TEST(Issue14, N10_RemoveTemporaryFilesUnlinksWritesInProgress) {
     std::ifstream in(dir / "out.bin");
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "old");
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ss
+
+namespace ss {
+namespace {
+
+// 4, the output side: results gathered one by one through ss_exr_writer make the same EXR as
+// ss_write_exr with all of them in memory, and an unfinished writer leaves no file.
+TEST(Issue14, N04_ExrWriterGathersResultsOneByOne) {
+    fs::path dir = fs::temp_directory_path() / ("ss_i14_04_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "s.json") << R"({"format":"softshadow-scene","version":1,
+      "camera":{"look_from":[3,-3,3],"look_at":[0,0,0],"width":40,"height":30},
+      "lights":[{"name":"A","type":"disk","position":[0,0,4],"direction":[0,0,-1],"size":0.5},
+                {"name":"B","type":"disk","position":[1,0,4],"direction":[0,0,-1],"size":0.3}],
+      "meshes":[{"name":"Ground","primitive":{"type":"plane","size":6}},
+                {"name":"Box","primitive":{"type":"box","size":1},"translate":[0,0,1]}]})";
+    ss_scene* scene = nullptr;
+    ASSERT_EQ(ss_scene_load((dir / "s.json").c_str(), &scene), SS_OK) << ss_last_error();
+    ss_context* context = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &context), SS_OK);
+    std::vector<ss_result*> results;
+    ss_exr_writer* writer = nullptr;
+    ASSERT_EQ(ss_exr_writer_create((dir / "gathered.exr").c_str(), "Layer", &writer), SS_OK) << ss_last_error();
+    for (int light = 0; light < 2; ++light)
+        for (const char* method : {"shadow_map", "pcss"}) {
+            ss_result* r = nullptr;
+            ASSERT_EQ(ss_render(context, scene, light, method, nullptr, &r), SS_OK) << ss_last_error();
+            ASSERT_EQ(ss_exr_writer_add(writer, r), SS_OK) << ss_last_error();
+            results.push_back(r);
+        }
+    EXPECT_EQ(ss_exr_writer_add(writer, results[0]), SS_ERROR_INVALID_ARGUMENT);  // its passes again
+    EXPECT_NE(std::string(ss_last_error()).find("appears twice"), std::string::npos) << ss_last_error();
+    ASSERT_EQ(ss_exr_writer_finish(writer), SS_OK) << ss_last_error();
+    ss_exr_writer_destroy(writer);
+    ASSERT_EQ(ss_write_exr((dir / "at_once.exr").c_str(), "Layer", results.data(), int32_t(results.size())), SS_OK);
+    ExrContents gathered = readMultilayerExr((dir / "gathered.exr").string());
+    ExrContents atOnce = readMultilayerExr((dir / "at_once.exr").string());
+    ASSERT_EQ(gathered.passes.size(), atOnce.passes.size());
+    ASSERT_GE(gathered.passes.size(), 8u);
+    for (size_t i = 0; i < atOnce.passes.size(); ++i) {
+        const ExrPass* g = gathered.find(atOnce.passes[i].pass);
+        ASSERT_TRUE(g) << atOnce.passes[i].pass;
+        EXPECT_EQ(g->layer, "Layer");
+        EXPECT_EQ(g->image.pixels, atOnce.passes[i].image.pixels) << atOnce.passes[i].pass;
+    }
+    // Unfinished: no EXR, no spool, the old file as it was.
+    std::ofstream(dir / "old.exr") << "old";
+    ASSERT_EQ(ss_exr_writer_create((dir / "old.exr").c_str(), "Layer", &writer), SS_OK);
+    ASSERT_EQ(ss_exr_writer_add(writer, results[0]), SS_OK);
+    ss_exr_writer_destroy(writer);
+    std::ifstream in(dir / "old.exr");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "old");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 4);  // s, gathered, at_once, old
+    // A path that cannot take an EXR fails at create, before any render.
+    EXPECT_EQ(ss_exr_writer_create("/dev/null", "Layer", &writer), SS_ERROR_IO);
+    EXPECT_NE(std::string(ss_last_error()).find("character device"), std::string::npos) << ss_last_error();
+    EXPECT_EQ(writer, nullptr);
+    for (ss_result* r : results) ss_result_destroy(r);
+    ss_context_destroy(context);
+    ss_scene_destroy(scene);
     fs::remove_all(dir);
 }
 

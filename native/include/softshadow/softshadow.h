@@ -161,6 +161,16 @@ SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const c
 SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
                               const ss_result* const* results, int32_t result_count);
 
+/* The same EXR gathered result by result, in bounded memory: each added result's layers go to
+ * an (unlinked) spool file beside `path`, so the caller can destroy the result at once, and
+ * ss_exr_writer_finish writes the EXR (atomically) a band of rows at a time. Create checks the
+ * output path and view layer; destroy without finish writes nothing and leaves no file. */
+typedef struct ss_exr_writer ss_exr_writer;
+SS_API ss_status ss_exr_writer_create(const char* path, const char* view_layer, ss_exr_writer** out);
+SS_API ss_status ss_exr_writer_add(ss_exr_writer* writer, const ss_result* result);
+SS_API ss_status ss_exr_writer_finish(ss_exr_writer* writer);
+SS_API void ss_exr_writer_destroy(ss_exr_writer* writer);
+
 /* The `sweep` method's shadow mesh for one light (CPU geometry, no GL context needed), so a host
  * can bring it in as geometry: triangles on the receiver plane, world-space vertices with a shadow
  * intensity each (0 lit .. 1 umbra; V = 1 - intensity, Gouraud-interpolated). Options as for

@@ -36,8 +36,7 @@ void checkPasses(const std::string& path, const std::string& viewLayer,
     std::set<std::string> seen;
     const Image* first = passes.front().image;
     for (const ExrPassRef& p : passes) {
-        if (p.pass.empty() || p.pass.find('.') != std::string::npos)
-            bad("pass name '" + p.pass + "' is empty or has a dot");
+        checkPassName(path, viewLayer, p.pass);
         if (!seen.insert(p.pass).second) bad("pass '" + p.pass + "' appears twice");
         if (!p.image || p.image->width <= 0 || p.image->height <= 0 ||
             p.image->pixels.size() != size_t(p.image->width) * p.image->height)
@@ -49,24 +48,41 @@ void checkPasses(const std::string& path, const std::string& viewLayer,
     }
 }
 
-void writeExrNow(const std::string& file, const std::string& shownPath, const std::string& viewLayer,
-                 const std::vector<ExrPassRef>& passes) {
-    const int w = passes.front().image->width, h = passes.front().image->height;
+// A band of rows of every pass at a time: OpenEXR gets them as slices of one buffer.
+constexpr uint64_t kBandBytes = 64ull << 20;
+
+void writeExrBands(const std::string& file, const std::string& shownPath, const std::string& viewLayer, int w,
+                   int h, const std::vector<ExrPassRows>& passes) {
+    const size_t n = passes.size();
+    const uint64_t rowBytes = uint64_t(w) * sizeof(float) * n;
     Imf::Header header(w, h);
-    header.compression() = Imf::ZIP_COMPRESSION;
+    // ZIP packs 16 rows a chunk and OpenEXR buffers a whole chunk: with very wide rows of many
+    // passes, ZIPS (one row a chunk) keeps that buffer small.
+    header.compression() = rowBytes * 16 > kBandBytes ? Imf::ZIPS_COMPRESSION : Imf::ZIP_COMPRESSION;
     header.insert("Software", Imf::StringAttribute("softshadow " SS_VERSION));
-    Imf::FrameBuffer frame;
-    for (const ExrPassRef& p : passes) {
-        const std::string name = channelName(viewLayer, p.pass);
-        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-        // Each pass is read in place from its own rows: no interleaved copy.
-        char* base = reinterpret_cast<char*>(const_cast<float*>(p.image->pixels.data()));
-        frame.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * size_t(w)));
-    }
+    for (const ExrPassRows& p : passes) header.channels().insert(channelName(viewLayer, p.pass), Imf::Channel(Imf::FLOAT));
+    const int band = int(std::clamp<uint64_t>(kBandBytes / std::max<uint64_t>(rowBytes, 1), 1, uint64_t(h)));
+    const size_t passFloats = size_t(band) * size_t(w);
+    std::vector<float> buffer(passFloats * n);
     try {
         Imf::OutputFile out(file.c_str(), header);
-        out.setFrameBuffer(frame);
-        out.writePixels(h);
+        for (int y0 = 0; y0 < h; y0 += band) {
+            const int rows = std::min(band, h - y0);
+            Imf::FrameBuffer frame;
+            for (size_t c = 0; c < n; ++c) {
+                float* first = buffer.data() + c * passFloats;
+                passes[c].read(y0, rows, first);
+                // OpenEXR addresses a slice by absolute row: shift the base so row y0 lands on `first`.
+                char* base = reinterpret_cast<char*>(reinterpret_cast<intptr_t>(first) -
+                                                     intptr_t(y0) * intptr_t(w) * intptr_t(sizeof(float)));
+                frame.insert(channelName(viewLayer, passes[c].pass),
+                             Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * size_t(w)));
+            }
+            out.setFrameBuffer(frame);
+            out.writePixels(rows);
+        }
+    } catch (const Error&) {
+        throw;
     } catch (const std::exception& e) {
         fail(SS_ERROR_IO, "cannot write EXR '" + shownPath + "': " + e.what());
     }
@@ -212,7 +228,45 @@ void checkDeclaredSize(const std::string& path, uint64_t fileBytes, const Declar
 void writeMultilayerExr(const std::string& path, const std::string& viewLayer,
                         const std::vector<ExrPassRef>& passes) {
     checkPasses(path, viewLayer, passes);
-    writeAtomically(path, [&](const std::string& temp) { writeExrNow(temp, path, viewLayer, passes); });
+    const int w = passes.front().image->width, h = passes.front().image->height;
+    checkExrShape(path, passes.size(), w);
+    std::vector<ExrPassRows> rows;
+    for (const ExrPassRef& p : passes) {
+        const Image* image = p.image;
+        rows.push_back({p.pass, [image, w](int y0, int count, float* out) {
+                            std::copy_n(image->pixels.data() + size_t(y0) * w, size_t(count) * w, out);
+                        }});
+    }
+    writeMultilayerExrRows(path, viewLayer, w, h, rows);
+}
+
+void checkPassName(const std::string& path, const std::string& viewLayer, const std::string& pass) {
+    auto bad = [&](const std::string& what) {
+        fail(SS_ERROR_INVALID_ARGUMENT, "cannot write EXR '" + path + "': " + what);
+    };
+    if (pass.empty() || pass.find('.') != std::string::npos) bad("pass name '" + pass + "' is empty or has a dot");
+    std::string channel = channelName(viewLayer, pass);
+    if (channel.size() > kMaxExrChannelBytes)
+        bad("channel '" + channel + "' is " + std::to_string(channel.size()) + " bytes, longer than EXR's " +
+            std::to_string(kMaxExrChannelBytes));
+}
+
+void checkExrShape(const std::string& path, size_t passes, int width) {
+    auto bad = [&](const std::string& what) {
+        fail(SS_ERROR_INVALID_ARGUMENT, "cannot write EXR '" + path + "': " + what);
+    };
+    if (passes > kMaxExrWriteChannels)
+        bad(std::to_string(passes) + " passes (at most " + std::to_string(kMaxExrWriteChannels) + ")");
+    const uint64_t rowBytes = uint64_t(width) * sizeof(float) * passes;
+    if (rowBytes > kMaxExrRowBytes)
+        bad(std::to_string(passes) + " passes " + std::to_string(width) + " pixels wide make rows of " +
+            std::to_string(rowBytes) + " bytes (at most " + std::to_string(kMaxExrRowBytes) + ")");
+}
+
+void writeMultilayerExrRows(const std::string& path, const std::string& viewLayer, int width, int height,
+                            const std::vector<ExrPassRows>& passes) {
+    checkExrShape(path, passes.size(), width);
+    writeAtomically(path, [&](const std::string& temp) { writeExrBands(temp, path, viewLayer, width, height, passes); });
 }
 
 const ExrPass* ExrContents::find(const std::string& pass) const {
