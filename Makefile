@@ -13,9 +13,10 @@ VERSION := $(shell sed -n 's/^project.softshadow VERSION \([0-9.]*\).*/\1/p' CMa
 DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-tools libstb-dev patchelf \
   libopenexr-dev libglm-dev libembree-dev libegl-dev libegl1-mesa-dev libosmesa6-dev \
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
-  blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev mmdebstrap
+  blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev \
+  clang-14 libclang-rt-14-dev mmdebstrap
 
-.PHONY: deps build demo test test-native test-asan test-tsan test-blender test-matrix bench addon clean
+.PHONY: deps build demo test test-native test-asan test-tsan test-blender test-matrix test-fuzz bench addon clean
 
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
@@ -32,10 +33,15 @@ demo: build
 	bash examples/run_demo.sh $(BUILD)
 
 test: build
-	$(MAKE) --no-print-directory test-native test-blender test-matrix test-asan test-tsan
+	$(MAKE) --no-print-directory test-native test-fuzz test-blender test-matrix test-asan test-tsan
 
 test-native:
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The scene loader and compare's EXR reading under libFuzzer (clang-14), FUZZ_SECONDS each.
+FUZZ_SECONDS ?= 45
+test-fuzz: build
+	bash tests/fuzz/run.sh $(BUILD) $(FUZZ_SECONDS)
 
 test-blender:
 	bash tests/blender/run.sh $(BUILD)

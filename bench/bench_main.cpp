@@ -3,7 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <benchmark/benchmark.h>
 
-#include "renderer/renderer.h"
+#include "gl/render_thread.h"
 
 int main(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);

@@ -39,7 +39,11 @@ Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& va
 
 std::string Args::value(const std::string& name, const std::string& fallback) const {
     auto it = values_.find(name);
-    return it == values_.end() ? fallback : it->second.back();
+    if (it == values_.end()) return fallback;
+    if (it->second.size() > 1)
+        throw CliError("option " + name + " is given " + std::to_string(it->second.size()) +
+                       " times ('" + it->second[0] + "', '" + it->second[1] + "'); it takes one value");
+    return it->second.back();
 }
 
 const std::vector<std::string>& Args::values(const std::string& name) const {

@@ -27,6 +27,7 @@ public:
     const std::vector<std::string>& positional() const { return positional_; }
     bool flag(const std::string& name) const { return flags_.count(name) != 0; }
     bool has(const std::string& name) const { return values_.count(name) != 0; }
+    // The option's one value; throws CliError when it was given more than once.
     std::string value(const std::string& name, const std::string& fallback = "") const;
     const std::vector<std::string>& values(const std::string& name) const;  // every occurrence
     int integer(const std::string& name, int fallback, int lo, int hi) const;

@@ -117,6 +117,10 @@ int runCompare(const std::vector<std::string>& argv) {
         } catch (const std::exception& e) {
             throw CliError("comparing '" + pair.a->pass + "' with '" + pair.b->pass + "': " + e.what());
         }
+        // A score over no pixel would read as a perfect match.
+        if (m.pixels == 0)
+            throw CliError("comparing '" + pair.a->pass + "' with '" + pair.b->pass + "': mask '" + maskName +
+                           "' selects no pixel (compared: mask values > 0.5; NaN is outside), nothing to compare");
         nlohmann::json row = nlohmann::json::parse(m.toJson());
         row["a"] = pair.a->pass;
         row["b"] = pair.b->pass;

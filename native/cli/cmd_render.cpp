@@ -8,8 +8,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
 
 #include "cli_common.h"
+#include "io/atomic_file.h"
+#include "io/exr_file.h"
 #include "io/pass_names.h"
 #include "io/png_preview.h"
 #include "progress_bar.h"
@@ -68,16 +71,39 @@ std::vector<int32_t> chooseLights(ss_scene* scene, const std::vector<std::string
     return out;
 }
 
-// Fails before a long render when the output obviously cannot be written.
+// Fails before a long render when the output obviously cannot be written: not a regular file
+// (after symlinks), or no writable folder.
 void checkWritable(const std::string& out) {
-    fs::path p(out);
-    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-    std::error_code ec;
-    if (fs::is_directory(p, ec)) throw CliError("cannot write '" + out + "': it is a directory");
-    if (!fs::is_directory(dir, ec))
-        throw CliError("cannot write '" + out + "': folder '" + dir.string() + "' does not exist");
+    fs::path target(resolveOutputPath(out));
+    fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     if (access(dir.c_str(), W_OK) != 0)
         throw CliError("cannot write '" + out + "': folder '" + dir.string() + "' is not writable");
+}
+
+// Creates the preview folder before the render, so a bad one fails before anything is written.
+void preparePreviewFolder(const std::string& dir) {
+    std::error_code ec;
+    fs::file_status st = fs::status(dir, ec);
+    if (fs::exists(st) && !fs::is_directory(st))
+        throw CliError("cannot write previews to '" + dir + "': it exists and is not a folder");
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir))
+        throw CliError("cannot write previews to '" + dir + "': " +
+                       (ec ? ec.message() : std::string("not a folder")));
+    if (access(dir.c_str(), W_OK) != 0)
+        throw CliError("cannot write previews to '" + dir + "': the folder is not writable");
+}
+
+// A pass name as a file name inside the preview folder: path separators, control characters
+// and a leading dot become "_", so no light name reaches outside the folder or hides a file.
+std::string previewFileName(const std::string& pass) {
+    std::string name = pass;
+    for (char& c : name) {
+        unsigned char u = (unsigned char)c;
+        if (c == '/' || c == '\\' || u < 0x20 || u == 0x7F) c = '_';
+    }
+    if (!name.empty() && name[0] == '.') name[0] = '_';
+    return name + ".png";
 }
 
 }  // namespace
@@ -87,6 +113,7 @@ int runRender(const std::vector<std::string>& argv) {
                      "--set", "--backend", "--png-dir", "-o", "--output"},
               {"--no-extra"});
     if (args.positional().size() != 1) throw CliError("render needs exactly one SCENE file");
+    if (args.has("-o") && args.has("--output")) throw CliError("give -o or --output, not both");
     std::string out = args.value("-o", args.value("--output"));
     if (out.empty()) throw CliError("render needs an output file: -o OUT.exr");
     std::vector<std::string> methods;
@@ -96,6 +123,7 @@ int runRender(const std::vector<std::string>& argv) {
     if (methods.empty()) throw CliError("render needs a method: -m reference|shadow_map|...|auto");
 
     checkWritable(out);
+    if (args.has("--png-dir")) preparePreviewFolder(args.value("--png-dir"));
 
     ss_scene* rawScene = nullptr;
     check(ss_scene_load(args.positional()[0].c_str(), &rawScene));
@@ -121,8 +149,32 @@ int runRender(const std::vector<std::string>& argv) {
     check(ss_context_create(parseBackend(args.value("--backend", "auto")), &rawContext));
     ContextPtr context(rawContext, ss_context_destroy);
 
-    std::vector<ResultPtr> results;
-    std::vector<double> seconds;
+    {
+        // Every method gives at least V and mask: refuse now what the EXR could not hold.
+        ss_camera_desc cam;
+        check(ss_scene_get_camera(scene.get(), &cam));
+        try {
+            checkExrShape(out, 2 * lights.size() * methods.size(), cam.width);
+        } catch (const std::exception& e) {
+            throw CliError(e.what());
+        }
+    }
+    // Each result goes to the writer's spool (and its previews to staged files) as soon as it
+    // is rendered and is then released, so memory does not grow with the number of lights.
+    ss_exr_writer* rawWriter = nullptr;
+    check(ss_exr_writer_create(out.c_str(), ss_scene_view_layer(scene.get()), &rawWriter));
+    std::unique_ptr<ss_exr_writer, void (*)(ss_exr_writer*)> writer(rawWriter, ss_exr_writer_destroy);
+
+    struct Row {
+        std::string light, asked, used, passes;
+        double seconds = 0.0;
+    };
+    std::vector<Row> rows;
+    std::vector<StagedFile> previews;
+    std::vector<std::string> pngs;
+    std::set<std::string> seenPreviews;
+    int32_t width = 0, height = 0;
+    int passCount = 0;
     auto total0 = std::chrono::steady_clock::now();
     for (int32_t light : lights)
         for (const std::string& method : methods) {
@@ -135,68 +187,49 @@ int runRender(const std::vector<std::string>& argv) {
             ss_status status = ss_render(context.get(), scene.get(), light, method.c_str(), &options, &raw);
             bar.finish();
             check(status);
-            seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-            results.emplace_back(raw, ss_result_destroy);
+            ResultPtr result(raw, ss_result_destroy);
+            Row row;
+            row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            row.light = ss_scene_light_name(scene.get(), light);
+            row.asked = method;
+            row.used = ss_result_method(raw);
+            check(ss_exr_writer_add(writer.get(), raw));
+            for (int32_t i = 0; i < ss_result_layer_count(raw); ++i) {
+                const char* name;
+                const float* pixels;
+                check(ss_result_layer(raw, i, &name, &pixels, &width, &height));
+                std::string pass = passName(ss_result_light(raw), ss_result_method(raw), name);
+                row.passes += (row.passes.empty() ? "" : " ") + pass;
+                ++passCount;
+                if (!args.has("--png-dir")) continue;
+                // Previews under temporary names now, renamed into place after the EXR: any
+                // failure before that leaves every old file as it was.
+                std::string dir = args.value("--png-dir");
+                std::string file = previewFileName(pass);
+                if (!seenPreviews.insert(file).second)
+                    throw CliError("two passes would share the preview '" + file + "' in '" + dir +
+                                   "' (light names that differ only in '/', '.' or control characters)");
+                Image img(width, height);
+                img.pixels.assign(pixels, pixels + size_t(width) * height);
+                std::string path = (fs::path(dir) / file).string();
+                previews.push_back(stagePngPreview(path, img));
+                pngs.push_back(path);
+            }
+            rows.push_back(std::move(row));
         }
 
-    std::vector<const ss_result*> raws;
-    for (auto& r : results) raws.push_back(r.get());
-    check(ss_write_exr(out.c_str(), ss_scene_view_layer(scene.get()), raws.data(), int32_t(raws.size())));
-
-    std::vector<std::string> pngs;
-    if (args.has("--png-dir")) {
-        std::string dir = args.value("--png-dir");
-        try {
-            std::error_code ec;
-            fs::create_directories(dir, ec);
-            for (auto& r : results)
-                for (int32_t i = 0; i < ss_result_layer_count(r.get()); ++i) {
-                    const char* name;
-                    const float* pixels;
-                    int32_t w, h;
-                    check(ss_result_layer(r.get(), i, &name, &pixels, &w, &h));
-                    Image img(w, h);
-                    img.pixels.assign(pixels, pixels + size_t(w) * h);
-                    std::string path = (fs::path(dir) / (passName(ss_result_light(r.get()),
-                                                                  ss_result_method(r.get()), name) +
-                                                         ".png")).string();
-                    writePngPreview(path, img);
-                    pngs.push_back(path);
-                }
-        } catch (const std::exception&) {
-            // No output left behind: a failed preview takes the EXR and earlier previews with it.
-            std::error_code ignored;
-            for (const std::string& p : pngs) fs::remove(p, ignored);
-            fs::remove(out, ignored);
-            throw;
-        }
-    }
+    check(ss_exr_writer_finish(writer.get()));
+    for (StagedFile& f : previews) f.commit();
 
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - total0).count();
-    int32_t w = 0, h = 0;
-    int passes = 0;
-    for (auto& r : results) passes += ss_result_layer_count(r.get());
-    ss_result_layer(results[0].get(), 0, nullptr, nullptr, &w, &h);
     std::error_code ec;
     auto bytes = fs::file_size(out, ec);
-    std::printf("wrote %s: %dx%d, %d passes, %.1f MB, view layer '%s'\n", out.c_str(), w, h, passes,
+    std::printf("wrote %s: %dx%d, %d passes, %.1f MB, view layer '%s'\n", out.c_str(), width, height, passCount,
                 ec ? 0.0 : double(bytes) / 1e6, ss_scene_view_layer(scene.get()));
     std::printf("  %-24s %-14s %-14s %9s  %s\n", "light", "asked", "method used", "seconds", "passes");
-    size_t k = 0;
-    for (int32_t light : lights)
-        for (const std::string& method : methods) {
-            ss_result* r = results[k].get();
-            std::string passList;
-            for (int32_t i = 0; i < ss_result_layer_count(r); ++i) {
-                const char* name;
-                ss_result_layer(r, i, &name, nullptr, nullptr, nullptr);
-                passList += std::string(passList.empty() ? "" : " ") +
-                            passName(ss_result_light(r), ss_result_method(r), name);
-            }
-            std::printf("  %-24s %-14s %-14s %9.3f  %s\n", ss_scene_light_name(scene.get(), light),
-                        method.c_str(), ss_result_method(r), seconds[k], passList.c_str());
-            ++k;
-        }
+    for (const Row& r : rows)
+        std::printf("  %-24s %-14s %-14s %9.3f  %s\n", r.light.c_str(), r.asked.c_str(), r.used.c_str(), r.seconds,
+                    r.passes.c_str());
     if (!pngs.empty()) std::printf("  %zu PNG previews in %s\n", pngs.size(), args.value("--png-dir").c_str());
     std::printf("  total %.3f s\n", total);
     return 0;

@@ -12,55 +12,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
 #include "io/exr_file.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-    int code = -1;
-    std::string out;  // stdout
-    std::string err;  // stderr
-};
-
-// Runs the CLI with a shell command line (arguments already quoted by the caller).
-CliRun cli(const std::string& args) {
-    static int counter = 0;
-    fs::path errFile = fs::temp_directory_path() / ("ss_cli_err_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
-    std::string command = std::string("'") + SS_CLI_PATH + "' " + args + " 2>'" + errFile.string() + "'";
-    CliRun r;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-    int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream e(errFile);
-    r.err.assign(std::istreambuf_iterator<char>(e), {});
-    fs::remove(errFile);
-    return r;
-}
-
-fs::path tempDir(const std::string& name) {
-    fs::path d = fs::temp_directory_path() / ("ss_cli_" + std::to_string(getpid()) + "_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
-
-size_t entries(const fs::path& dir) {
-    return size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}));
-}
-
-// One failing command: non-zero exit, exactly one "softshadow: error:" line naming the problem.
-void expectFailure(const CliRun& r, std::initializer_list<std::string> fragments) {
-    EXPECT_NE(r.code, 0);
-    EXPECT_EQ(r.err.rfind("softshadow: error: ", 0), 0u) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    for (const std::string& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << "'" << f << "' not in: " << r.err;
-}
 
 const char* kTetMesh = R"({"name":"Tet","positions":%P%,"triangles":%T%})";
 

@@ -69,7 +69,7 @@ typedef enum ss_light_type {
 #define SS_MESH_THIN 4u    /* a thin occluder (occlusion_textures' leak fix) */
 
 typedef struct ss_light_desc {
-    const char* name;          /* unique within the scene; UTF-8 */
+    const char* name;          /* unique within the scene; 1..131 bytes of UTF-8, no control chars */
     ss_light_type type;
     float light_to_world[16];  /* Blender's matrix_world: the light emits along local -Z */
     float size;                /* area: size (diameter for disk/ellipse) */
@@ -88,7 +88,10 @@ typedef struct ss_camera_desc {
     float pixel_aspect;         /* informational: already part of `projection` */
 } ss_camera_desc;
 
-/* Called from the rendering thread. Return non-zero to cancel. fraction in [0,1]. */
+/* Called from the rendering thread. Return non-zero to cancel. fraction in [0,1].
+ * From inside it, ss_render, ss_context_info, ss_context_destroy and ss_shutdown fail with
+ * SS_ERROR_INVALID_ARGUMENT (ss_context_destroy then leaves the context alive) instead of
+ * waiting on the render that is calling back. */
 typedef int (*ss_progress_fn)(void* user, float fraction, const char* stage);
 
 typedef struct ss_render_options {
@@ -107,6 +110,9 @@ typedef struct ss_result ss_result;   /* the layers of one (light, method) rende
 SS_API const char* ss_version(void);
 SS_API const char* ss_last_error(void);
 SS_API void ss_render_options_default(ss_render_options* options);
+/* Unlinks the temporary files of writes in progress (ss_write_exr, ss_scene_save). Async-signal-
+ * safe: call it from a SIGINT/SIGTERM handler so an interrupted write leaves nothing behind. */
+SS_API void ss_remove_temporary_files(void);
 
 /* GL context. `info_json` describes backend, renderer, GL version and limits. */
 SS_API ss_status ss_context_create(ss_backend backend, ss_context** out);
@@ -161,6 +167,16 @@ SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const c
  * "<view_layer>.<light>_<method>[_<layer>].V" per layer. */
 SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
                               const ss_result* const* results, int32_t result_count);
+
+/* The same EXR gathered result by result, in bounded memory: each added result's layers go to
+ * an (unlinked) spool file beside `path`, so the caller can destroy the result at once, and
+ * ss_exr_writer_finish writes the EXR (atomically) a band of rows at a time. Create checks the
+ * output path and view layer; destroy without finish writes nothing and leaves no file. */
+typedef struct ss_exr_writer ss_exr_writer;
+SS_API ss_status ss_exr_writer_create(const char* path, const char* view_layer, ss_exr_writer** out);
+SS_API ss_status ss_exr_writer_add(ss_exr_writer* writer, const ss_result* result);
+SS_API ss_status ss_exr_writer_finish(ss_exr_writer* writer);
+SS_API void ss_exr_writer_destroy(ss_exr_writer* writer);
 
 /* The `sweep` method's shadow mesh for one light (CPU geometry, no GL context needed), so a host
  * can bring it in as geometry: triangles on the receiver plane, world-space vertices with a shadow

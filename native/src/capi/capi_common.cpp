@@ -4,11 +4,24 @@
 
 #include "capi/capi_internal.h"
 #include "core/method_names.h"
+#include "io/atomic_file.h"
 
 namespace ss::capi {
 
 namespace {
 thread_local std::string lastError;
+thread_local int callbackDepth = 0;
+}
+
+ProgressCallbackScope::ProgressCallbackScope() { ++callbackDepth; }
+ProgressCallbackScope::~ProgressCallbackScope() { --callbackDepth; }
+
+void refuseInsideProgressCallback(const char* function) {
+    if (callbackDepth > 0)
+        ss::fail(SS_ERROR_INVALID_ARGUMENT,
+                 std::string(function) + ": called from a progress callback (allowed there: "
+                                         "reading results and scenes, ss_last_error; not rendering, "
+                                         "destroying a context or shutting down)");
 }
 
 void setLastError(const std::string& message) {
@@ -35,6 +48,8 @@ void copyOut(const std::string& text, char* buffer, size_t bufferSize, const cha
 extern "C" {
 
 SS_API const char* ss_version(void) { return SS_VERSION; }
+
+SS_API void ss_remove_temporary_files(void) { ss::removeTemporaryFiles(); }
 
 SS_API const char* ss_last_error(void) { return ss::capi::lastError.c_str(); }
 

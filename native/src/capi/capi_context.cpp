@@ -36,8 +36,10 @@ SS_API ss_status ss_context_create(ss_backend backend, ss_context** out) {
 }
 
 SS_API void ss_context_destroy(ss_context* context) {
+    // Refused (the context stays alive) rather than deadlocking on its own render.
     guarded([&] {
         if (!context) return;
+        refuseInsideProgressCallback("ss_context_destroy");
         {
             std::unique_lock lock(context->m);
             context->closing = true;  // renders in flight stop at their next check
@@ -50,6 +52,7 @@ SS_API void ss_context_destroy(ss_context* context) {
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size) {
     return guarded([&] {
         require(context, "ss_context_info", "context");
+        refuseInsideProgressCallback("ss_context_info");
         // info() starts GL lazily, which changes the renderer but not what the caller sees.
         ContextUse use(*const_cast<ss_context*>(context));
         std::string info = const_cast<ss_context*>(context)->renderer.info();
@@ -58,7 +61,10 @@ SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t
 }
 
 SS_API void ss_shutdown(void) {
-    guarded([] { ss::shutdownRenderThreads(); });
+    guarded([] {
+        refuseInsideProgressCallback("ss_shutdown");
+        ss::shutdownRenderThreads();
+    });
 }
 
 }  // extern "C"

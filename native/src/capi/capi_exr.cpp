@@ -1,10 +1,18 @@
-// How the C API writes render results as one multilayer EXR.
+// How the C API writes render results as one multilayer EXR, at once or gathered result by result.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "capi/capi_internal.h"
+#include "core/names.h"
 #include "io/exr_file.h"
+#include "io/exr_spool.h"
 #include "io/pass_names.h"
 
 using namespace ss::capi;
+
+struct ss_exr_writer {
+    ss_exr_writer(const std::string& path, const std::string& viewLayer) : spool(path, viewLayer) {}
+    ss::ExrSpool spool;
+    bool finished = false;
+};
 
 extern "C" {
 
@@ -16,16 +24,50 @@ SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
             ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_write_exr: there are no results to write to '" +
                                                     std::string(path) + "'");
         require(results, "ss_write_exr", "results");
+        std::string layer = view_layer ? view_layer : "ViewLayer";
+        ss::checkViewLayerName(layer);
         std::vector<ss::ExrPassRef> passes;
         for (int32_t i = 0; i < result_count; ++i) {
             const ss_result* r = results[i];
             if (!r)
                 ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_write_exr: results[" + std::to_string(i) + "] is null");
-            for (const auto& [layer, image] : r->layers.items)
-                passes.push_back({ss::passName(r->light, r->method, layer), &image});
+            for (const auto& [name, image] : r->layers.items)
+                passes.push_back({ss::passName(r->light, r->method, name), &image});
         }
-        ss::writeMultilayerExr(path, view_layer ? view_layer : "ViewLayer", passes);
+        ss::writeMultilayerExr(path, layer, passes);
     });
+}
+
+SS_API ss_status ss_exr_writer_create(const char* path, const char* view_layer, ss_exr_writer** out) {
+    return guarded([&] {
+        require(out, "ss_exr_writer_create", "out");
+        *out = nullptr;
+        require(path, "ss_exr_writer_create", "path");
+        *out = new ss_exr_writer(path, view_layer ? view_layer : "ViewLayer");
+    });
+}
+
+SS_API ss_status ss_exr_writer_add(ss_exr_writer* writer, const ss_result* result) {
+    return guarded([&] {
+        require(writer, "ss_exr_writer_add", "writer");
+        require(result, "ss_exr_writer_add", "result");
+        if (writer->finished) ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_exr_writer_add: the writer has finished");
+        for (const auto& [name, image] : result->layers.items)
+            writer->spool.add(ss::passName(result->light, result->method, name), image);
+    });
+}
+
+SS_API ss_status ss_exr_writer_finish(ss_exr_writer* writer) {
+    return guarded([&] {
+        require(writer, "ss_exr_writer_finish", "writer");
+        if (writer->finished) ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_exr_writer_finish: called twice");
+        writer->spool.write();
+        writer->finished = true;
+    });
+}
+
+SS_API void ss_exr_writer_destroy(ss_exr_writer* writer) {
+    guarded([&] { delete writer; });
 }
 
 }  // extern "C"

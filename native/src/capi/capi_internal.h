@@ -82,6 +82,16 @@ inline void require(const void* pointer, const char* function, const char* param
         ss::fail(SS_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + parameter + " is null");
 }
 
+// The progress callback runs while its context is locked: a call back into the library that
+// would wait on that lock (ss_render, ss_context_info, ss_context_destroy, ss_shutdown) fails
+// instead. ProgressCallbackScope marks the current thread as inside a callback.
+struct ProgressCallbackScope {
+    ProgressCallbackScope();
+    ~ProgressCallbackScope();
+};
+// Throws SS_ERROR_INVALID_ARGUMENT naming `function` when called from a progress callback.
+void refuseInsideProgressCallback(const char* function);
+
 // Copies text (with its terminating zero) into a caller's buffer, or fails naming the size needed.
 void copyOut(const std::string& text, char* buffer, size_t bufferSize, const char* function);
 

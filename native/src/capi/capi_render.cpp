@@ -20,6 +20,7 @@ ss::RenderSettings toSettings(const ss_render_options& o) {
         ss_progress_fn fn = o.progress;
         void* user = o.progress_user;
         s.progress = [fn, user](float fraction, const char* stage) {
+            ProgressCallbackScope inside;
             return fn(user, fraction, stage ? stage : "") == 0;
         };
     }
@@ -35,6 +36,7 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
     return guarded([&] {
         require(out, "ss_render", "out");
         *out = nullptr;
+        refuseInsideProgressCallback("ss_render");
         require(context, "ss_render", "context");
         require(scene, "ss_render", "scene");
         require(method, "ss_render", "method");

@@ -34,9 +34,12 @@ glm::vec2 Camera::worldToPixel(const glm::vec3& world) const {
 glm::vec3 Camera::position() const { return glm::vec3(glm::inverse(worldToCamera)[3]); }
 
 void Camera::validate() const {
-    if (width <= 0 || height <= 0 || width > 32768 || height > 32768)
+    if (width <= 0 || height <= 0 || width > kMaxCameraSide || height > kMaxCameraSide ||
+        int64_t(width) * height > kMaxCameraPixels)
         fail(SS_ERROR_INVALID_SCENE, "camera resolution " + std::to_string(width) + "x" +
-                                         std::to_string(height) + " is not usable");
+                                         std::to_string(height) + " is not usable (width and height 1.." +
+                                         std::to_string(kMaxCameraSide) + ", at most " +
+                                         std::to_string(kMaxCameraPixels) + " pixels: 8192 x 8192)");
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
             if (!std::isfinite(worldToCamera[c][r]) || !std::isfinite(projection[c][r]))

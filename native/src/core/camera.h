@@ -1,9 +1,16 @@
 // What the scene camera is, and where a pixel's centre looks (the pixel-alignment contract).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <cstdint>
+
 #include <glm/glm.hpp>
 
 namespace ss {
+
+// Resolution limits (docs/scene-format.md, "Limits"): a side, and the pixel count that bounds
+// every layer (4 bytes a pixel, 256 MiB at most).
+inline constexpr int kMaxCameraSide = 32768;
+inline constexpr int64_t kMaxCameraPixels = int64_t(8192) * 8192;
 
 struct Ray {
     glm::vec3 origin;

@@ -93,6 +93,8 @@ void Light::validate() const {
         bad("sun angle must be in [0, pi)");
     if (type == LightType::Spot && !(spotSize > 0.0f && spotSize <= float(M_PI)))
         bad("spot size must be in (0, pi]");
+    if (type == LightType::Spot && !(spotBlend >= 0.0f && spotBlend <= 1.0f))
+        bad("spot blend must be in [0, 1] (got " + std::to_string(spotBlend) + ")");
 }
 
 }  // namespace ss

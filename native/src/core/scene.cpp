@@ -5,6 +5,7 @@
 #include <atomic>
 
 #include "core/error.h"
+#include "core/names.h"
 
 namespace ss {
 
@@ -14,6 +15,7 @@ uint64_t Scene::nextId() {
 }
 
 int Scene::addMesh(Mesh mesh) {
+    checkName("mesh", mesh.name);
     mesh.finalize();
     meshes_.push_back(std::move(mesh));
     ++revision_;
@@ -21,9 +23,9 @@ int Scene::addMesh(Mesh mesh) {
 }
 
 int Scene::addLight(Light light) {
-    if (light.name.empty()) fail(SS_ERROR_INVALID_SCENE, "a light has an empty name");
+    checkName("light", light.name);
     if (findLight(light.name) >= 0)
-        fail(SS_ERROR_INVALID_SCENE, "two lights are named '" + light.name + "'");
+        fail(SS_ERROR_INVALID_SCENE, "two lights are named " + quoted(light.name));
     light.validate();
     lights_.push_back(std::move(light));
     ++revision_;
@@ -37,8 +39,7 @@ void Scene::setCamera(const Camera& camera) {
 }
 
 void Scene::setViewLayer(const std::string& name) {
-    if (name.empty() || name.find('.') != std::string::npos)
-        fail(SS_ERROR_INVALID_ARGUMENT, "view layer name '" + name + "' is empty or has a dot");
+    checkViewLayerName(name);
     viewLayer_ = name;
     ++revision_;
 }

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <sstream>
 
 #include "core/error.h"
 
@@ -17,6 +18,12 @@ std::string joined(const std::vector<std::string>& names) {
     std::string out;
     for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
     return out.empty() ? "none" : out;
+}
+
+std::string shown(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
 }
 
 }  // namespace
@@ -52,7 +59,7 @@ float RenderSettings::number(const std::string& key, float fallback, float lo, f
         fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + text + "' is not a finite number");
     if (v < lo || v > hi)
         fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + text + "' is out of range [" +
-                                            std::to_string(lo) + ", " + std::to_string(hi) + "]");
+                                            shown(lo) + ", " + shown(hi) + "]");
     return v;
 }
 
@@ -93,6 +100,14 @@ std::string RenderSettings::choice(const std::string& key, const std::string& fa
 std::string RenderSettings::text(const std::string& key, const std::string& fallback) const {
     auto it = options.find(key);
     return it == options.end() ? fallback : it->second;
+}
+
+int shadowMapSizeSetting(const RenderSettings& settings) {
+    const float size = settings.number("shadow_map_size", 0.0f);  // refuses nan and inf first
+    if (size != std::floor(size) || !(size == 0.0f || (size >= 16.0f && size <= 8192.0f)))
+        fail(SS_ERROR_INVALID_ARGUMENT, "setting 'shadow_map_size' = '" + settings.text("shadow_map_size", "") +
+                                            "' is not 0 (the default) or a whole number in [16, 8192]");
+    return int(size);
 }
 
 void RenderSettings::requireKnownKeys(const std::string& method, const std::vector<std::string>& known) const {

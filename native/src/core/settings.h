@@ -48,6 +48,9 @@ struct RenderSettings {
     void checkCancelled(const char* stage) const;
 };
 
+// The shared shadow map's size setting "shadow_map_size": 0 (the frame's default) or 16..8192.
+int shadowMapSizeSetting(const RenderSettings& settings);
+
 // Parses "key=value;key=value" (the C API's settings string).
 std::map<std::string, std::string> parseSettings(const std::string& text);
 

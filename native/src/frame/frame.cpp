@@ -235,7 +235,10 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     if (size <= 0) size = kDefaultShadowMapSize;
     auto key = std::make_pair(lightIndex, size);
     auto it = shadowMaps_.find(key);
-    if (it != shadowMaps_.end()) return *it->second;
+    if (it != shadowMaps_.end()) {
+        it->second.lastUse = ++useClock_;
+        return *it->second.map;
+    }
     const Light& L = light(lightIndex);
     const gl::Functions& g = gl();
     auto map = std::make_unique<ShadowMap>(fitShadowMap(L, scene_.bounds(), size));
@@ -256,7 +259,24 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing a shadow map");
     ++stats_.shadowMaps;
-    return *shadowMaps_.emplace(key, std::move(map)).first->second;
+    CachedShadowMap entry;
+    entry.map = std::move(map);
+    entry.lastUse = ++useClock_;
+    entry.bytes = size_t(size) * size_t(size) * (sizeof(float) + sizeof(float));  // R32F + depth 32F
+    stats_.shadowMapBytes += entry.bytes;
+    stats_.shadowMapBytesPeak = std::max(stats_.shadowMapBytesPeak, stats_.shadowMapBytes);
+    return *shadowMaps_.emplace(key, std::move(entry)).first->second.map;
+}
+
+void Frame::trimCache(size_t budgetBytes) {
+    while (stats_.shadowMapBytes > budgetBytes && !shadowMaps_.empty()) {
+        auto oldest = shadowMaps_.begin();
+        for (auto it = shadowMaps_.begin(); it != shadowMaps_.end(); ++it)
+            if (it->second.lastUse < oldest->second.lastUse) oldest = it;
+        stats_.shadowMapBytes -= oldest->second.bytes;
+        ++stats_.shadowMapsEvicted;
+        shadowMaps_.erase(oldest);
+    }
 }
 
 void Frame::bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const {

@@ -95,11 +95,16 @@ ShadowMap fitShadowMap(const Light& light, const Bounds& bounds, int size);
 
 struct FrameStats {
     int meshUploads = 0, cameraPasses = 0, shadowMaps = 0, cameraReadbacks = 0;
+    int shadowMapsEvicted = 0;
+    size_t shadowMapBytes = 0, shadowMapBytesPeak = 0;  // held now / the most ever held
 };
 
 class Frame {
 public:
     static constexpr int kDefaultShadowMapSize = 2048;
+    // What the cached shadow maps may hold between renders: eight 2048² maps (distance +
+    // depth, 32 MiB each). One render may add its own maps on top until the next trim.
+    static constexpr size_t kDefaultShadowMapBudget = size_t(256) << 20;
 
     explicit Frame(const Scene& scene);
     ~Frame();
@@ -117,8 +122,12 @@ public:
     const std::vector<GpuMesh>& meshes();
     const CameraPass& cameraPass();
     const CameraImages& cameraImages();  // read back on first call
-    // size 0 = kDefaultShadowMapSize; one map per (light, size).
+    // size 0 = kDefaultShadowMapSize; one map per (light, size), kept until trimCache() evicts
+    // it. The reference stays valid until the next trimCache().
     const ShadowMap& shadowMap(int lightIndex, int size = 0);
+    // Drops the least recently used shadow maps until the rest fit in `budgetBytes`. Called
+    // between renders (never during one, so the maps a render holds stay alive).
+    void trimCache(size_t budgetBytes);
 
     // ---- helpers ----
     // Draws every mesh whose flags contain all of `requiredFlags` with the bound program and
@@ -145,7 +154,13 @@ private:
     bool meshesUploaded_ = false;
     std::unique_ptr<CameraPass> camera_;
     std::unique_ptr<CameraImages> cameraImages_;
-    std::map<std::pair<int, int>, std::unique_ptr<ShadowMap>> shadowMaps_;
+    struct CachedShadowMap {
+        std::unique_ptr<ShadowMap> map;
+        uint64_t lastUse = 0;
+        size_t bytes = 0;
+    };
+    std::map<std::pair<int, int>, CachedShadowMap> shadowMaps_;
+    uint64_t useClock_ = 0;
     gl::VertexArrayHandle emptyVao_;
     FrameStats stats_;
 };

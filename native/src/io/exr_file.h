@@ -2,6 +2,8 @@
 // passes of one image (channel "<view_layer>.<pass>.V", float32, written atomically).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +25,34 @@ struct ExrPassRef {
 void writeMultilayerExr(const std::string& path, const std::string& viewLayer,
                         const std::vector<ExrPassRef>& passes);
 
+// A pass whose rows are read on demand (from memory, or from a spool file, io/exr_spool.h):
+// read(y0, rows, out) fills rows x width floats, row y0 first (row 0 = top).
+struct ExrPassRows {
+    std::string pass;
+    std::function<void(int y0, int rows, float* out)> read;
+};
+
+// What one EXR may hold when written: channels, and bytes of one row of every channel (the
+// writer holds a band of rows at a time, at least one).
+inline constexpr size_t kMaxExrWriteChannels = 16384;
+inline constexpr uint64_t kMaxExrRowBytes = 256ull << 20;
+
+// As writeMultilayerExr, fetching the pixels band by band, so memory stays within a band of
+// rows (about 64 MiB) however many passes there are. The caller has checked the pass names.
+void writeMultilayerExrRows(const std::string& path, const std::string& viewLayer, int width, int height,
+                            const std::vector<ExrPassRows>& passes);
+
+// OpenEXR cuts longer channel names, and cut names collide.
+inline constexpr size_t kMaxExrChannelBytes = 255;
+
+// Throws SS_ERROR_INVALID_ARGUMENT naming `path` unless `pass` is a non-empty name without dots
+// whose channel "<viewLayer>.<pass>.V" fits kMaxExrChannelBytes.
+void checkPassName(const std::string& path, const std::string& viewLayer, const std::string& pass);
+
+// Throws SS_ERROR_INVALID_ARGUMENT naming `path` when passes of this count and width could not
+// be written within the limits above.
+void checkExrShape(const std::string& path, size_t passes, int width);
+
 struct ExrPass {
     std::string layer;    // the view layer (everything before the pass token)
     std::string pass;     // e.g. "Area_reference" or "Area_reference_mask"
@@ -36,7 +66,12 @@ struct ExrContents {
     const ExrPass* find(const std::string& pass) const;
 };
 
-// Reads every channel of an EXR. A channel name without two dots is kept with an empty layer
+// What readMultilayerExr accepts (docs/reliability.md): the pixel count of a camera
+// (core/camera.h), these many channels, these many bytes of float pixels in all.
+inline constexpr size_t kMaxExrChannels = 4096;
+inline constexpr uint64_t kMaxExrReadBytes = 4ull << 30;
+
+// Reads every channel of an EXR (header checked against the limits before any pixel buffer). A channel name without two dots is kept with an empty layer
 // (and pass = the name before the last dot, or the whole name). Throws SS_ERROR_IO naming the path.
 ExrContents readMultilayerExr(const std::string& path);
 

@@ -16,7 +16,9 @@
 
 namespace ss {
 
-void writePngPreview(const std::string& path, const Image& image) {
+void writePngPreview(const std::string& path, const Image& image) { stagePngPreview(path, image).commit(); }
+
+StagedFile stagePngPreview(const std::string& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0 ||
         image.pixels.size() != size_t(image.width) * image.height)
         fail(SS_ERROR_INVALID_ARGUMENT, "cannot write PNG '" + path + "': the image has no pixels");
@@ -27,7 +29,7 @@ void writePngPreview(const std::string& path, const Image& image) {
         v = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
         bytes[i] = (unsigned char)std::lround(v * 255.0f);
     }
-    writeAtomically(path, [&](const std::string& temp) {
+    return StagedFile(path, [&](const std::string& temp) {
         if (!stbi_write_png(temp.c_str(), image.width, image.height, 1, bytes.data(), image.width))
             fail(SS_ERROR_IO, "cannot write PNG '" + path + "'");
     });

@@ -4,10 +4,15 @@
 #include <string>
 
 #include "core/image.h"
+#include "io/atomic_file.h"
 
 namespace ss {
 
 // Writes atomically; throws ss::Error(SS_ERROR_IO) naming the path when it cannot.
 void writePngPreview(const std::string& path, const Image& image);
+
+// Writes the preview beside `path` without replacing it yet (commit() does), so a batch of
+// outputs either all replace their old files or all leave them as they were.
+StagedFile stagePngPreview(const std::string& path, const Image& image);
 
 }  // namespace ss

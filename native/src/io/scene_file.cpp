@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/scene_file.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -13,6 +14,8 @@
 
 #include "core/error.h"
 #include "io/json_node.h"
+#include "io/input_file.h"
+#include "io/json_reader.h"
 #include "io/primitives.h"
 #include "softshadow/softshadow.h"
 
@@ -24,26 +27,36 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readText(const std::string& path) {
+// Where an external mesh file named in a scene lies: relative to the scene's folder and inside
+// it, so a scene from elsewhere cannot make the loader read arbitrary files.
+fs::path externalFilePath(const JsonNode& node, const std::string& baseDir) {
+    std::string name = node.string();
+    fs::path rel(name);
+    if (name.empty()) node.fail("is empty (expected a file name relative to the scene's folder)");
+    if (rel.is_absolute()) node.fail("'" + name + "' is an absolute path (allowed: a path inside the scene's folder)");
+    for (const fs::path& part : rel)
+        if (part == "..") node.fail("'" + name + "' leaves the scene's folder ('..'; allowed: a path inside it)");
     std::error_code ec;
-    if (!fs::exists(path, ec)) fail(SS_ERROR_IO, "scene file '" + path + "' does not exist");
-    if (fs::is_directory(path, ec)) fail(SS_ERROR_IO, "scene file '" + path + "' is a directory");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(SS_ERROR_IO, "cannot open scene file '" + path + "': " + std::strerror(errno));
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
+    fs::path base = fs::weakly_canonical(fs::path(baseDir), ec);
+    fs::path full = fs::weakly_canonical(fs::path(baseDir) / rel, ec);
+    if (!ec) {
+        auto [b, f] = std::mismatch(base.begin(), base.end(), full.begin(), full.end());
+        if (b != base.end())
+            node.fail("'" + name + "' leads out of the scene's folder through a symlink (allowed: a path inside it)");
+    }
+    return fs::path(baseDir) / rel;
 }
 
 template <class T>
 std::vector<T> readRaw(const JsonNode& node, const std::string& baseDir) {
-    std::string name = node.string();
-    fs::path p = fs::path(name).is_absolute() ? fs::path(name) : fs::path(baseDir) / name;
-    std::ifstream in(p, std::ios::binary);
-    if (!in) node.fail("cannot open '" + p.string() + "': " + std::strerror(errno));
-    std::ostringstream s;
-    s << in.rdbuf();
-    std::string bytes = s.str();
+    fs::path p = externalFilePath(node, baseDir);
+    std::string bytes;
+    try {
+        bytes = readInputFile(p.string(), "mesh file", kMaxMeshFileBytes);
+    } catch (const Error& e) {
+        node.fail(e.what());
+    }
+    if (bytes.empty()) node.fail("'" + p.string() + "' is empty (a mesh file needs at least one triangle)");
     if (bytes.size() % (3 * sizeof(T)) != 0)
         node.fail("'" + p.string() + "' has " + std::to_string(bytes.size()) +
                   " bytes, not a whole number of 3 x " + std::to_string(sizeof(T)) + "-byte values");
@@ -296,14 +309,7 @@ void addWithPath(const JsonNode& n, F&& add) {
 
 Scene parseSceneText(const std::string& text, const std::string& baseDir, const std::string& shownName) {
     std::string where = "scene '" + shownName + "'";
-    nlohmann::json root;
-    try {
-        root = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
-        std::string what = e.what();
-        size_t cut = what.find("] ");
-        fail(SS_ERROR_IO, where + ": malformed JSON: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
-    }
+    nlohmann::json root = parseJsonStrict(text, where);
     JsonNode r(root, where, "");
     r.expectKeys({"format", "version", "view_layer", "camera", "lights", "meshes", "metadata", "comment"});
     std::string format = r.at("format").string();
@@ -327,6 +333,8 @@ Scene parseSceneText(const std::string& text, const std::string& baseDir, const 
     }
     if (r.has("lights")) {
         JsonNode lights = r.at("lights");
+        if (lights.size() > kMaxLights)
+            lights.fail("has " + std::to_string(lights.size()) + " lights (at most " + std::to_string(kMaxLights) + ")");
         for (size_t i = 0; i < lights.size(); ++i) {
             JsonNode l = lights.at(i);
             Light light = readLight(l);
@@ -335,6 +343,8 @@ Scene parseSceneText(const std::string& text, const std::string& baseDir, const 
     }
     if (r.has("meshes")) {
         JsonNode meshes = r.at("meshes");
+        if (meshes.size() > kMaxMeshes)
+            meshes.fail("has " + std::to_string(meshes.size()) + " meshes (at most " + std::to_string(kMaxMeshes) + ")");
         for (size_t i = 0; i < meshes.size(); ++i) {
             JsonNode m = meshes.at(i);
             Mesh mesh = readMesh(m, baseDir);
@@ -345,7 +355,7 @@ Scene parseSceneText(const std::string& text, const std::string& baseDir, const 
 }
 
 Scene loadSceneFile(const std::string& path) {
-    std::string text = readText(path);
+    std::string text = readInputFile(path, "scene file", kMaxSceneFileBytes);
     std::string base = fs::path(path).parent_path().string();
     return parseSceneText(text, base.empty() ? "." : base, path);
 }

@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "core/scene.h"
@@ -10,6 +11,12 @@
 namespace ss {
 
 inline constexpr int kSceneFormatVersion = 1;
+
+// Limits checked before anything is allocated (docs/scene-format.md, "Limits").
+inline constexpr uint64_t kMaxSceneFileBytes = 256ull << 20;  // the JSON text
+inline constexpr uint64_t kMaxMeshFileBytes = 2ull << 30;     // one positions_file / triangles_file
+inline constexpr size_t kMaxLights = 10000;
+inline constexpr size_t kMaxMeshes = 100000;
 
 // Throws ss::Error naming the file, the JSON path (e.g. meshes[2].positions[7]) and the
 // problem: SS_ERROR_IO for a missing/malformed file or a wrong value, SS_ERROR_INVALID_SCENE for

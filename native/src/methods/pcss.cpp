@@ -28,7 +28,7 @@ public:
             fail(SS_ERROR_INVALID_ARGUMENT, "pcss: samples must be in 1..4096 (got " + std::to_string(settings.samples) + ")");
         const int blockerSamples = settings.integer("blocker_samples", 16, 1, 1024);
         const int pcfSamples = settings.integer("pcf_samples", settings.samples > 0 ? settings.samples : 32, 1, 4096);
-        const int mapSize = settings.integer("shadow_map_size", 0, 0, 16384);
+        const int mapSize = shadowMapSizeSetting(settings);
         const float maxSearch = settings.number("max_search", 0.25f, 0.0f, 1.0f);
 
         const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);

@@ -74,7 +74,7 @@ public:
         if (light.type == LightType::Sun)
             fail(SS_ERROR_UNSUPPORTED, "penumbra_map: light '" + light.name +
                                            "' is a sun; penumbra maps need a light centre (use pcss)");
-        const int mapSize = settings.integer("shadow_map_size", 0, 0, 16384);
+        const int mapSize = shadowMapSizeSetting(settings);
         ConeSheetSettings cs;
         cs.coneSegments = settings.integer("cone_segments", 16, 3, 256);
         (void)intensityRule(settings);  // a bad value fails before any GL work

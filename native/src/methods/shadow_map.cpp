@@ -32,7 +32,7 @@ public:
         const gl::Functions& g = frame.gl();
         settings.report(0.0f, "shadow map");
         const CameraPass& cam = frame.cameraPass();
-        const ShadowMap& map = frame.shadowMap(lightIndex, settings.integer("shadow_map_size", 0, 0, 16384));
+        const ShadowMap& map = frame.shadowMap(lightIndex, shadowMapSizeSetting(settings));
         settings.report(0.5f, "resolve");
 
         gl::Framebuffer& out = gl::scratchFramebuffer("shadow_map.camera", cam.width, cam.height, {GL_RGBA32F});
@@ -43,8 +43,8 @@ public:
         int unit = frame.bindCameraPass(p);
         frame.bindShadowMap(p, map, unit);
         frame.setLightUniforms(p, lightIndex);
-        p.set("uConstantBias", settings.number("bias", kConstantBias));
-        p.set("uSlopeBias", settings.number("slope_bias", kSlopeBias));
+        p.set("uConstantBias", settings.number("bias", kConstantBias, 0.0f, 1000.0f));
+        p.set("uSlopeBias", settings.number("slope_bias", kSlopeBias, 0.0f, 1000.0f));
         frame.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("resolving the shadow map");

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "renderer/renderer.h"
 
+#include <algorithm>
 #include <map>
 #include <mutex>
 
@@ -30,11 +31,14 @@ struct Renderer::Impl {
     };
     std::unique_ptr<Cached> cache;
     CacheStats finished;  // of frames already dropped
+    size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
 
     void count(const Frame& f, CacheStats& into) const {
         into.meshUploads += f.stats().meshUploads;
         into.cameraPasses += f.stats().cameraPasses;
         into.shadowMaps += f.stats().shadowMaps;
+        into.shadowMapsEvicted += f.stats().shadowMapsEvicted;
+        into.shadowMapBytesPeak = std::max(into.shadowMapBytesPeak, f.stats().shadowMapBytesPeak);
     }
 
     // ss_shutdown() stopped the thread: everything GL died with its context, so the frame
@@ -114,6 +118,11 @@ void Renderer::setCacheTakenHook(std::function<void()> hook) {
     impl_->cacheTakenHook = std::move(hook);
 }
 
+void Renderer::setShadowMapBudget(size_t bytes) {
+    std::lock_guard lock(impl_->m);
+    impl_->shadowMapBudget = bytes;
+}
+
 Renderer::CacheStats Renderer::cacheStats() const {
     std::lock_guard lock(impl_->m);
     CacheStats s = impl_->finished;
@@ -161,7 +170,10 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
         m.prepare(frame, lightIndex, settings);
         layers = m.render(frame, lightIndex, settings);
     } else {
+        const size_t budget = impl_->shadowMapBudget;
         impl_->glThread().run([&] {
+            // Between renders, on the thread that owns the textures.
+            frame.trimCache(budget);
             m.prepare(frame, lightIndex, settings);
             layers = m.render(frame, lightIndex, settings);
         });

@@ -34,13 +34,17 @@ public:
     // How many frames were made and how often their shared passes were drawn, over the
     // renderer's life (tests of the frame cache; the benchmark's stage counts).
     struct CacheStats {
-        int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0;
+        int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0, shadowMapsEvicted = 0;
+        size_t shadowMapBytesPeak = 0;  // the most the cached shadow maps of one frame held
     };
     CacheStats cacheStats() const;
 
     // Tests only: runs inside render() once the cache entry and the method are taken and before
     // GL work starts, so a test can shut the render threads down at exactly that point.
     void setCacheTakenHook(std::function<void()> hook);
+    // What the cached shadow maps may hold between renders (least recently used go first);
+    // default Frame::kDefaultShadowMapBudget.
+    void setShadowMapBudget(size_t bytes);
 
 private:
     struct Impl;

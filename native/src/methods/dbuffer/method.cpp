@@ -101,7 +101,7 @@ public:
         finishStage();
         const CameraPass& cam = frame.cameraPass();
         finishStage();
-        const ShadowMap& map = frame.shadowMap(lightIndex, settings.integer("shadow_map_size", 0, 0, 16384));
+        const ShadowMap& map = frame.shadowMap(lightIndex, shadowMapSizeSetting(settings));
         finishStage();
 
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
@@ -156,7 +156,7 @@ public:
         shade.set("uSmallOccluders", settings.flag("small_occluders", false) ? 1 : 0);
         std::string profile = settings.choice("profile", "smoothstep", {"smoothstep", "segment"});
         shade.set("uSegmentProfile", profile == "segment" ? 1 : 0);
-        shade.set("uBiasTexels", settings.number("bias_texels", 1.5f));
+        shade.set("uBiasTexels", settings.number("bias_texels", 1.5f, 0.0f, 1000.0f));
         frame.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("drawing the dbuffer camera pass");

@@ -1,0 +1,29 @@
+// Which names a scene accepts for lights, meshes and the view layer, and how a name from user
+// data is shown in a message without its control characters reaching the terminal.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <string>
+
+namespace ss {
+
+// Blender's own limit for an object or view layer name (MAX_NAME - 1), in bytes.
+constexpr size_t kMaxViewLayerBytes = 63;
+// A light or mesh: a Blender name, or an instance's "<parent>/<object>" with a ".NNN" suffix
+// (63 + 1 + 63 + 4). The longest EXR channel such a light gets stays within EXR's 255 bytes.
+constexpr size_t kMaxNameBytes = 131;
+
+// Throws ss::Error(SS_ERROR_INVALID_SCENE) naming `what` (e.g. "light") unless `name` is
+// 1..maxBytes bytes of valid UTF-8 without control characters.
+void checkName(const std::string& what, const std::string& name, size_t maxBytes = kMaxNameBytes);
+
+// As checkName("view layer", ..., kMaxViewLayerBytes), and no dot (Blender splits channel names at dots); throws
+// ss::Error(SS_ERROR_INVALID_ARGUMENT).
+void checkViewLayerName(const std::string& name);
+
+// `text` between single quotes with control characters and invalid UTF-8 bytes written as \xNN.
+std::string quoted(const std::string& text);
+
+// True when `text` is valid UTF-8 (no overlong forms, no surrogates).
+bool isValidUtf8(const std::string& text);
+
+}  // namespace ss
