@@ -17,14 +17,16 @@ SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
                                                     std::string(path) + "'");
         require(results, "ss_write_exr", "results");
         std::vector<ss::ExrPassRef> passes;
+        std::string methods;  // "<pass>=<method that ran>;..."
         for (int32_t i = 0; i < result_count; ++i) {
             const ss_result* r = results[i];
             if (!r)
                 ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_write_exr: results[" + std::to_string(i) + "] is null");
             for (const auto& [layer, image] : r->layers.items)
-                passes.push_back({ss::passName(r->light, r->method, layer), &image});
+                passes.push_back({ss::passName(r->light, r->requested, layer), &image});
+            methods += (methods.empty() ? "" : ";") + ss::passName(r->light, r->requested, "V") + "=" + r->method;
         }
-        ss::writeMultilayerExr(path, view_layer ? view_layer : "ViewLayer", passes);
+        ss::writeMultilayerExr(path, view_layer ? view_layer : "ViewLayer", passes, methods);
     });
 }
 

@@ -38,7 +38,7 @@ void checkPasses(const std::string& path, const std::string& viewLayer,
 }
 
 void writeExrNow(const std::string& file, const std::string& shownPath, const std::string& viewLayer,
-                 const std::vector<ExrPassRef>& passes) {
+                 const std::vector<ExrPassRef>& passes, const std::string& methods) {
     const int w = passes.front().image->width, h = passes.front().image->height;
     const int n = int(passes.size());
     OIIO::ImageSpec spec(w, h, n, OIIO::TypeDesc::FLOAT);
@@ -47,6 +47,7 @@ void writeExrNow(const std::string& file, const std::string& shownPath, const st
     spec.alpha_channel = -1;
     spec.attribute("compression", "zip");
     spec.attribute("Software", "softshadow " SS_VERSION);
+    if (!methods.empty()) spec.attribute(kExrMethodsAttribute, methods);
 
     std::vector<float> interleaved(size_t(w) * h * n);
     for (int c = 0; c < n; ++c) {
@@ -70,9 +71,9 @@ void writeExrNow(const std::string& file, const std::string& shownPath, const st
 }  // namespace
 
 void writeMultilayerExr(const std::string& path, const std::string& viewLayer,
-                        const std::vector<ExrPassRef>& passes) {
+                        const std::vector<ExrPassRef>& passes, const std::string& methods) {
     checkPasses(path, viewLayer, passes);
-    writeAtomically(path, [&](const std::string& temp) { writeExrNow(temp, path, viewLayer, passes); });
+    writeAtomically(path, [&](const std::string& temp) { writeExrNow(temp, path, viewLayer, passes, methods); });
 }
 
 const ExrPass* ExrContents::find(const std::string& pass) const {

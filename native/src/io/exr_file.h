@@ -16,12 +16,16 @@ struct ExrPassRef {
     const Image* image = nullptr;
 };
 
+// The header attribute that records which method made each pass ("<pass>=<method>;...").
+inline constexpr const char* kExrMethodsAttribute = "softshadow/methods";
+
 // Writes every pass as channel "<viewLayer>.<pass>.V" (all the same size) to a temporary file
 // in the destination folder, then renames it over `path`, so a reader never sees a half-written
 // file. Throws ss::Error(SS_ERROR_IO) naming the path when it cannot be written (and leaves no
 // file behind), SS_ERROR_INVALID_ARGUMENT for empty/duplicate/misshapen passes.
+// `methods`, when not empty, goes in the header as kExrMethodsAttribute.
 void writeMultilayerExr(const std::string& path, const std::string& viewLayer,
-                        const std::vector<ExrPassRef>& passes);
+                        const std::vector<ExrPassRef>& passes, const std::string& methods = {});
 
 struct ExrPass {
     std::string layer;    // the view layer (everything before the pass token)
