@@ -99,3 +99,28 @@ def add_group_socket(group, in_out, socket_type, name):
         return interface.new_socket(name, in_out=in_out, socket_type=socket_type)
     sockets = group.inputs if in_out == "INPUT" else group.outputs
     return sockets.new(socket_type, name)
+
+
+def compositor_output(tree):
+    """(the node that makes the final composite, its image input), or (None, None): the
+    Composite node up to 4.x, the Group Output of the compositing node group in 5.0+."""
+    for node in tree.nodes:
+        if node.bl_idname == "CompositorNodeComposite":
+            return node, node.inputs[0]
+    for node in tree.nodes:
+        if node.bl_idname == "NodeGroupOutput" and getattr(node, "is_active_output", True) and node.inputs:
+            return node, node.inputs[0]
+    return None, None
+
+
+def new_compositor_output(tree):
+    """Adds the final output node: Composite where it exists, else (5.0+) a Group Output with an
+    Image socket on the tree's interface."""
+    try:
+        node = tree.nodes.new("CompositorNodeComposite")
+        return node, node.inputs[0]
+    except RuntimeError:
+        if "Image" not in group_sockets(tree, "OUTPUT"):
+            add_group_socket(tree, "OUTPUT", "NodeSocketColor", "Image")
+        node = tree.nodes.new("NodeGroupOutput")
+        return node, node.inputs["Image"]

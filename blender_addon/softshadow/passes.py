@@ -14,6 +14,7 @@ class FrameResult:
     results: list = field(default_factory=list)   # native.Result, for ss_write_exr
     chosen: dict = field(default_factory=dict)    # light name -> method that ran (for 'auto')
     problems: list = field(default_factory=list)
+    failed_lights: list = field(default_factory=list)  # wanted lights that got no pass
     view_layer: str = "ViewLayer"
     exr_path: str = ""
 
@@ -88,6 +89,7 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
         jobs = [(l, m) for l, ms in _wanted(exported, lights, methods, only_enabled) for m in ms]
         for number, (light, method) in enumerate(jobs):
             if light["name"] not in indices:
+                out.failed_lights.append(light["name"])
                 continue
             options = light.get("options", {})
 
@@ -102,6 +104,7 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
                 if exc.cancelled:
                     raise
                 out.problems.append("light '%s' with %s: %s" % (light["name"], method, exc))
+                out.failed_lights.append(light["name"])
                 continue
             ran = result.method
             out.chosen[light["name"]] = ran
@@ -115,10 +118,6 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
     finally:
         scene.close()
     return out
-
-
-def exr_path_for_frame(directory, frame):
-    return os.path.join(directory, "softshadow_%04d.exr" % frame)
 
 
 def write_exr(frame_result, path):

@@ -27,20 +27,46 @@ class SoftShadowLightSettings(bpy.types.PropertyGroup):
         description="Advanced method quality settings as key=value;key=value")
 
 
+FAILURE_ITEMS = [
+    ("STOP", "Stop the Render",
+     "In the background (blender -b) exit with code 3 before a frame whose passes failed is "
+     "rendered; the interface reports the problem and goes on"),
+    ("CONTINUE", "Report and Continue",
+     "Report the problem and render the frame without its passes, also in the background"),
+]
+
+
+def _strength_changed(self, context):
+    from . import compositor  # (properties register first: no import at module level)
+    compositor.apply_strength(context.scene)
+
+
+def _pass_items(self, context):
+    from . import compositor
+    return compositor.pass_enum_items(context.scene if context else None)
+
+
 class SoftShadowSceneSettings(bpy.types.PropertyGroup):
     enabled: bpy.props.BoolProperty(
-        name="Soft Shadow Passes", default=True,
-        description="Compute the passes before each render and write them as a multilayer EXR")
-    output_dir: bpy.props.StringProperty(
-        name="Output Folder", subtype="DIR_PATH", default="",
-        description="Where the per-frame EXR goes (empty: next to the render output)")
+        name="Soft Shadow Passes", default=False,
+        description="Compute the passes before each render of this scene and write them as a "
+                    "multilayer EXR per frame and view layer")
+    on_failure: bpy.props.EnumProperty(
+        name="On Failure", items=FAILURE_ITEMS, default="STOP",
+        description="What a render does when a frame's passes cannot be made")
+    output_path: bpy.props.StringProperty(
+        name="Pass Files", subtype="FILE_PATH", default="",
+        description="Template of the pass files: {scene}, {view_layer} and # for the frame "
+                    "(empty: a 'softshadow' folder beside the render output, following its # padding)")
     extra_layers: bpy.props.BoolProperty(
         name="Extra Layers", default=False,
         description="Also write umbra, penumbra, mask and the methods' debug layers")
-    compositor_pass: bpy.props.StringProperty(
-        name="Darken By", default="",
-        description="The pass the compositor's darken group multiplies by (empty: the first)")
+    compositor_pass: bpy.props.EnumProperty(
+        name="Darken By", items=_pass_items,
+        description="The pass the compositor's darken group multiplies by (the passes of the last "
+                    "pass file)")
     strength: bpy.props.FloatProperty(name="Strength", default=1.0, min=0.0, max=1.0,
+                                      update=_strength_changed,
                                       description="How strongly the darken group applies the pass")
     preview: bpy.props.BoolProperty(
         name="Viewport Preview", default=False,

@@ -19,6 +19,7 @@ XS = (-3.0, -2.0, -1.0)  # the occluder's x on frames 1, 2, 3 (its shadow: -2, 0
 def _make_blend(folder):
     scene = sstest.standard_scene(W, H)
     scene.objects["Key"].data.softshadow.method = "shadow_map"
+    scene.softshadow.enabled = True
     box = scene.objects["Occluder"]
     for frame, x in enumerate(XS, start=1):
         box.location.x = x
@@ -35,7 +36,7 @@ def _make_blend(folder):
     scene.view_settings.view_transform = "Standard"
     scene.render.image_settings.file_format = "PNG"
     scene.render.filepath = os.path.join(folder, "render_####")
-    scene.softshadow.output_dir = os.path.join(folder, "passes")
+    scene.softshadow.output_path = os.path.join(os.path.join(folder, "passes"), "softshadow_####.exr")
     sstest.check(bpy.ops.softshadow.setup_compositor() == {"FINISHED"}, "compositor set up")
     path = os.path.join(folder, "anim.blend")
     bpy.ops.wm.save_as_mainfile(filepath=path)

@@ -21,7 +21,8 @@ def test_setup_then_rerender_does_not_pile_up():
     folder = sstest.tempdir("comp")
     scene = sstest.standard_scene(32, 24)
     scene.objects["Key"].data.softshadow.method = "shadow_map"
-    scene.softshadow.output_dir = folder
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
+    scene.softshadow.enabled = True
     scene.frame_current = 3
     result = bpy.ops.softshadow.setup_compositor()
     sstest.check(result == {"FINISHED"}, "set-up operator: %s" % result)
@@ -59,12 +60,16 @@ def test_chosen_pass_and_sequence_frame():
     scene = sstest.standard_scene(32, 24)
     sstest.add_light("Fill", location=(2, 2, 5), size=0.3).data.softshadow.method = "shadow_map"
     scene.objects["Key"].data.softshadow.method = "shadow_map"
-    scene.softshadow.output_dir = folder
-    scene.softshadow.compositor_pass = "Fill_shadow_map"
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
     bpy.ops.softshadow.setup_compositor()
     for frame in (1, 2):
         scene.frame_set(frame)
         sstest.check(bpy.ops.softshadow.render_passes() == {"FINISHED"}, "frame %d" % frame)
+        if frame == 1:
+            choices = [i[0] for i in ss.compositor.pass_enum_items(scene)]
+            sstest.check(sorted(choices) == ["FIRST", "Fill_shadow_map", "Key_shadow_map"],
+                         "passes to choose from: %s" % choices)
+            scene.softshadow.compositor_pass = "Fill_shadow_map"
     tree = scene.node_tree
     group = tree.nodes[ss.compositor.GROUP_NODE]
     sstest.check(group.inputs["Visibility"].links[0].from_socket.name == "Fill_shadow_map", "chosen pass linked")

@@ -19,7 +19,7 @@ def _scene_with_two_lights(folder):
     rim = sstest.add_light("Rim.Light 2", location=(1, 1, 5), size=0.3)
     rim.data.softshadow.method = "reference"
     rim.data.softshadow.samples = 4
-    scene.softshadow.output_dir = folder
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
     bpy.context.view_layer.update()
     return scene
 
