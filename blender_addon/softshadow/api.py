@@ -76,7 +76,7 @@ def _remove_stale(path):
     an earlier run's shadow."""
     try:
         os.remove(path)
-    except FileNotFoundError:
+    except (FileNotFoundError, NotADirectoryError):
         pass
 
 
@@ -121,6 +121,12 @@ def _is_compositor_layer(scene, view_layer):
     """The passes Image node reads the first view layer that renders (set-up's choice)."""
     layers = rendering_view_layers(scene)
     return not layers or layers[0] == view_layer
+
+
+def remove_frame_files(scene):
+    """Removes the current frame's pass file of every rendering view layer."""
+    for layer in rendering_view_layers(scene):
+        _remove_stale(frame_exr_path(scene, view_layer=layer))
 
 
 def render_frame_layers(scene):

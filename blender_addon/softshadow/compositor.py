@@ -128,9 +128,17 @@ def pass_enum_items(scene):
     names = visibility_passes(node) if node is not None else []
     _enum_items[:] = [(FIRST_PASS, "First Pass", "The first pass of the file (render once: the passes "
                        "appear in this list)", 0)]
-    _enum_items.extend((name, name, "Darken by the pass %s" % name, 1 + zlib.crc32(name.encode()) % 0x7FFFFFF0)
-                       for name in names)
+    _enum_items.extend((name, name, "Darken by the pass %s" % name, pass_enum_number(name)) for name in names)
     return _enum_items
+
+
+def pass_enum_number(name):
+    """The enum number of a pass name (0: the first pass), the same whatever the list holds."""
+    return 0 if name in ("", FIRST_PASS) else 1 + zlib.crc32(name.encode()) % 0x7FFFFFF0
+
+
+def pass_enum_name(number):
+    return next((item[0] for item in _enum_items if item[3] == number and item[0] != FIRST_PASS), "")
 
 
 def expected_passes(scene, view_layer):
@@ -169,9 +177,17 @@ def apply_strength(scene):
         group_node.inputs["Strength"].default_value = scene.softshadow.strength
 
 
+def relink_chosen(scene):
+    """Links the pass chosen in the UI right away (the set-up need not run again)."""
+    tree = _tree(scene, create=False)
+    node = tree.nodes.get(IMAGE_NODE) if tree is not None else None
+    group_node = tree.nodes.get(GROUP_NODE) if tree is not None else None
+    if node is not None and group_node is not None and "Visibility" in group_node.inputs:
+        _relink(tree, group_node, node, _chosen_pass(scene))
+
+
 def _chosen_pass(scene):
-    choice = scene.softshadow.compositor_pass
-    return "" if choice == FIRST_PASS else choice
+    return scene.softshadow.compositor_pass_name
 
 
 def _relink(tree, group_node, node, pass_name):

@@ -43,10 +43,11 @@ def _sync_frame(scene):
 
 def _compute(scene):
     """{view layer: (path, problems, chosen, failed lights)}; every failure becomes a problem."""
-    if not native.available():
-        return {layer.name: ("", [native.status()["error"]], {}, [])
-                for layer in api.rendering_view_layers(scene)}
     try:
+        api.remove_frame_files(scene)
+        if not native.available():
+            return {layer.name: ("", [native.status()["error"]], {}, [])
+                    for layer in api.rendering_view_layers(scene)}
         _sync_frame(scene)
         return {name: (path, list(problems), dict(chosen), list(failed))
                 for name, path, problems, chosen, failed in api.render_frame_layers(scene)}
@@ -108,8 +109,6 @@ def on_render_init(scene, *_args):
     if not _enabled(scene):
         return
     causes = []
-    if not native.available():
-        causes.append(native.status()["error"])
     try:
         for layer in api.rendering_view_layers(scene)[:1]:
             missing = compositor.missing_sockets(scene, layer)

@@ -46,6 +46,19 @@ def _pass_items(self, context):
     return compositor.pass_enum_items(context.scene if context else None)
 
 
+# The choice is kept by name (compositor_pass_name): a dynamic enum stores a number, which would
+# silently point at another pass when the list changes.
+def _pass_get(self):
+    from . import compositor
+    return compositor.pass_enum_number(self.compositor_pass_name)
+
+
+def _pass_set(self, value):
+    from . import compositor
+    self.compositor_pass_name = compositor.pass_enum_name(value)
+    compositor.relink_chosen(bpy.context.scene)
+
+
 class SoftShadowSceneSettings(bpy.types.PropertyGroup):
     enabled: bpy.props.BoolProperty(
         name="Soft Shadow Passes", default=False,
@@ -61,8 +74,10 @@ class SoftShadowSceneSettings(bpy.types.PropertyGroup):
     extra_layers: bpy.props.BoolProperty(
         name="Extra Layers", default=False,
         description="Also write umbra, penumbra, mask and the methods' debug layers")
+    compositor_pass_name: bpy.props.StringProperty(name="Darken By (name)", default="",
+                                                   options={"HIDDEN"})
     compositor_pass: bpy.props.EnumProperty(
-        name="Darken By", items=_pass_items,
+        name="Darken By", items=_pass_items, get=_pass_get, set=_pass_set,
         description="The pass the compositor's darken group multiplies by (the passes of the last "
                     "pass file)")
     strength: bpy.props.FloatProperty(name="Strength", default=1.0, min=0.0, max=1.0,

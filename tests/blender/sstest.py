@@ -71,6 +71,11 @@ def clear_scene():
             if key != "rna_type":
                 props.property_unset(key)
     scene.frame_current = 1
+    tree = getattr(scene, "node_tree", None)
+    if tree is not None:
+        tree.nodes.clear()
+    for layer in list(scene.view_layers)[1:]:
+        scene.view_layers.remove(layer)
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
     for block in (bpy.data.meshes, bpy.data.lights, bpy.data.cameras):
@@ -193,3 +198,46 @@ def exr_channel(path, channel):
         out[int(y), int(x)] = float(v)
     check(np.isfinite(out).all(), "every pixel of %s read" % channel)
     return out
+
+
+def addon_scripts(folder):
+    """A user scripts folder holding the add-on, so `--addons softshadow` finds it."""
+    scripts = os.path.join(folder, "scripts", "addons")
+    os.makedirs(scripts)
+    os.symlink(os.path.join(ADDON_PATH, "softshadow"), os.path.join(scripts, "softshadow"))
+    return os.path.join(folder, "scripts")
+
+
+def png_gray(path):
+    """A PNG's mean of R, G, B as a numpy (H, W) array, row 0 = top."""
+    import numpy as np
+    image = bpy.data.images.load(path, check_existing=False)
+    w, h = image.size
+    pixels = np.empty(w * h * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    return np.flipud(pixels.reshape(h, w, 4))[..., :3].mean(axis=2)
+
+
+def flat_white_workbench(scene):
+    """Workbench, flat white, no shadows of its own: any darkening comes from the pass."""
+    scene.render.engine = "BLENDER_WORKBENCH"
+    shading = scene.display.shading
+    shading.light = "FLAT"
+    shading.color_type = "SINGLE"
+    shading.single_color = (1.0, 1.0, 1.0)
+    shading.show_shadows = False
+    shading.show_cavity = False
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "PNG"
+
+
+def blender_batch(blend, args, scripts, env=None, addon=True):
+    """`blender -b blend [--addons softshadow] args...` -> CompletedProcess (stdout+stderr in .log)."""
+    import bpy as _bpy
+    full_env = dict(os.environ, BLENDER_USER_SCRIPTS=scripts)
+    full_env.update(env or {})
+    command = [_bpy.app.binary_path, "-b", blend] + (["--addons", "softshadow"] if addon else []) + list(args)
+    run = subprocess.run(command, capture_output=True, text=True, env=full_env, timeout=900)
+    run.log = run.stdout + run.stderr
+    return run

@@ -82,5 +82,55 @@ def test_chosen_pass_and_sequence_frame():
                  "one EXR per frame: %s" % os.listdir(folder))
 
 
+def test_setup_inserts_before_the_output_keeps_the_chain_and_strength_is_live():
+    folder = sstest.tempdir("comp3")
+    scene = sstest.standard_scene(32, 24)
+    scene.objects["Key"].data.softshadow.method = "shadow_map"
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
+    scene.use_nodes = True
+    tree = scene.node_tree
+    for node in list(tree.nodes):
+        tree.nodes.remove(node)
+    layers = tree.nodes.new("CompositorNodeRLayers")
+    glare = tree.nodes.new("CompositorNodeGlare")
+    composite = tree.nodes.new("CompositorNodeComposite")
+    viewer = tree.nodes.new("CompositorNodeViewer")
+    tree.links.new(layers.outputs["Image"], glare.inputs["Image"])
+    tree.links.new(glare.outputs["Image"], composite.inputs["Image"])
+    tree.links.new(glare.outputs["Image"], viewer.inputs["Image"])
+    node, changes = ss.compositor.setup(scene, ss.api.frame_exr_path(scene))
+    text = "; ".join(changes)
+    sstest.check("inserted 'SoftShadow Darken' between Glare.Image and Composite" in text, "says what changed: %s" % text)
+    group = tree.nodes[ss.compositor.GROUP_NODE]
+    sstest.check(group.inputs["Image"].links[0].from_node == glare, "the glare chain feeds the group")
+    sstest.check(composite.inputs["Image"].links[0].from_node == group, "the group feeds the Composite")
+    sstest.check(glare.inputs["Image"].links[0].from_node == layers, "Render Layers -> Glare kept")
+    sstest.check(viewer.inputs["Image"].links[0].from_node == glare, "the Viewer link kept")
+    sstest.check(len(tree.nodes) == 6, "four nodes of the artist's plus ours: %s" % [n.name for n in tree.nodes])
+    again = ss.compositor.setup(scene, ss.api.frame_exr_path(scene))[1]
+    sstest.check(not any(c.startswith("inserted") or c.startswith("added") for c in again),
+                 "a second set-up changes nothing: %s" % again)
+    scene.softshadow.strength = 0.25
+    sstest.close(group.inputs["Strength"].default_value, 0.25, 1e-6, "Strength follows the slider")
+
+
+def test_a_chosen_pass_that_is_gone_is_said_not_replaced():
+    folder = sstest.tempdir("comp4")
+    scene = sstest.standard_scene(32, 24)
+    fill = sstest.add_light("Fill", location=(2, 2, 5), size=0.3)
+    fill.data.softshadow.method = "shadow_map"
+    scene.objects["Key"].data.softshadow.method = "shadow_map"
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
+    bpy.ops.softshadow.setup_compositor()
+    scene.softshadow.compositor_pass = "Fill_shadow_map"
+    fill.data.softshadow.enabled = False
+    path, problems, _ = ss.api.render_frame(scene)
+    sstest.check(any("Fill_shadow_map" in p and "not in the pass file" in p for p in problems),
+                 "the missing choice is reported: %s" % problems)
+    group = scene.node_tree.nodes[ss.compositor.GROUP_NODE]
+    linked = [l.from_socket.name for l in group.inputs["Visibility"].links]
+    sstest.check("Key_shadow_map" not in linked, "no silent fall-back to another light: %s" % linked)
+
+
 if __name__ == "__main__":
     sstest.run(dict(globals()))
