@@ -14,7 +14,7 @@ DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
   blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev
 
-.PHONY: deps build demo test test-native test-asan test-blender bench addon clean
+.PHONY: deps build demo test test-native test-asan test-blender test-farm bench addon clean
 
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
@@ -31,10 +31,14 @@ demo: build
 	bash examples/run_demo.sh $(BUILD)
 
 test: build
-	$(MAKE) --no-print-directory test-native test-blender test-asan
+	$(MAKE) --no-print-directory test-native test-blender test-farm test-asan
 
 test-native:
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The Flamenco job type compiled against a stand-in of the Manager's job-compiler API.
+test-farm:
+	node --test farm/flamenco/tests/
 
 test-blender:
 	bash tests/blender/run.sh $(BUILD)
