@@ -9,7 +9,7 @@ SUDO := $(if $(filter 0,$(UID_NOW)),,sudo)
 VERSION := $(shell sed -n 's/^project.softshadow VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
 
 # Every Debian package the build, tests, demo, benchmark and add-on need.
-DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-tools \
+DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-tools libstb-dev patchelf \
   libopenexr-dev libglm-dev libembree-dev libegl-dev libegl1-mesa-dev libosmesa6-dev \
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
   blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# How the add-on zip is made: the package plus the built library, installable from Preferences.
+# How the add-on zip is made: the package, the built library and the libraries it needs beside it;
+# one zip that installs as a legacy add-on (3.4+) and as an extension (4.2+).
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Usage: blender_addon/package.sh BUILD_DIR VERSION  ->  dist/softshadow-VERSION.zip
 set -euo pipefail
@@ -22,6 +23,9 @@ mkdir -p "$STAGE/softshadow/lib"
 # The real file under the plain name: ctypes opens lib/libsoftshadow.so; zips keep no symlinks.
 cp -L "$LIB" "$STAGE/softshadow/lib/libsoftshadow.so"
 strip --strip-unneeded "$STAGE/softshadow/lib/libsoftshadow.so" 2>/dev/null || true
+patchelf --set-rpath '$ORIGIN' "$STAGE/softshadow/lib/libsoftshadow.so"
+bash "$ROOT/blender_addon/bundle_libs.sh" "$STAGE/softshadow/lib/libsoftshadow.so" "$STAGE/softshadow/lib" >/dev/null
+cp "$ROOT/LICENSE" "$STAGE/softshadow/LICENSE"
 sed -i "s/^version = \".*\"/version = \"$VERSION\"/" "$STAGE/softshadow/blender_manifest.toml"
 IFS=. read -r MAJ MIN PAT <<<"$VERSION"
 sed -i "s/\"version\": ([0-9, ]*)/\"version\": (${MAJ:-0}, ${MIN:-0}, ${PAT:-0})/" "$STAGE/softshadow/__init__.py"

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/libstdcxx_baseline.h"
 #include "gl/context.h"
 #include "gl/gl_functions.h"
 #include "gl/program.h"

@@ -1,10 +1,16 @@
-// How passes become a multilayer float EXR through OpenImageIO, and how one is read back.
+// How passes become a multilayer float EXR through OpenEXR's own API, and how one is read back.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/exr_file.h"
 
+#include <exception>
 #include <set>
 
-#include <OpenImageIO/imageio.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -40,32 +46,43 @@ void checkPasses(const std::string& path, const std::string& viewLayer,
 void writeExrNow(const std::string& file, const std::string& shownPath, const std::string& viewLayer,
                  const std::vector<ExrPassRef>& passes, const std::string& methods) {
     const int w = passes.front().image->width, h = passes.front().image->height;
-    const int n = int(passes.size());
-    OIIO::ImageSpec spec(w, h, n, OIIO::TypeDesc::FLOAT);
-    spec.channelnames.clear();
-    for (const ExrPassRef& p : passes) spec.channelnames.push_back(channelName(viewLayer, p.pass));
-    spec.alpha_channel = -1;
-    spec.attribute("compression", "zip");
-    spec.attribute("Software", "softshadow " SS_VERSION);
-    if (!methods.empty()) spec.attribute(kExrMethodsAttribute, methods);
-
-    std::vector<float> interleaved(size_t(w) * h * n);
-    for (int c = 0; c < n; ++c) {
-        const std::vector<float>& src = passes[c].image->pixels;
-        for (size_t i = 0; i < src.size(); ++i) interleaved[i * n + c] = src[i];
+    Imf::Header header(w, h);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.insert("Software", Imf::StringAttribute("softshadow " SS_VERSION));
+    if (!methods.empty()) header.insert(kExrMethodsAttribute, Imf::StringAttribute(methods));
+    Imf::FrameBuffer frame;
+    for (const ExrPassRef& p : passes) {
+        const std::string name = channelName(viewLayer, p.pass);
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        // Each pass is read in place from its own rows: no interleaved copy.
+        char* base = reinterpret_cast<char*>(const_cast<float*>(p.image->pixels.data()));
+        frame.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * size_t(w)));
     }
-
-    auto out = OIIO::ImageOutput::create("openexr");
-    if (!out) fail(SS_ERROR_IO, "cannot write EXR '" + shownPath + "': " + OIIO::geterror());
-    if (!out->open(file, spec))
-        fail(SS_ERROR_IO, "cannot write EXR '" + shownPath + "': " + out->geterror());
-    bool ok = out->write_image(OIIO::TypeDesc::FLOAT, interleaved.data());
-    std::string err = ok ? std::string() : out->geterror();
-    if (!out->close() && ok) {
-        ok = false;
-        err = out->geterror();
+    try {
+        Imf::OutputFile out(file.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(h);
+    } catch (const std::exception& e) {
+        fail(SS_ERROR_IO, "cannot write EXR '" + shownPath + "': " + e.what());
     }
-    if (!ok) fail(SS_ERROR_IO, "cannot write EXR '" + shownPath + "': " + err);
+}
+
+// Splits "<layer>.<pass>.<channel>" the way Blender does: the last token is the channel, the
+// one before it the pass, everything before that the layer.
+void splitChannelName(const std::string& full, ExrPass& p) {
+    size_t last = full.rfind('.');
+    if (last == std::string::npos) {
+        p.pass = full;
+        return;
+    }
+    p.channel = full.substr(last + 1);
+    size_t prev = last == 0 ? std::string::npos : full.rfind('.', last - 1);
+    if (prev == std::string::npos) {
+        p.pass = full.substr(0, last);
+    } else {
+        p.layer = full.substr(0, prev);
+        p.pass = full.substr(prev + 1, last - prev - 1);
+    }
 }
 
 }  // namespace
@@ -83,37 +100,34 @@ const ExrPass* ExrContents::find(const std::string& pass) const {
 }
 
 ExrContents readMultilayerExr(const std::string& path) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) fail(SS_ERROR_IO, "cannot read EXR '" + path + "': " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
     ExrContents contents;
-    contents.width = spec.width;
-    contents.height = spec.height;
-    const int n = spec.nchannels;
-    std::vector<float> interleaved(size_t(spec.width) * spec.height * n);
-    if (!in->read_image(0, 0, 0, n, OIIO::TypeDesc::FLOAT, interleaved.data()))
-        fail(SS_ERROR_IO, "cannot read EXR '" + path + "': " + in->geterror());
-    for (int c = 0; c < n; ++c) {
-        ExrPass p;
-        const std::string& full = spec.channelnames[c];
-        size_t last = full.rfind('.');
-        if (last == std::string::npos) {
-            p.pass = full;
-        } else {
-            p.channel = full.substr(last + 1);
-            size_t prev = last == 0 ? std::string::npos : full.rfind('.', last - 1);
-            if (prev == std::string::npos) {
-                p.pass = full.substr(0, last);
-            } else {
-                p.layer = full.substr(0, prev);
-                p.pass = full.substr(prev + 1, last - prev - 1);
-            }
+    try {
+        Imf::InputFile in(path.c_str());
+        const Imath::Box2i window = in.header().dataWindow();
+        const int w = window.max.x - window.min.x + 1, h = window.max.y - window.min.y + 1;
+        contents.width = w;
+        contents.height = h;
+        Imf::FrameBuffer frame;
+        const Imf::ChannelList& channels = in.header().channels();
+        for (auto c = channels.begin(); c != channels.end(); ++c) {
+            ExrPass p;
+            splitChannelName(c.name(), p);
+            p.image = Image(w, h);
+            contents.passes.push_back(std::move(p));
         }
-        p.image = Image(spec.width, spec.height);
-        for (size_t i = 0; i < p.image.pixels.size(); ++i) p.image.pixels[i] = interleaved[i * n + c];
-        contents.passes.push_back(std::move(p));
+        size_t index = 0;
+        for (auto c = channels.begin(); c != channels.end(); ++c, ++index) {
+            // OpenEXR addresses a slice by absolute pixel coordinates: shift the base so the data
+            // window's corner lands on the first element.
+            float* first = contents.passes[index].image.pixels.data();
+            char* base = reinterpret_cast<char*>(first - window.min.x - ptrdiff_t(window.min.y) * w);
+            frame.insert(c.name(), Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * size_t(w)));
+        }
+        in.setFrameBuffer(frame);
+        in.readPixels(window.min.y, window.max.y);
+    } catch (const std::exception& e) {
+        fail(SS_ERROR_IO, "cannot read EXR '" + path + "': " + e.what());
     }
-    in->close();
     return contents;
 }
 

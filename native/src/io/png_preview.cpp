@@ -1,4 +1,4 @@
-// How a float pass is quantised to an 8-bit grayscale PNG through OpenImageIO.
+// How a float pass is quantised to an 8-bit grayscale PNG through stb_image_write.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/png_preview.h"
 
@@ -6,7 +6,10 @@
 #include <cmath>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
+// stb_image_write is compiled here, static to this file, so the library exports none of it.
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#include <stb/stb_image_write.h>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -25,15 +28,8 @@ void writePngPreview(const std::string& path, const Image& image) {
         bytes[i] = (unsigned char)std::lround(v * 255.0f);
     }
     writeAtomically(path, [&](const std::string& temp) {
-        OIIO::ImageSpec spec(image.width, image.height, 1, OIIO::TypeDesc::UINT8);
-        auto out = OIIO::ImageOutput::create("png");
-        if (!out) fail(SS_ERROR_IO, "cannot write PNG '" + path + "': " + OIIO::geterror());
-        if (!out->open(temp, spec))
-            fail(SS_ERROR_IO, "cannot write PNG '" + path + "': " + out->geterror());
-        bool ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
-        std::string err = ok ? std::string() : out->geterror();
-        if (!out->close() && ok) ok = false, err = out->geterror();
-        if (!ok) fail(SS_ERROR_IO, "cannot write PNG '" + path + "': " + err);
+        if (!stbi_write_png(temp.c_str(), image.width, image.height, 1, bytes.data(), image.width))
+            fail(SS_ERROR_IO, "cannot write PNG '" + path + "'");
     });
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/libstdcxx_baseline.h"
 #include "reference/light_sampler.h"
 #include "reference/visibility_estimator.h"
 
