@@ -124,3 +124,57 @@ def new_compositor_output(tree):
             add_group_socket(tree, "OUTPUT", "NodeSocketColor", "Image")
         node = tree.nodes.new("NodeGroupOutput")
         return node, node.inputs["Image"]
+
+
+def new_mix(nodes, blend_type, factor=1.0):
+    """A colour mix node in a compositor tree -> (node, factor input, A input, B input, output).
+    CompositorNodeMixRGB up to 4.x; 5.0 compositor trees take the shared ShaderNodeMix (RGBA)."""
+    try:
+        node = nodes.new("CompositorNodeMixRGB")
+        node.blend_type = blend_type
+        sockets = node.inputs[0], node.inputs[1], node.inputs[2], node.outputs[0]
+    except RuntimeError:
+        node = nodes.new("ShaderNodeMix")
+        node.data_type = "RGBA"
+        node.blend_type = blend_type
+        by_id = {s.identifier: s for s in node.inputs}
+        out = next(s for s in node.outputs if s.identifier == "Result_Color")
+        sockets = by_id["Factor_Float"], by_id["A_Color"], by_id["B_Color"], out
+    sockets[0].default_value = factor
+    return (node,) + sockets
+
+
+def set_renderer_shadow(light, on):
+    """Switches the renderer's own shadow of a light: Cycles' `cast_shadow` up to 3.6, the one
+    `use_shadow` from 4.0 on (Cycles and EEVEE share it)."""
+    cycles = getattr(light, "cycles", None)
+    if cycles is not None and hasattr(cycles, "cast_shadow"):
+        cycles.cast_shadow = on
+    else:
+        light.use_shadow = on
+
+
+def renderer_shadow(light):
+    cycles = getattr(light, "cycles", None)
+    if cycles is not None and hasattr(cycles, "cast_shadow"):
+        return bool(cycles.cast_shadow)
+    return bool(light.use_shadow)
+
+
+def lightgroup_pass(view_layer, obj, name):
+    """Puts a light object in a Cycles light group of the view layer (3.2+), made when missing.
+    Returns the Render Layers output that carries the group: "Combined_<name>"."""
+    if name not in [group.name for group in view_layer.lightgroups]:
+        view_layer.lightgroups.add(name=name)
+    obj.lightgroup = name
+    return "Combined_" + name
+
+
+def supports_lightgroups(view_layer):
+    return hasattr(view_layer, "lightgroups")
+
+
+def eevee_engine_id(render):
+    """EEVEE's engine id: BLENDER_EEVEE_NEXT in 4.2-4.x, BLENDER_EEVEE before and from 5.0."""
+    ids = {item.identifier for item in render.bl_rna.properties["engine"].enum_items}
+    return "BLENDER_EEVEE_NEXT" if "BLENDER_EEVEE_NEXT" in ids else "BLENDER_EEVEE"

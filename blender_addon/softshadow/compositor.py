@@ -81,21 +81,18 @@ def darken_group():
     inputs.location = (-400, 0)
     outputs = nodes.new("NodeGroupOutput")
     outputs.location = (400, 0)
-    factor = nodes.new("CompositorNodeMixRGB")
+    factor, f_fac, f_a, f_b, f_out = compat.new_mix(nodes, "MIX")
     factor.name = "Shadow Factor"
-    factor.blend_type = "MIX"
-    factor.inputs[1].default_value = (1.0, 1.0, 1.0, 1.0)
+    f_a.default_value = (1.0, 1.0, 1.0, 1.0)
     factor.location = (-100, -150)
-    multiply = nodes.new("CompositorNodeMixRGB")
+    multiply, m_fac, m_a, m_b, m_out = compat.new_mix(nodes, "MULTIPLY")
     multiply.name = "Darken"
-    multiply.blend_type = "MULTIPLY"
-    multiply.inputs[0].default_value = 1.0
     multiply.location = (150, 0)
-    links.new(inputs.outputs["Strength"], factor.inputs[0])
-    links.new(inputs.outputs["Visibility"], factor.inputs[2])
-    links.new(inputs.outputs["Image"], multiply.inputs[1])
-    links.new(factor.outputs[0], multiply.inputs[2])
-    links.new(multiply.outputs[0], outputs.inputs["Image"])
+    links.new(inputs.outputs["Strength"], f_fac)
+    links.new(inputs.outputs["Visibility"], f_b)
+    links.new(inputs.outputs["Image"], m_a)
+    links.new(f_out, m_b)
+    links.new(m_out, outputs.inputs["Image"])
     return group
 
 
@@ -148,7 +145,9 @@ def expected_passes(scene, view_layer):
     for obj in view_layer.objects:
         light = obj.data if obj.type == "LIGHT" else None
         settings = getattr(light, "softshadow", None)
-        if settings is None or not settings.enabled or not light.use_shadow:
+        if settings is None or not settings.enabled:
+            continue
+        if not (compat.light_use_shadow(light) or settings.replaces_shadow):
             continue
         if obj.hide_render:
             continue
@@ -162,8 +161,9 @@ def missing_sockets(scene, view_layer):
     so they are caught before it starts. [] when the compositor is not set up."""
     tree = _tree(scene, create=False)
     node = tree.nodes.get(IMAGE_NODE) if tree is not None else None
-    group_node = tree.nodes.get(GROUP_NODE) if tree is not None else None
-    if node is None or group_node is None:
+    wired = tree is not None and any(n.name.startswith("SoftShadow ") and n.bl_idname == "CompositorNodeGroup"
+                                     for n in tree.nodes)
+    if node is None or not wired:
         return []
     have = set(pass_sockets(node))
     return [name for name in expected_passes(scene, view_layer) if name not in have]
@@ -172,9 +172,9 @@ def missing_sockets(scene, view_layer):
 def apply_strength(scene):
     """The scene's Strength on the darken group node (called whenever the slider moves)."""
     tree = _tree(scene, create=False)
-    group_node = tree.nodes.get(GROUP_NODE) if tree is not None else None
-    if group_node is not None and "Strength" in group_node.inputs:
-        group_node.inputs["Strength"].default_value = scene.softshadow.strength
+    for node in (tree.nodes if tree is not None else ()):
+        if node.name.startswith("SoftShadow ") and "Strength" in node.inputs:
+            node.inputs["Strength"].default_value = scene.softshadow.strength
 
 
 def relink_chosen(scene):

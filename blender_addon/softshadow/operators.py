@@ -5,7 +5,7 @@ import os
 
 import bpy
 
-from . import api, compositor, native
+from . import api, compositor, native, replace
 
 
 def _library_ready(op):
@@ -63,15 +63,27 @@ class SOFTSHADOW_OT_setup_compositor(bpy.types.Operator):
 
     def execute(self, context):
         scene = context.scene
+        view_layer = context.view_layer
+        replacing = scene.softshadow.composite == "REPLACE"
+        if replacing and replace.problem(scene, view_layer):
+            self.report({"ERROR"}, "Soft Shadow: " + replace.problem(scene, view_layer))
+            return {"CANCELLED"}
         try:
             path = api.frame_exr_path(scene)
-            if compositor.missing_sockets(scene, context.view_layer) or not os.path.exists(path):
+            if compositor.missing_sockets(scene, view_layer) or not os.path.exists(path):
                 # The Image node gets its pass sockets from a pass file: make this frame's now,
                 # so a render's first frame finds them (and a saved file carries them).
                 if _library_ready(self):
                     path, problems, _ = api.render_frame(scene, context.evaluated_depsgraph_get())
                     _report_problems(self, problems)
-            node, changes = compositor.setup(scene, path or api.frame_exr_path(scene))
+            path = path or api.frame_exr_path(scene)
+            if replacing:
+                node = compositor.image_node(scene, compositor.passes_image(path))
+                changes = replace.setup(scene, view_layer, node)
+            else:
+                changes = replace.teardown(scene, view_layer)
+                node, more = compositor.setup(scene, path)
+                changes += more
         except Exception as exc:
             self.report({"ERROR"}, "Soft Shadow: compositor set-up failed: %s" % exc)
             return {"CANCELLED"}

@@ -25,6 +25,10 @@ class SoftShadowLightSettings(bpy.types.PropertyGroup):
     settings: bpy.props.StringProperty(
         name="Method Settings", default="",
         description="Advanced method quality settings as key=value;key=value")
+    replaces_shadow: bpy.props.BoolProperty(
+        name="Pass Replaces the Shadow", default=False, options={"HIDDEN"},
+        description="Set by the Replace composite: the renderer's shadow of this light is off "
+                    "and the pass puts the shadow back")
 
 
 FAILURE_ITEMS = [
@@ -74,6 +78,13 @@ class SoftShadowSceneSettings(bpy.types.PropertyGroup):
     extra_layers: bpy.props.BoolProperty(
         name="Extra Layers", default=False,
         description="Also write umbra, penumbra, mask and the methods' debug layers")
+    composite: bpy.props.EnumProperty(
+        name="Composite", default="DARKEN", items=[
+            ("DARKEN", "Darken", "Multiply the final image by one pass (a quick look: the renderer's "
+             "own shadow stays, so that light's shadow is darkened twice)"),
+            ("REPLACE", "Replace", "Cycles: each light's own shadow is switched off, its light group "
+             "is multiplied by its pass and the lights are summed back"),
+        ], description="How Set Up Compositor uses the passes")
     compositor_pass_name: bpy.props.StringProperty(name="Darken By (name)", default="",
                                                    options={"HIDDEN"})
     compositor_pass: bpy.props.EnumProperty(

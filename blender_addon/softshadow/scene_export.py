@@ -189,7 +189,13 @@ def _light_from_object(name, obj, matrix):
         angle=getattr(data, "angle", 0.0) if data.type == "SUN" else 0.0,
         spot_size=getattr(data, "spot_size", 0.0) if data.type == "SPOT" else 0.0,
         spot_blend=getattr(data, "spot_blend", 0.0) if data.type == "SPOT" else 0.0,
-        use_shadow=compat.light_use_shadow(data))
+        use_shadow=compat.light_use_shadow(data) or _replaces_shadow(obj))
+
+
+def _replaces_shadow(obj):
+    """A light whose renderer shadow the Replace composite switched off still casts our pass."""
+    props = getattr(obj.original.data, "softshadow", None)
+    return bool(props is not None and props.replaces_shadow)
 
 
 def _light_settings(obj):

@@ -241,3 +241,9 @@ def blender_batch(blend, args, scripts, env=None, addon=True):
     run = subprocess.run(command, capture_output=True, text=True, env=full_env, timeout=900)
     run.log = run.stdout + run.stderr
     return run
+
+
+def exr_rgb(path):
+    """An RGB(A) EXR's colour as a numpy (H, W, 3) array, row 0 = top."""
+    import numpy as np
+    return np.stack([exr_channel(path, c) for c in "RGB"], axis=2)

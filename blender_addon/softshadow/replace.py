@@ -1,0 +1,191 @@
+# How the Replace composite is set up: each light's own contribution isolated in a Cycles light
+# group, rendered without the renderer's shadow, multiplied by its pass, and summed back.
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Image + Σ_L Light_L × (mix(1, V_L, strength) − 1): the beauty holds every light unshadowed
+(their shadows are off), so taking a light's group pass out and putting it back times V gives
+each light the pass's shadow, and everything else (other lights, world, emission) as rendered.
+
+Set-up changes the file: the lights' renderer shadows go off (each marked `replaces_shadow`, so
+their passes are still computed) and they join light groups `ss_<light>`; it reports each change.
+EEVEE has no light groups in the supported versions: Replace refuses it and says to use Darken."""
+import re
+
+import bpy
+
+from . import compat, compositor, scene_export
+
+GROUP_NAME = "SoftShadow Replace"
+NODE_PREFIX = "SoftShadow Replace "
+
+
+def replace_group():
+    """Image + Light × (mix(1, Visibility, Strength) − 1)."""
+    group = bpy.data.node_groups.get(GROUP_NAME)
+    if group is not None and group.bl_idname == "CompositorNodeTree":
+        return group
+    group = bpy.data.node_groups.new(GROUP_NAME, "CompositorNodeTree")
+    compat.add_group_socket(group, "INPUT", "NodeSocketColor", "Image")
+    compat.add_group_socket(group, "INPUT", "NodeSocketColor", "Light")
+    visibility = compat.add_group_socket(group, "INPUT", "NodeSocketFloat", "Visibility")
+    strength = compat.add_group_socket(group, "INPUT", "NodeSocketFloat", "Strength")
+    compat.add_group_socket(group, "OUTPUT", "NodeSocketColor", "Image")
+    for socket in (visibility, strength):
+        socket.default_value = 1.0
+        socket.min_value, socket.max_value = 0.0, 1.0
+    nodes, links = group.nodes, group.links
+    inputs = nodes.new("NodeGroupInput")
+    outputs = nodes.new("NodeGroupOutput")
+    inputs.location, outputs.location = (-500, 0), (500, 0)
+    factor, f_fac, f_a, f_b, f_out = compat.new_mix(nodes, "MIX")
+    f_a.default_value = (1.0, 1.0, 1.0, 1.0)
+    shadowed, s_fac, s_a, s_b, s_out = compat.new_mix(nodes, "MULTIPLY")
+    without, w_fac, w_a, w_b, w_out = compat.new_mix(nodes, "SUBTRACT")
+    total, t_fac, t_a, t_b, t_out = compat.new_mix(nodes, "ADD")
+    for node, x, y in ((factor, -250, -200), (shadowed, 0, -150), (without, 0, 100), (total, 250, 0)):
+        node.location = (x, y)
+    links.new(inputs.outputs["Strength"], f_fac)
+    links.new(inputs.outputs["Visibility"], f_b)
+    links.new(inputs.outputs["Light"], s_a)
+    links.new(f_out, s_b)
+    links.new(inputs.outputs["Image"], w_a)
+    links.new(inputs.outputs["Light"], w_b)
+    links.new(w_out, t_a)
+    links.new(s_out, t_b)
+    links.new(t_out, outputs.inputs["Image"])
+    return group
+
+
+def lightgroup_name(light_name):
+    """Light group names hold letters, digits and '_' only."""
+    return "ss_" + re.sub(r"[^A-Za-z0-9_]", "_", light_name)
+
+
+def _lights(view_layer):
+    """The light objects that get a pass (shadow on, or already replaced by ours)."""
+    out = []
+    for obj in view_layer.objects:
+        if obj.type != "LIGHT" or obj.hide_render:
+            continue
+        settings = getattr(obj.data, "softshadow", None)
+        if settings is None or not settings.enabled:
+            continue
+        if compat.renderer_shadow(obj.data) or settings.replaces_shadow:
+            out.append(obj)
+    return out
+
+
+def _render_layers(tree, view_layer, changes):
+    for node in tree.nodes:
+        if node.bl_idname == "CompositorNodeRLayers" and node.layer == view_layer.name:
+            return node
+    node = tree.nodes.new("CompositorNodeRLayers")
+    node.layer = view_layer.name
+    changes.append("added a Render Layers node for '%s'" % view_layer.name)
+    return node
+
+
+def _artist_feed(output_input):
+    """What fed the output before our nodes: walk back through them along their Image input."""
+    socket = output_input.links[0].from_socket if output_input.is_linked else None
+    while socket is not None and socket.node.name.startswith(("SoftShadow ",)) and "Image" in socket.node.inputs:
+        image_in = socket.node.inputs["Image"]
+        socket = image_in.links[0].from_socket if image_in.is_linked else None
+    return socket
+
+
+def problem(scene, view_layer):
+    """Why Replace cannot be set up here, or ''."""
+    if scene.render.engine != "CYCLES":
+        return ("Replace needs Cycles light groups (the render engine is %s): use Darken there"
+                % scene.render.engine)
+    if not compat.supports_lightgroups(view_layer):
+        return "Replace needs light groups (Blender 3.2 or newer): use Darken"
+    return ""
+
+
+def setup(scene, view_layer, node):
+    """Light groups and shadows for every light with a pass, and one Replace group per light
+    between what fed the output and the output. Returns [what changed, in words]."""
+    changes = []
+    tree = compat.compositor_tree(scene, create=True, bpy_data=bpy.data)
+    output, output_input = compat.compositor_output(tree)
+    if output is None:
+        output, output_input = compat.new_compositor_output(tree)
+        changes.append("added the output node '%s'" % output.name)
+    layers = _render_layers(tree, view_layer, changes)
+    feed = _artist_feed(output_input) or layers.outputs["Image"]
+    darken = tree.nodes.get(compositor.GROUP_NODE)
+    if darken is not None:
+        tree.nodes.remove(darken)
+        changes.append("removed the Darken group (Replace takes its place)")
+    have = set(compositor.pass_sockets(node))
+    previous, used = feed, set()
+    for index, obj in enumerate(_lights(view_layer)):
+        settings = obj.data.softshadow
+        group_name = lightgroup_name(obj.name)
+        if obj.lightgroup != group_name:
+            changes.append("light '%s' in light group %s" % (obj.name, group_name))
+        light_socket = compat.lightgroup_pass(view_layer, obj, group_name)
+        if compat.renderer_shadow(obj.data):
+            compat.set_renderer_shadow(obj.data, False)
+            changes.append("light '%s': the renderer's shadow off (the pass replaces it)" % obj.name)
+        settings.replaces_shadow = True
+        pass_name = scene_export.pass_name(obj.name, settings.method or "auto")
+        if pass_name not in have:
+            changes.append("light '%s': no pass %s in the pass file yet, left out" % (obj.name, pass_name))
+            continue
+        name = NODE_PREFIX + obj.name
+        group_node = tree.nodes.get(name)
+        if group_node is None:
+            group_node = tree.nodes.new("CompositorNodeGroup")
+            group_node.name = name
+            group_node.label = "Replace: " + obj.name
+            changes.append("added '%s'" % name)
+        group_node.node_tree = replace_group()
+        group_node.location = (output.location.x - 250 * (len(used) + 1), output.location.y + 200 - 120 * index)
+        group_node.inputs["Strength"].default_value = scene.softshadow.strength
+        _link(tree, previous, group_node.inputs["Image"])
+        if light_socket not in layers.outputs:
+            changes.append("light '%s': Render Layers has no %s output" % (obj.name, light_socket))
+        else:
+            _link(tree, layers.outputs[light_socket], group_node.inputs["Light"])
+        _link(tree, node.outputs[pass_name], group_node.inputs["Visibility"])
+        previous = group_node.outputs["Image"]
+        used.add(name)
+    for stale in [n for n in tree.nodes if n.name.startswith(NODE_PREFIX) and n.name not in used]:
+        changes.append("removed '%s'" % stale.name)
+        tree.nodes.remove(stale)
+    if not (output_input.is_linked and output_input.links[0].from_socket == previous):
+        _link(tree, previous, output_input)
+        changes.append("inserted the Replace groups between %s.%s and %s" % (feed.node.name, feed.name, output.name))
+    return changes
+
+
+def _link(tree, from_socket, to_socket):
+    if to_socket.is_linked and to_socket.links[0].from_socket == from_socket:
+        return
+    for link in list(to_socket.links):
+        tree.links.remove(link)
+    tree.links.new(from_socket, to_socket)
+
+
+def teardown(scene, view_layer):
+    """Back to the renderer's shadows and no Replace groups (when Darken is set up instead)."""
+    changes = []
+    tree = compat.compositor_tree(scene, create=False)
+    if tree is not None:
+        output, output_input = compat.compositor_output(tree)
+        feed = _artist_feed(output_input) if output is not None else None
+        ours = [n for n in tree.nodes if n.name.startswith(NODE_PREFIX)]
+        for node in ours:
+            changes.append("removed '%s'" % node.name)
+            tree.nodes.remove(node)
+        if ours and feed is not None:
+            _link(tree, feed, output_input)
+    for obj in view_layer.objects:
+        settings = getattr(obj.data, "softshadow", None) if obj.type == "LIGHT" else None
+        if settings is not None and settings.replaces_shadow:
+            compat.set_renderer_shadow(obj.data, True)
+            settings.replaces_shadow = False
+            changes.append("light '%s': the renderer's shadow back on" % obj.name)
+    return changes
