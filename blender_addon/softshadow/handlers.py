@@ -6,7 +6,12 @@ early: it fires before `-f N` sets the frame, so work there would compute the fi
 frame instead.
 
 In the background (`blender -b`) a frame whose passes failed stops Blender with EXIT_FAILED
-before that frame renders (scene setting On Failure); nothing here may raise into Blender."""
+before that frame renders (scene setting On Failure); nothing here may raise into Blender.
+
+Where the handlers run: on the main thread with `blender -b`; on the render thread for F12 and
+Ctrl+F12 in the interface. There they touch Blender data only with Lock Interface on, Blender's
+documented condition for handlers that read and change data during a render (turning the passes
+on sets it); the GUI render test records where each handler ran."""
 import os
 import sys
 import threading
@@ -23,7 +28,7 @@ EXIT_FAILED = 3
 # writing RNA properties is not safe).
 last_report = {"frame": None, "path": "", "problems": [], "chosen": {}, "layers": {}}
 
-# Which thread ran each handler last (read by the GUI render test).
+# Where each handler ran last, and whether the interface was locked (the GUI render test reads it).
 handler_threads = {}
 
 
@@ -41,8 +46,18 @@ def _sync_frame(scene):
               % (scene.frame_current, depsgraph.scene_eval.frame_current))
 
 
+def _data_access_allowed(scene):
+    """Blender data may be read and changed here: on the main thread (always so with `blender
+    -b`), or on the render thread while the interface is locked (Blender's rule for handlers)."""
+    return threading.current_thread() is threading.main_thread() or scene.render.use_lock_interface
+
+
 def _compute(scene):
     """{view layer: (path, problems, chosen, failed lights)}; every failure becomes a problem."""
+    if not _data_access_allowed(scene):
+        return {"": ("", ["the passes were not computed: Render > Lock Interface is off, and this "
+                          "render runs its handlers beside the interface (turn it on, or turn the "
+                          "passes off and on again)"], {}, [])}
     try:
         api.remove_frame_files(scene)
         if not native.available():
@@ -105,7 +120,8 @@ def _record(frame, layers):
 @bpy.app.handlers.persistent
 def on_render_init(scene, *_args):
     """Before any frame: the checks that need no frame (the frame is not set yet here)."""
-    handler_threads["render_init"] = threading.current_thread() is threading.main_thread()
+    handler_threads["render_init"] = {"main_thread": threading.current_thread() is threading.main_thread(),
+                                      "lock_interface": bool(scene.render.use_lock_interface)}
     if not _enabled(scene):
         return
     causes = []
@@ -126,7 +142,9 @@ def on_render_init(scene, *_args):
 
 @bpy.app.handlers.persistent
 def on_render_pre(scene, *_args):
-    handler_threads["render_pre"] = threading.current_thread() is threading.main_thread()
+    handler_threads["render_pre"] = {"main_thread": threading.current_thread() is threading.main_thread(),
+                                     "lock_interface": bool(scene.render.use_lock_interface),
+                                     "frame": scene.frame_current}
     if not _enabled(scene):
         return
     frame = scene.frame_current

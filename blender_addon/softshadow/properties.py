@@ -40,6 +40,13 @@ FAILURE_ITEMS = [
 ]
 
 
+def _enabled_changed(self, context):
+    # In the interface the render handlers run on the render thread; Blender's rule for handlers
+    # that touch data there is a locked interface (bpy.app.handlers, "Note on Altering Data").
+    if self.enabled:
+        self.id_data.render.use_lock_interface = True
+
+
 def _strength_changed(self, context):
     from . import compositor  # (properties register first: no import at module level)
     compositor.apply_strength(context.scene)
@@ -65,9 +72,10 @@ def _pass_set(self, value):
 
 class SoftShadowSceneSettings(bpy.types.PropertyGroup):
     enabled: bpy.props.BoolProperty(
-        name="Soft Shadow Passes", default=False,
+        name="Soft Shadow Passes", default=False, update=_enabled_changed,
         description="Compute the passes before each render of this scene and write them as a "
-                    "multilayer EXR per frame and view layer")
+                    "multilayer EXR per frame and view layer (also locks the interface during "
+                    "renders, as Blender requires of handlers that read and change data)")
     on_failure: bpy.props.EnumProperty(
         name="On Failure", items=FAILURE_ITEMS, default="STOP",
         description="What a render does when a frame's passes cannot be made")
