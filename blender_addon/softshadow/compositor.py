@@ -210,6 +210,13 @@ def _relink(tree, group_node, node, pass_name):
     return chosen, ""
 
 
+def place_between(before, node, output):
+    """Lays `node` out right of `before`, moving the output further right when it is in the way."""
+    node.location = (before.location.x + before.width + 80, before.location.y)
+    if output.location.x < node.location.x + node.width + 80:
+        output.location = (node.location.x + node.width + 80, output.location.y)
+
+
 def setup(scene, exr_path=None):
     """Inserts the darken group just before the final output, keeping whatever fed it (Render
     Layers, or a chain such as Render Layers -> Glare), and adds the passes Image node.
@@ -250,8 +257,8 @@ def setup(scene, exr_path=None):
         for link in list(output_input.links):
             tree.links.remove(link)
         tree.links.new(group_node.outputs["Image"], output_input)
-        group_node.location = (output.location.x - 250, output.location.y)
-        node.location = (group_node.location.x - 300, group_node.location.y - 300)
+        place_between(feeding.node, group_node, output)
+        node.location = (group_node.location.x - 120, group_node.location.y - 480)
         changes.append("inserted '%s' between %s.%s and %s" % (
             GROUP_NODE, feeding.node.name, feeding.name, output.name))
     chosen, problem = _relink(tree, group_node, node, _chosen_pass(scene))

@@ -142,7 +142,7 @@ def setup(scene, view_layer, node):
             group_node.label = "Replace: " + obj.name
             changes.append("added '%s'" % name)
         group_node.node_tree = replace_group()
-        group_node.location = (output.location.x - 250 * (len(used) + 1), output.location.y + 200 - 120 * index)
+        compositor.place_between(previous.node, group_node, output)
         group_node.inputs["Strength"].default_value = scene.softshadow.strength
         _link(tree, previous, group_node.inputs["Image"])
         if light_socket not in layers.outputs:

@@ -14,6 +14,7 @@ sstest.addon()
 folder = sstest.tempdir("shots")
 scene = sstest.standard_scene(320, 240)
 scene.softshadow.output_path = os.path.join(os.path.join(folder, "passes"), "softshadow_####.exr")
+scene.softshadow.enabled = True
 blend = os.path.join(folder, "shots.blend")
 bpy.ops.wm.save_as_mainfile(filepath=blend)
 scripts = os.path.join(folder, "scripts", "addons")
