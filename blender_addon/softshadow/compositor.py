@@ -142,14 +142,12 @@ def expected_passes(scene, view_layer):
     """The main pass names a render will write for the view layer's plainly placed lights (pass
     names are `<light>_<method asked for>`, so they are known before anything is computed)."""
     names = []
-    for obj in view_layer.objects:
+    for obj in scene_export.rendering_objects(view_layer):
         light = obj.data if obj.type == "LIGHT" else None
         settings = getattr(light, "softshadow", None)
         if settings is None or not settings.enabled:
             continue
         if not (compat.light_use_shadow(light) or settings.replaces_shadow):
-            continue
-        if obj.hide_render:
             continue
         names.append(scene_export.pass_name(obj.name, settings.method or "auto"))
     return names

@@ -63,8 +63,8 @@ def lightgroup_name(light_name):
 def _lights(view_layer):
     """The light objects that get a pass (shadow on, or already replaced by ours)."""
     out = []
-    for obj in view_layer.objects:
-        if obj.type != "LIGHT" or obj.hide_render:
+    for obj in scene_export.rendering_objects(view_layer):
+        if obj.type != "LIGHT":
             continue
         settings = getattr(obj.data, "softshadow", None)
         if settings is None or not settings.enabled:

@@ -156,6 +156,12 @@ def _object_visible(obj, mode, view_layer, render_collections):
         return original.visible_get()
 
 
+def rendering_objects(view_layer):
+    """The view layer's own objects that a render includes (instances left aside)."""
+    collections = _render_visible_collections(view_layer)
+    return [obj for obj in view_layer.objects if _object_visible(obj, "RENDER", view_layer, collections)]
+
+
 def _local_mesh_arrays(obj):
     """(vertices (N,3) float32 local, triangles (M,3) uint32) of an evaluated object."""
     mesh = obj.to_mesh()

@@ -137,6 +137,21 @@ def test_missing_sockets_stop_before_any_frame():
     sstest.check(_files(folder, "passes") == ["softshadow_0001.exr"], "nothing computed: %s" % _files(folder, "passes"))
 
 
+def test_a_light_that_does_not_render_needs_no_socket():
+    folder = sstest.tempdir("sockets-hidden")
+    scene, blend = _blend(folder)
+    hidden = bpy.data.collections.new("Off For Render")
+    scene.collection.children.link(hidden)
+    light = sstest.add_light("Hidden Light", location=(2, -2, 5), size=0.3)
+    scene.collection.objects.unlink(light)
+    hidden.objects.link(light)
+    hidden.hide_render = True
+    bpy.ops.wm.save_as_mainfile(filepath=blend)
+    run = sstest.blender_batch(blend, ["-f", "2"], sstest.addon_scripts(folder))
+    sstest.check(run.returncode == 0, "exit %d\n%s" % (run.returncode, run.log[-2000:]))
+    bpy.data.collections.remove(hidden)
+
+
 def test_a_scene_that_did_not_opt_in_computes_nothing():
     folder = sstest.tempdir("optin")
     scene, blend = _blend(folder, enabled=False)
