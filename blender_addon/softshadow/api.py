@@ -117,10 +117,14 @@ def _render_layer(scene, view_layer, depsgraph=None, progress=None):
     return path, result.problems, result.chosen, result.failed_lights
 
 
-def _is_compositor_layer(scene, view_layer):
-    """The passes Image node reads the first view layer that renders (set-up's choice)."""
+def compositor_view_layer(scene):
+    """The view layer whose passes the compositor's Image node reads: the first that renders."""
     layers = rendering_view_layers(scene)
-    return not layers or layers[0] == view_layer
+    return layers[0] if layers else scene.view_layers[0]
+
+
+def _is_compositor_layer(scene, view_layer):
+    return compositor_view_layer(scene) == view_layer
 
 
 def remove_frame_files(scene):

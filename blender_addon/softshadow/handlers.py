@@ -126,12 +126,11 @@ def on_render_init(scene, *_args):
         return
     causes = []
     try:
-        for layer in api.rendering_view_layers(scene)[:1]:
-            missing = compositor.missing_sockets(scene, layer)
-            if missing:
-                causes.append("the compositor's '%s' node has no socket for %s yet: run Set Up "
-                              "Compositor again (and save) before rendering"
-                              % (compositor.IMAGE_NODE, ", ".join(missing)))
+        missing = compositor.missing_sockets(scene, api.compositor_view_layer(scene))
+        if missing:
+            causes.append("the compositor's '%s' node has no socket for %s yet: run Set Up "
+                          "Compositor again (and save) before rendering"
+                          % (compositor.IMAGE_NODE, ", ".join(missing)))
     except Exception as exc:
         causes.append("internal error: %s: %s" % (type(exc).__name__, exc))
     for cause in causes:

@@ -63,20 +63,20 @@ class SOFTSHADOW_OT_setup_compositor(bpy.types.Operator):
 
     def execute(self, context):
         scene = context.scene
-        view_layer = context.view_layer
+        view_layer = api.compositor_view_layer(scene)
         replacing = scene.softshadow.composite == "REPLACE"
         if replacing and replace.problem(scene, view_layer):
             self.report({"ERROR"}, "Soft Shadow: " + replace.problem(scene, view_layer))
             return {"CANCELLED"}
         try:
-            path = api.frame_exr_path(scene)
+            path = api.frame_exr_path(scene, view_layer=view_layer)
             if compositor.missing_sockets(scene, view_layer) or not os.path.exists(path):
                 # The Image node gets its pass sockets from a pass file: make this frame's now,
                 # so a render's first frame finds them (and a saved file carries them).
                 if _library_ready(self):
-                    path, problems, _ = api.render_frame(scene, context.evaluated_depsgraph_get())
+                    path, problems, _ = api.render_frame(scene, view_layer=view_layer)
                     _report_problems(self, problems)
-            path = path or api.frame_exr_path(scene)
+            path = path or api.frame_exr_path(scene, view_layer=view_layer)
             if replacing:
                 node = compositor.image_node(scene, compositor.passes_image(path))
                 changes = replace.setup(scene, view_layer, node)
