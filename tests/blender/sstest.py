@@ -232,12 +232,16 @@ def flat_white_workbench(scene):
     scene.render.image_settings.file_format = "PNG"
 
 
-def blender_batch(blend, args, scripts, env=None, addon=True):
-    """`blender -b blend [--addons softshadow] args...` -> CompletedProcess (stdout+stderr in .log)."""
+def blender_batch(blend, args, scripts, env=None, addon=True, argv=None):
+    """`blender -b blend [--addons softshadow] args...` (or `blender -b argv...`) ->
+    CompletedProcess (stdout+stderr in .log)."""
     import bpy as _bpy
     full_env = dict(os.environ, BLENDER_USER_SCRIPTS=scripts)
     full_env.update(env or {})
-    command = [_bpy.app.binary_path, "-b", blend] + (["--addons", "softshadow"] if addon else []) + list(args)
+    if argv is not None:
+        command = [_bpy.app.binary_path, "-b"] + list(argv)
+    else:
+        command = [_bpy.app.binary_path, "-b", blend] + (["--addons", "softshadow"] if addon else []) + list(args)
     run = subprocess.run(command, capture_output=True, text=True, env=full_env, timeout=900)
     run.log = run.stdout + run.stderr
     return run

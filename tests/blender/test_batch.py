@@ -180,6 +180,54 @@ def test_default_names_follow_the_render_output_for_every_view_layer():
     sstest.check(channels[0].startswith("Second Layer."), "the layer's own name inside: %s" % channels)
 
 
+def _flamenco_tasks(settings):
+    """The tasks the Flamenco job type compiles (node, the job-compiler stand-in)."""
+    import json
+    import subprocess
+    script = os.path.join(sstest.ROOT, "farm", "flamenco", "tests", "compile_job.js")
+    out = subprocess.run(["node", script, json.dumps(settings)], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+def _run_task(task, scripts, env=None):
+    """A task's blender-render command as a Flamenco worker runs it ({blenderArgs}: -b -y)."""
+    params = task["commands"][0]["parameters"]
+    argv = ["-y"] + params["argsBefore"] + [params["blendfile"]] + params["args"]
+    return sstest.blender_batch(None, None, scripts, env=env, argv=argv)
+
+
+def test_flamenco_tasks_run_and_fail_as_a_worker_would():
+    if shutil.which("node") is None:
+        print("   (no node: skipped)")
+        return
+    folder = sstest.tempdir("flamenco")
+    scene, blend = _blend(folder)
+    out = os.path.join(folder, "farm", "shot_####")
+    tasks = _flamenco_tasks({"frames": "2-4", "chunk_size": 2, "render_output_root": folder,
+                             "render_output_path": out, "fail_on_pass_failure": True,
+                             "blendfile": blend, "format": "PNG", "scene": scene.name})
+    sstest.check([t["name"] for t in tasks] == ["render-2-3", "render-4"], "chunks: %s" % tasks)
+    scripts = sstest.addon_scripts(folder)
+    for task in tasks:
+        run = _run_task(task, scripts)
+        sstest.check(run.returncode == 0, "%s: exit %d\n%s" % (task["name"], run.returncode, run.log[-3000:]))
+    frames = sorted(f for f in os.listdir(os.path.join(folder, "farm")) if f.endswith(".png"))
+    sstest.check(frames == ["shot_0002.png", "shot_0003.png", "shot_0004.png"], "frames: %s" % frames)
+    passes = _files(folder, os.path.join("farm", "softshadow"))
+    sstest.check(passes == [], "the file's own template wins over the render output: %s" % passes)
+    sstest.check(_files(folder, "passes") == ["softshadow_%04d.exr" % f for f in (1, 2, 3, 4)],
+                 "the passes of exactly the frames rendered: %s" % _files(folder, "passes"))
+    # A worker whose library is missing: the task fails with exit 3, naming the frame.
+    run = _run_task(tasks[1], scripts, env={"SOFTSHADOW_LIB": os.path.join(folder, "none.so")})
+    sstest.check(run.returncode == 3 and "frame 4" in run.stderr, "failed task: %d\n%s" % (run.returncode, run.log[-2000:]))
+    # A worker without the add-on: the check fails the task before anything renders.
+    os.remove(os.path.join(folder, "farm", "shot_0004.png"))
+    run = _run_task(tasks[1], os.path.join(folder, "no-scripts"))
+    sstest.check(run.returncode == 3 and "not installed or not enabled" in run.log,
+                 "no add-on: exit %d\n%s" % (run.returncode, run.log[-2000:]))
+    sstest.check(not os.path.exists(os.path.join(folder, "farm", "shot_0004.png")), "nothing rendered")
+
+
 def test_output_templates():
     op = ss.output_paths
     sstest.check(op.default_template("/r/shot_###") == "/r/softshadow/shot_{scene}_{view_layer}_###.exr",
