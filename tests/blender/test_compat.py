@@ -97,5 +97,74 @@ def test_group_sockets_both_shapes():
     sstest.check(compat.group_sockets(new, "OUTPUT") == ["Image"], "4.x interface outputs")
 
 
+def test_renderer_shadow_3x_cycles_and_4x_shared():
+    light3 = NS(use_shadow=True, cycles=NS(cast_shadow=True))
+    compat.set_renderer_shadow(light3, False)
+    sstest.check(light3.cycles.cast_shadow is False and light3.use_shadow is True,
+                 "3.x: Cycles' own cast_shadow off, EEVEE's use_shadow (our pass switch) kept")
+    sstest.check(compat.renderer_shadow(light3) is False, "3.x read back")
+    light4 = NS(use_shadow=True, cycles=NS())
+    compat.set_renderer_shadow(light4, False)
+    sstest.check(light4.use_shadow is False and compat.renderer_shadow(light4) is False, "4.0+: use_shadow")
+
+
+class FakeNodes(list):
+    def __init__(self, known):
+        super().__init__()
+        self.known = known
+
+    def new(self, kind):
+        if kind not in self.known:
+            raise RuntimeError("Node type %s undefined" % kind)
+        node = self.known[kind]()
+        self.append(node)
+        return node
+
+
+def _socket(identifier, name):
+    return NS(identifier=identifier, name=name, default_value=None)
+
+
+def _mix_rgb():
+    return NS(bl_idname="CompositorNodeMixRGB", blend_type="MIX",
+              inputs=[_socket("Fac", "Fac"), _socket("Image", "Image"), _socket("Image_001", "Image")],
+              outputs=[_socket("Image", "Image")])
+
+
+def _shader_mix():
+    ids = ["Factor_Float", "Factor_Vector", "A_Float", "B_Float", "A_Vector", "B_Vector", "A_Color", "B_Color"]
+    return NS(bl_idname="ShaderNodeMix", data_type="FLOAT", blend_type="MIX",
+              inputs=[_socket(i, i.split("_")[0]) for i in ids],
+              outputs=[_socket(i, "Result") for i in ("Result_Float", "Result_Vector", "Result_Color")])
+
+
+def test_mix_node_up_to_4x_and_5x():
+    node, fac, a, b, out = compat.new_mix(FakeNodes({"CompositorNodeMixRGB": _mix_rgb}), "MULTIPLY", 0.5)
+    sstest.check(node.bl_idname == "CompositorNodeMixRGB" and node.blend_type == "MULTIPLY", "3.x/4.x MixRGB")
+    sstest.check(fac.default_value == 0.5 and a is node.inputs[1] and b is node.inputs[2], "MixRGB sockets")
+    node, fac, a, b, out = compat.new_mix(FakeNodes({"ShaderNodeMix": _shader_mix}), "ADD")
+    sstest.check(node.data_type == "RGBA" and node.blend_type == "ADD", "5.x: ShaderNodeMix in RGBA")
+    sstest.check((fac.identifier, a.identifier, b.identifier, out.identifier) ==
+                 ("Factor_Float", "A_Color", "B_Color", "Result_Color"), "5.x colour sockets")
+
+
+def test_compositor_output_composite_or_group_output():
+    composite = NS(bl_idname="CompositorNodeComposite", inputs=["image"])
+    tree = NS(nodes=[NS(bl_idname="CompositorNodeRLayers", inputs=[]), composite])
+    sstest.check(compat.compositor_output(tree) == (composite, "image"), "up to 4.x: Composite")
+    output = NS(bl_idname="NodeGroupOutput", is_active_output=True, inputs=["image"])
+    tree = NS(nodes=[NS(bl_idname="NodeGroupOutput", is_active_output=False, inputs=["x"]), output])
+    sstest.check(compat.compositor_output(tree) == (output, "image"), "5.x: the active Group Output")
+    sstest.check(compat.compositor_output(NS(nodes=[])) == (None, None), "none")
+
+
+def test_eevee_engine_id():
+    def render(ids):
+        items = [NS(identifier=i) for i in ids]
+        return NS(bl_rna=NS(properties={"engine": NS(enum_items=items)}))
+    sstest.check(compat.eevee_engine_id(render(["BLENDER_EEVEE", "CYCLES"])) == "BLENDER_EEVEE", "3.x and 5.x")
+    sstest.check(compat.eevee_engine_id(render(["BLENDER_EEVEE_NEXT", "CYCLES"])) == "BLENDER_EEVEE_NEXT", "4.2-4.x")
+
+
 if __name__ == "__main__":
     sstest.run(dict(globals()))
