@@ -12,7 +12,7 @@ VERSION := $(shell sed -n 's/^project.softshadow VERSION \([0-9.]*\).*/\1/p' CMa
 DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-tools libstb-dev patchelf \
   libopenexr-dev libglm-dev libembree-dev libegl-dev libegl1-mesa-dev libosmesa6-dev \
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
-  blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev
+  blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev nodejs
 
 .PHONY: deps build demo test test-native test-asan test-blender test-farm bench addon clean
 
