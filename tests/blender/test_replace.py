@@ -93,6 +93,38 @@ def test_replace_matches_cycles_true_shadows():
     sstest.check(not [n for n in tree.nodes if n.name.startswith("SoftShadow Replace")], "Replace groups removed")
 
 
+def test_replace_chains_one_group_per_light_after_the_artists_chain():
+    folder = sstest.tempdir("replace-chain")
+    scene = _cycles_scene(folder)
+    scene.objects["Key"].data.softshadow.method = "shadow_map"
+    fill = sstest.add_light("Fill.Light", location=(2, 2, 5), size=0.3)
+    fill.data.softshadow.method = "shadow_map"
+    plain = sstest.add_light("NoPass", location=(-2, 2, 5), size=0.3)
+    plain.data.softshadow.enabled = False
+    scene.use_nodes = True
+    tree = scene.node_tree
+    layers = next(n for n in tree.nodes if n.bl_idname == "CompositorNodeRLayers")
+    composite = next(n for n in tree.nodes if n.bl_idname == "CompositorNodeComposite")
+    glare = tree.nodes.new("CompositorNodeGlare")
+    tree.links.new(layers.outputs["Image"], glare.inputs["Image"])
+    tree.links.new(glare.outputs["Image"], composite.inputs["Image"])
+    scene.softshadow.composite = "REPLACE"
+    sstest.check(bpy.ops.softshadow.setup_compositor() == {"FINISHED"}, "set-up")
+    first, second = tree.nodes["SoftShadow Replace Key"], tree.nodes["SoftShadow Replace Fill.Light"]
+    sstest.check(first.inputs["Image"].links[0].from_node == glare, "the chain starts after Glare")
+    sstest.check(second.inputs["Image"].links[0].from_node == first, "one group per light, chained")
+    sstest.check(composite.inputs["Image"].links[0].from_node == second, "the last feeds the Composite")
+    sstest.check(second.inputs["Light"].links[0].from_socket.name == "Combined_ss_Fill_Light", "group pass")
+    sstest.check(second.inputs["Visibility"].links[0].from_socket.name == "Fill_Light_shadow_map", "pass")
+    sstest.check(plain.lightgroup == "" and ss.compat.renderer_shadow(plain.data), "a light without a pass is left alone")
+    again = bpy.ops.softshadow.setup_compositor()
+    sstest.check(again == {"FINISHED"} and len([n for n in tree.nodes if n.name.startswith("SoftShadow Replace")]) == 2,
+                 "a second set-up piles nothing up")
+    scene.softshadow.strength = 0.5
+    sstest.check(first.inputs["Strength"].default_value == 0.5 == second.inputs["Strength"].default_value,
+                 "Strength follows the slider on every group")
+
+
 def test_replace_refuses_eevee():
     scene = sstest.standard_scene(32, 24)
     scene.render.engine = ss.compat.eevee_engine_id(scene.render)
