@@ -4,7 +4,7 @@ import os
 
 import bpy
 
-from . import compositor, native, output_paths, passes, scene_export
+from . import compositor, native, output_paths, passes, replace, scene_export
 
 
 def _evaluated_depsgraph(scene, depsgraph=None):
@@ -46,7 +46,8 @@ def rendering_view_layers(scene):
     if scene.render.use_single_layer:
         active = bpy.context.view_layer if bpy.context.scene == scene else scene.view_layers[0]
         return [active]
-    return [layer for layer in scene.view_layers if layer.use]
+    # (EEVEE Replace's helper layers render too, but need no passes of their own)
+    return [layer for layer in scene.view_layers if layer.use and not replace.is_helper_layer(layer)]
 
 
 def pass_file_template(scene):

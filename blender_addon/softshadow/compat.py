@@ -144,20 +144,23 @@ def new_mix(nodes, blend_type, factor=1.0):
     return (node,) + sockets
 
 
-def set_renderer_shadow(light, on):
-    """Switches the renderer's own shadow of a light: Cycles' `cast_shadow` up to 3.6, the one
-    `use_shadow` from 4.0 on (Cycles and EEVEE share it)."""
+def _cycles_own_shadow(light, engine):
     cycles = getattr(light, "cycles", None)
-    if cycles is not None and hasattr(cycles, "cast_shadow"):
-        cycles.cast_shadow = on
+    return engine == "CYCLES" and cycles is not None and hasattr(cycles, "cast_shadow")
+
+
+def set_renderer_shadow(light, on, engine="CYCLES"):
+    """Switches a render engine's own shadow of a light: Cycles' `cast_shadow` up to 3.6, else
+    `use_shadow` (EEVEE's in every version; shared with Cycles from 4.0 on)."""
+    if _cycles_own_shadow(light, engine):
+        light.cycles.cast_shadow = on
     else:
         light.use_shadow = on
 
 
-def renderer_shadow(light):
-    cycles = getattr(light, "cycles", None)
-    if cycles is not None and hasattr(cycles, "cast_shadow"):
-        return bool(cycles.cast_shadow)
+def renderer_shadow(light, engine="CYCLES"):
+    if _cycles_own_shadow(light, engine):
+        return bool(light.cycles.cast_shadow)
     return bool(light.use_shadow)
 
 

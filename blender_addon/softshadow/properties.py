@@ -29,6 +29,10 @@ class SoftShadowLightSettings(bpy.types.PropertyGroup):
         name="Pass Replaces the Shadow", default=False, options={"HIDDEN"},
         description="Set by the Replace composite: the renderer's shadow of this light is off "
                     "and the pass puts the shadow back")
+    home_collections: bpy.props.StringProperty(
+        name="Collections Before Replace", default="", options={"HIDDEN"},
+        description="EEVEE Replace moves the light into a collection of its own; these are the "
+                    "collections it goes back to (names joined by ';')")
 
 
 FAILURE_ITEMS = [
@@ -90,8 +94,9 @@ class SoftShadowSceneSettings(bpy.types.PropertyGroup):
         name="Composite", default="DARKEN", items=[
             ("DARKEN", "Darken", "Multiply the final image by one pass (a quick look: the renderer's "
              "own shadow stays, so that light's shadow is darkened twice)"),
-            ("REPLACE", "Replace", "Cycles: each light's own shadow is switched off, its light group "
-             "is multiplied by its pass and the lights are summed back"),
+            ("REPLACE", "Replace", "Each light's own shadow is switched off in the renderer, its "
+             "contribution (Cycles: a light group; EEVEE: a view layer without it) is multiplied "
+             "by its pass and summed back"),
         ], description="How Set Up Compositor uses the passes")
     compositor_pass_name: bpy.props.StringProperty(name="Darken By (name)", default="",
                                                    options={"HIDDEN"})

@@ -2,12 +2,18 @@
 # group, rendered without the renderer's shadow, multiplied by its pass, and summed back.
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Image + Σ_L Light_L × (mix(1, V_L, strength) − 1): the beauty holds every light unshadowed
-(their shadows are off), so taking a light's group pass out and putting it back times V gives
+(their shadows are off), so taking a light's contribution out and putting it back times V gives
 each light the pass's shadow, and everything else (other lights, world, emission) as rendered.
 
-Set-up changes the file: the lights' renderer shadows go off (each marked `replaces_shadow`, so
-their passes are still computed) and they join light groups `ss_<light>`; it reports each change.
-EEVEE has no light groups in the supported versions: Replace refuses it and says to use Darken."""
+How Light_L is isolated:
+- Cycles: a light group `ss_<light>` (Render Layers output `Combined_ss_<light>`).
+- EEVEE has no light groups: the light moves into a collection of its own, excluded from a view
+  layer `SoftShadow without <light>`, and Light_L = Image − that layer's Image (one more EEVEE
+  render of the view layer per light).
+
+Set-up changes the file (lights' renderer shadows off, each marked `replaces_shadow` so their
+passes are still computed; light groups or collections and view layers) and reports each change;
+setting up Darken again undoes them."""
 import re
 
 import bpy
@@ -69,7 +75,7 @@ def _lights(view_layer):
         settings = getattr(obj.data, "softshadow", None)
         if settings is None or not settings.enabled:
             continue
-        if compat.renderer_shadow(obj.data) or settings.replaces_shadow:
+        if compat.light_use_shadow(obj.data) or compat.renderer_shadow(obj.data) or settings.replaces_shadow:
             out.append(obj)
     return out
 
@@ -93,14 +99,90 @@ def _artist_feed(output_input):
     return socket
 
 
+WITHOUT_PREFIX = "SoftShadow without "
+LIGHT_PREFIX = "SoftShadow Light "
+LAYERS_PREFIX = "SoftShadow Render Layers "
+COLLECTION_PREFIX = "SoftShadow "
+
+
 def problem(scene, view_layer):
     """Why Replace cannot be set up here, or ''."""
-    if scene.render.engine != "CYCLES":
-        return ("Replace needs Cycles light groups (the render engine is %s): use Darken there"
-                % scene.render.engine)
-    if not compat.supports_lightgroups(view_layer):
-        return "Replace needs light groups (Blender 3.2 or newer): use Darken"
-    return ""
+    engine = scene.render.engine
+    if engine == "CYCLES":
+        if not compat.supports_lightgroups(view_layer):
+            return "Replace needs Cycles light groups (Blender 3.2 or newer): use Darken"
+        return ""
+    if engine == compat.eevee_engine_id(scene.render):
+        return ""
+    return "Replace works with Cycles and EEVEE (the render engine is %s): use Darken there" % engine
+
+
+def is_helper_layer(view_layer):
+    """A view layer EEVEE Replace made (it needs no passes of its own)."""
+    return view_layer.name.startswith(WITHOUT_PREFIX)
+
+
+def _copy_layer_flags(source, target):
+    """The main view layer's collection exclusions, holdouts and indirect-only flags."""
+    for child in source.children:
+        other = target.children.get(child.name)
+        if other is None:
+            continue
+        other.exclude = child.exclude
+        other.holdout = child.holdout
+        other.indirect_only = child.indirect_only
+        _copy_layer_flags(child, other)
+
+
+def _eevee_light(scene, view_layer, obj, tree, layers, changes):
+    """Light_L for EEVEE: Image − the Image of a view layer without the light."""
+    name = COLLECTION_PREFIX + obj.name
+    collection = bpy.data.collections.get(name)
+    if collection is None:
+        collection = bpy.data.collections.new(name)
+        scene.collection.children.link(collection)
+    if list(obj.users_collection) != [collection]:
+        settings = obj.data.softshadow
+        settings.home_collections = ";".join(c.name for c in obj.users_collection if c != collection)
+        for other in list(obj.users_collection):
+            if other != collection:
+                other.objects.unlink(obj)
+        if obj.name not in collection.objects:
+            collection.objects.link(obj)
+        changes.append("light '%s' moved into collection '%s'" % (obj.name, name))
+    layer_name = WITHOUT_PREFIX + obj.name
+    without = scene.view_layers.get(layer_name)
+    if without is None:
+        without = scene.view_layers.new(layer_name)
+        changes.append("added view layer '%s'" % layer_name)
+    _copy_layer_flags(view_layer.layer_collection, without.layer_collection)
+    without.layer_collection.children[name].exclude = True
+    for other in scene.view_layers:  # the light stays in every other layer
+        if other != without and name in other.layer_collection.children and not is_helper_layer(other):
+            other.layer_collection.children[name].exclude = False
+    rl_name = LAYERS_PREFIX + layer_name
+    rl = tree.nodes.get(rl_name)
+    if rl is None:
+        rl = tree.nodes.new("CompositorNodeRLayers")
+        rl.name = rl_name
+    rl.layer = layer_name
+    rl.location = (layers.location.x, layers.location.y - 350 - 300 * len([n for n in tree.nodes if n.name.startswith(LAYERS_PREFIX)]))
+    sub_name = LIGHT_PREFIX + obj.name
+    sub = tree.nodes.get(sub_name)
+    if sub is None:
+        sub, fac, a, b, out = compat.new_mix(tree.nodes, "SUBTRACT")
+        sub.name = sub_name
+        sub.label = "Light: " + obj.name
+    else:
+        fac, a, b, out = sub.inputs[0], sub.inputs[1], sub.inputs[2], sub.outputs[0]
+        if sub.bl_idname == "ShaderNodeMix":
+            by_id = {x.identifier: x for x in sub.inputs}
+            a, b = by_id["A_Color"], by_id["B_Color"]
+            out = next(x for x in sub.outputs if x.identifier == "Result_Color")
+    sub.location = (rl.location.x + rl.width + 60, rl.location.y)
+    _link(tree, layers.outputs["Image"], a)
+    _link(tree, rl.outputs["Image"], b)
+    return out
 
 
 def setup(scene, view_layer, node):
@@ -122,12 +204,16 @@ def setup(scene, view_layer, node):
     previous, used = feed, set()
     for index, obj in enumerate(_lights(view_layer)):
         settings = obj.data.softshadow
-        group_name = lightgroup_name(obj.name)
-        if obj.lightgroup != group_name:
-            changes.append("light '%s' in light group %s" % (obj.name, group_name))
-        light_socket = compat.lightgroup_pass(view_layer, obj, group_name)
-        if compat.renderer_shadow(obj.data):
-            compat.set_renderer_shadow(obj.data, False)
+        engine = scene.render.engine
+        if engine == "CYCLES":
+            group_name = lightgroup_name(obj.name)
+            if obj.lightgroup != group_name:
+                changes.append("light '%s' in light group %s" % (obj.name, group_name))
+            light_output = compat.lightgroup_pass(view_layer, obj, group_name)  # (an output name)
+        else:
+            light_output = _eevee_light(scene, view_layer, obj, tree, layers, changes)
+        if compat.renderer_shadow(obj.data, engine):
+            compat.set_renderer_shadow(obj.data, False, engine)
             changes.append("light '%s': the renderer's shadow off (the pass replaces it)" % obj.name)
         settings.replaces_shadow = True
         pass_name = scene_export.pass_name(obj.name, settings.method or "auto")
@@ -145,10 +231,13 @@ def setup(scene, view_layer, node):
         compositor.place_between(previous.node, group_node, output)
         group_node.inputs["Strength"].default_value = scene.softshadow.strength
         _link(tree, previous, group_node.inputs["Image"])
-        if light_socket not in layers.outputs:
-            changes.append("light '%s': Render Layers has no %s output" % (obj.name, light_socket))
+        if isinstance(light_output, str):
+            # (Render Layers lists a new light group's output once the tree has updated)
+            light_output = layers.outputs.get(light_output)
+        if light_output is None:
+            changes.append("light '%s': Render Layers has no output for its light group" % obj.name)
         else:
-            _link(tree, layers.outputs[light_socket], group_node.inputs["Light"])
+            _link(tree, light_output, group_node.inputs["Light"])
         _link(tree, node.outputs[pass_name], group_node.inputs["Visibility"])
         previous = group_node.outputs["Image"]
         used.add(name)
@@ -170,13 +259,14 @@ def _link(tree, from_socket, to_socket):
 
 
 def teardown(scene, view_layer):
-    """Back to the renderer's shadows and no Replace groups (when Darken is set up instead)."""
+    """Back to the renderer's shadows and no Replace nodes, light groups stay (harmless), EEVEE's
+    lights go back to their collections and its view layers go (when Darken is set up instead)."""
     changes = []
     tree = compat.compositor_tree(scene, create=False)
     if tree is not None:
         output, output_input = compat.compositor_output(tree)
         feed = _artist_feed(output_input) if output is not None else None
-        ours = [n for n in tree.nodes if n.name.startswith(NODE_PREFIX)]
+        ours = [n for n in tree.nodes if n.name.startswith((NODE_PREFIX, LIGHT_PREFIX, LAYERS_PREFIX))]
         for node in ours:
             changes.append("removed '%s'" % node.name)
             tree.nodes.remove(node)
@@ -184,8 +274,26 @@ def teardown(scene, view_layer):
             _link(tree, feed, output_input)
     for obj in view_layer.objects:
         settings = getattr(obj.data, "softshadow", None) if obj.type == "LIGHT" else None
-        if settings is not None and settings.replaces_shadow:
-            compat.set_renderer_shadow(obj.data, True)
+        if settings is None:
+            continue
+        if settings.replaces_shadow:
+            for engine in ("CYCLES", compat.eevee_engine_id(scene.render)):
+                compat.set_renderer_shadow(obj.data, True, engine)
             settings.replaces_shadow = False
             changes.append("light '%s': the renderer's shadow back on" % obj.name)
+        if settings.home_collections:
+            homes = [bpy.data.collections.get(n) or (scene.collection if n == scene.collection.name else None)
+                     for n in settings.home_collections.split(";")]
+            for home in [h for h in homes if h is not None]:
+                if obj.name not in home.objects:
+                    home.objects.link(obj)
+            for ours in [c for c in obj.users_collection if c.name == COLLECTION_PREFIX + obj.name]:
+                ours.objects.unlink(obj)
+                if not ours.objects:
+                    bpy.data.collections.remove(ours)
+            settings.home_collections = ""
+            changes.append("light '%s' back in its collections" % obj.name)
+    for layer in [l for l in scene.view_layers if is_helper_layer(l)]:
+        changes.append("removed view layer '%s'" % layer.name)
+        scene.view_layers.remove(layer)
     return changes

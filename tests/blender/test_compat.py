@@ -106,6 +106,9 @@ def test_renderer_shadow_3x_cycles_and_4x_shared():
     light4 = NS(use_shadow=True, cycles=NS())
     compat.set_renderer_shadow(light4, False)
     sstest.check(light4.use_shadow is False and compat.renderer_shadow(light4) is False, "4.0+: use_shadow")
+    eevee3 = NS(use_shadow=True, cycles=NS(cast_shadow=True))
+    compat.set_renderer_shadow(eevee3, False, engine="BLENDER_EEVEE")
+    sstest.check(eevee3.use_shadow is False and eevee3.cycles.cast_shadow is True, "EEVEE: use_shadow always")
 
 
 class FakeNodes(list):

@@ -1,5 +1,6 @@
-# Does the Replace composite (Cycles: the light's own shadow off, its light group times its pass,
-# summed back) match Cycles' true shadows, where Darken darkens the shadow twice?
+# Does the Replace composite (the light's own shadow off, its contribution times its pass, summed
+# back; Cycles: light groups, EEVEE: a view layer without the light) match the true shadows, where
+# Darken darkens the shadow twice?
 # SPDX-License-Identifier: GPL-3.0-or-later
 import os
 import sys
@@ -40,7 +41,8 @@ def _cycles_scene(folder):
 
 
 def _render(scene, path, samples):
-    scene.cycles.samples = samples
+    if samples:
+        scene.cycles.samples = samples
     scene.render.filepath = path
     bpy.ops.render.render(write_still=True)
     return sstest.exr_rgb(path + ".exr")
@@ -125,15 +127,53 @@ def test_replace_chains_one_group_per_light_after_the_artists_chain():
                  "Strength follows the slider on every group")
 
 
-def test_replace_refuses_eevee():
-    scene = sstest.standard_scene(32, 24)
+def test_replace_in_eevee_through_a_view_layer_without_the_light():
+    folder = sstest.tempdir("replace-eevee")
+    scene = _cycles_scene(folder)
     scene.render.engine = ss.compat.eevee_engine_id(scene.render)
+    scene.eevee.taa_render_samples = 16
+    key = scene.objects["Key"]
+    key.data.softshadow.samples = 64
+    scene.use_nodes = True
+    truth = _render(scene, os.path.join(folder, "eevee-truth"), 0)
+    scene.softshadow.composite = "REPLACE"
+    sstest.check(bpy.ops.softshadow.setup_compositor() == {"FINISHED"}, "set-up")
+    without = scene.view_layers.get("SoftShadow without Key")
+    sstest.check(without is not None and without.layer_collection.children["SoftShadow Key"].exclude,
+                 "a view layer without the light")
+    sstest.check([c.name for c in key.users_collection] == ["SoftShadow Key"], "the light in its own collection")
+    sstest.check(not key.data.use_shadow, "EEVEE's shadow of the light is off")
+    replaced = _render(scene, os.path.join(folder, "eevee-replace"), 0)
+    sstest.check(sorted(os.listdir(os.path.join(folder, "passes"))) == ["softshadow_0001.exr"],
+                 "the helper view layer gets no passes of its own")
+    v = sstest.exr_channel(os.path.join(folder, "passes", "softshadow_0001.exr"), "ViewLayer.Key_reference.V")
+    lum = lambda img: img.mean(axis=2)  # noqa: E731
+    lit_level = np.percentile(lum(truth), 95)
+    lit, umbra = v > 0.999, v < 0.01
+    err_lit = np.abs(lum(replaced) - lum(truth))[lit].mean() / lit_level
+    umbra_level = lum(replaced)[umbra].mean() / lit_level
+    print("   EEVEE: lit |replace - EEVEE| %.4f, umbra %.4f of the lit level" % (err_lit, umbra_level))
+    sstest.check(lit.sum() > 100 and umbra.sum() > 20, "lit and umbra pixels: %d %d" % (lit.sum(), umbra.sum()))
+    sstest.check(err_lit < 0.01, "lit: as EEVEE renders it: %.4f" % err_lit)
+    # EEVEE renders this light without its shadow here, so the umbra is only dark if the composite
+    # took the light's contribution out (the world is black: nothing else lights it).
+    sstest.check(umbra_level < 0.01, "umbra: the light's contribution removed (black world): %.4f" % umbra_level)
+    # Darken again: the light goes back where it was, the helper layer goes.
+    scene.softshadow.composite = "DARKEN"
+    sstest.check(bpy.ops.softshadow.setup_compositor() == {"FINISHED"}, "darken again")
+    sstest.check([c.name for c in key.users_collection] == [scene.collection.name], "back in its collection")
+    sstest.check("SoftShadow without Key" not in scene.view_layers and key.data.use_shadow, "undone")
+
+
+def test_replace_refuses_workbench():
+    scene = sstest.standard_scene(32, 24)
+    scene.render.engine = "BLENDER_WORKBENCH"
     scene.softshadow.composite = "REPLACE"
     try:
         bpy.ops.softshadow.setup_compositor()
-        sstest.check(False, "Replace must refuse EEVEE")
+        sstest.check(False, "Replace must refuse Workbench")
     except RuntimeError as exc:
-        sstest.check("Cycles light groups" in str(exc) and "Darken" in str(exc), "says why: %s" % exc)
+        sstest.check("Cycles and EEVEE" in str(exc) and "Darken" in str(exc), "says why: %s" % exc)
 
 
 if __name__ == "__main__":
