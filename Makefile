@@ -12,9 +12,9 @@ VERSION := $(shell sed -n 's/^project.softshadow VERSION \([0-9.]*\).*/\1/p' CMa
 DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-tools libstb-dev patchelf \
   libopenexr-dev libglm-dev libembree-dev libegl-dev libegl1-mesa-dev libosmesa6-dev \
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
-  blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev nodejs
+  blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev mmdebstrap nodejs
 
-.PHONY: deps build demo test test-native test-asan test-blender test-farm bench addon clean
+.PHONY: deps build demo test test-native test-asan test-blender test-matrix test-farm bench addon clean
 
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
@@ -31,7 +31,7 @@ demo: build
 	bash examples/run_demo.sh $(BUILD)
 
 test: build
-	$(MAKE) --no-print-directory test-native test-blender test-farm test-asan
+	$(MAKE) --no-print-directory test-native test-blender test-farm test-matrix test-asan
 
 test-native:
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -42,6 +42,11 @@ test-farm:
 
 test-blender:
 	bash tests/blender/run.sh $(BUILD)
+
+# The zip in every supported Blender: the host's 3.4 and Debian trixie (4.3) / sid (5.x) root file
+# systems holding Blender and GL runtime only (built once with mmdebstrap, cached; needs root).
+test-matrix: addon
+	bash tests/matrix/run.sh dist/softshadow-$(VERSION).zip
 
 # The native tests once more under AddressSanitizer + UndefinedBehaviorSanitizer.
 test-asan: deps

@@ -3,11 +3,15 @@
 """Version differences, written against duck-typed objects so they test without Blender.
 
 - 5.0 moved the compositor tree from `scene.node_tree` (with `scene.use_nodes`) to a node
-  group assigned to `scene.compositing_node_group`.
+  group assigned to `scene.compositing_node_group`; its final image goes to the group's Group
+  Output (an `Image` output socket) instead of a Composite node, and the compositor's MixRGB
+  became the shared `ShaderNodeMix` (sockets by identifier: Factor_Float, A_Color, B_Color).
+- EEVEE's engine id is BLENDER_EEVEE in 3.x and 5.x, BLENDER_EEVEE_NEXT in 4.2-4.5.
 - 4.0 removed `bgl`: the preview draws with the `gpu` module only (never import bgl).
 - Point/spot/area radius is `shadow_soft_size` in 3.x and 4.x (`radius` in the UI).
 - 3.0+ objects carry `visible_shadow` / `visible_camera`; older files had `cycles_visibility`.
-- Materials lost `shadow_method` in 4.2 (EEVEE Next); objects gained `visible_shadow` use there.
+- Materials' EEVEE `shadow_method` went with EEVEE Next (4.2): from then on an object casts
+  in both engines when its `visible_shadow` says so.
 """
 
 
@@ -29,6 +33,51 @@ def compositor_tree(scene, create=False, bpy_data=None):
     if create and hasattr(scene, "use_nodes") and not scene.use_nodes:
         scene.use_nodes = True
     return getattr(scene, "node_tree", None)
+
+
+def _first(tree, bl_idname):
+    return next((n for n in tree.nodes if n.bl_idname == bl_idname), None)
+
+
+def compositor_output(tree, types):
+    """(node, socket) that takes the compositor's final image: the Composite node before 5.0,
+    the tree's Group Output after (its `Image` output socket made when missing). `types` is
+    bpy.types. Returns (node, created)."""
+    if hasattr(types, "CompositorNodeComposite"):
+        node = _first(tree, "CompositorNodeComposite")
+        created = node is None
+        if created:
+            node = tree.nodes.new("CompositorNodeComposite")
+        return node, created
+    if "Image" not in group_sockets(tree, "OUTPUT"):
+        add_group_socket(tree, "OUTPUT", "NodeSocketColor", "Image")
+    node = _first(tree, "NodeGroupOutput")
+    created = node is None
+    if created:
+        node = tree.nodes.new("NodeGroupOutput")
+    return node, created
+
+
+def new_color_mix(nodes, types, blend_type):
+    """A colour mix node in a compositor tree: (node, factor, a, b, result) sockets."""
+    if hasattr(types, "CompositorNodeMixRGB"):
+        node = nodes.new("CompositorNodeMixRGB")
+        node.blend_type = blend_type
+        return node, node.inputs[0], node.inputs[1], node.inputs[2], node.outputs[0]
+    node = nodes.new("ShaderNodeMix")
+    node.data_type = "RGBA"
+    node.blend_type = blend_type
+
+    def socket(sockets, identifier):
+        return next(s for s in sockets if s.identifier == identifier)
+    return (node, socket(node.inputs, "Factor_Float"), socket(node.inputs, "A_Color"),
+            socket(node.inputs, "B_Color"), socket(node.outputs, "Result_Color"))
+
+
+def eevee_engine_id(render):
+    """The identifier of EEVEE among `render.engine`'s choices (scene.render)."""
+    items = {item.identifier for item in render.bl_rna.properties["engine"].enum_items}
+    return "BLENDER_EEVEE_NEXT" if "BLENDER_EEVEE_NEXT" in items else "BLENDER_EEVEE"
 
 
 def has_bgl(app):
@@ -101,49 +150,6 @@ def add_group_socket(group, in_out, socket_type, name):
     return sockets.new(socket_type, name)
 
 
-def compositor_output(tree):
-    """(the node that makes the final composite, its image input), or (None, None): the
-    Composite node up to 4.x, the Group Output of the compositing node group in 5.0+."""
-    for node in tree.nodes:
-        if node.bl_idname == "CompositorNodeComposite":
-            return node, node.inputs[0]
-    for node in tree.nodes:
-        if node.bl_idname == "NodeGroupOutput" and getattr(node, "is_active_output", True) and node.inputs:
-            return node, node.inputs[0]
-    return None, None
-
-
-def new_compositor_output(tree):
-    """Adds the final output node: Composite where it exists, else (5.0+) a Group Output with an
-    Image socket on the tree's interface."""
-    try:
-        node = tree.nodes.new("CompositorNodeComposite")
-        return node, node.inputs[0]
-    except RuntimeError:
-        if "Image" not in group_sockets(tree, "OUTPUT"):
-            add_group_socket(tree, "OUTPUT", "NodeSocketColor", "Image")
-        node = tree.nodes.new("NodeGroupOutput")
-        return node, node.inputs["Image"]
-
-
-def new_mix(nodes, blend_type, factor=1.0):
-    """A colour mix node in a compositor tree -> (node, factor input, A input, B input, output).
-    CompositorNodeMixRGB up to 4.x; 5.0 compositor trees take the shared ShaderNodeMix (RGBA)."""
-    try:
-        node = nodes.new("CompositorNodeMixRGB")
-        node.blend_type = blend_type
-        sockets = node.inputs[0], node.inputs[1], node.inputs[2], node.outputs[0]
-    except RuntimeError:
-        node = nodes.new("ShaderNodeMix")
-        node.data_type = "RGBA"
-        node.blend_type = blend_type
-        by_id = {s.identifier: s for s in node.inputs}
-        out = next(s for s in node.outputs if s.identifier == "Result_Color")
-        sockets = by_id["Factor_Float"], by_id["A_Color"], by_id["B_Color"], out
-    sockets[0].default_value = factor
-    return (node,) + sockets
-
-
 def _cycles_own_shadow(light, engine):
     cycles = getattr(light, "cycles", None)
     return engine == "CYCLES" and cycles is not None and hasattr(cycles, "cast_shadow")
@@ -176,8 +182,3 @@ def lightgroup_pass(view_layer, obj, name):
 def supports_lightgroups(view_layer):
     return hasattr(view_layer, "lightgroups")
 
-
-def eevee_engine_id(render):
-    """EEVEE's engine id: BLENDER_EEVEE_NEXT in 4.2-4.x, BLENDER_EEVEE before and from 5.0."""
-    ids = {item.identifier for item in render.bl_rna.properties["engine"].enum_items}
-    return "BLENDER_EEVEE_NEXT" if "BLENDER_EEVEE_NEXT" in ids else "BLENDER_EEVEE"

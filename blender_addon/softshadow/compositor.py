@@ -81,18 +81,19 @@ def darken_group():
     inputs.location = (-400, 0)
     outputs = nodes.new("NodeGroupOutput")
     outputs.location = (400, 0)
-    factor, f_fac, f_a, f_b, f_out = compat.new_mix(nodes, "MIX")
+    factor, strength_in, lit_in, visibility_in, factor_out = compat.new_color_mix(nodes, bpy.types, "MIX")
     factor.name = "Shadow Factor"
-    f_a.default_value = (1.0, 1.0, 1.0, 1.0)
+    lit_in.default_value = (1.0, 1.0, 1.0, 1.0)
     factor.location = (-100, -150)
-    multiply, m_fac, m_a, m_b, m_out = compat.new_mix(nodes, "MULTIPLY")
+    multiply, one_in, image_in, shadow_in, image_out = compat.new_color_mix(nodes, bpy.types, "MULTIPLY")
     multiply.name = "Darken"
+    one_in.default_value = 1.0
     multiply.location = (150, 0)
-    links.new(inputs.outputs["Strength"], f_fac)
-    links.new(inputs.outputs["Visibility"], f_b)
-    links.new(inputs.outputs["Image"], m_a)
-    links.new(f_out, m_b)
-    links.new(m_out, outputs.inputs["Image"])
+    links.new(inputs.outputs["Strength"], strength_in)
+    links.new(inputs.outputs["Visibility"], visibility_in)
+    links.new(inputs.outputs["Image"], image_in)
+    links.new(factor_out, shadow_in)
+    links.new(image_out, outputs.inputs["Image"])
     return group
 
 
@@ -215,6 +216,15 @@ def place_between(before, node, output):
         output.location = (node.location.x + node.width + 80, output.location.y)
 
 
+def final_output(scene):
+    """The node that takes the compositor's final image (Composite, or Group Output in 5.0+)."""
+    tree = _tree(scene)
+    node, created = compat.compositor_output(tree, bpy.types)
+    if created:
+        node.location = (400, 100)
+    return node
+
+
 def setup(scene, exr_path=None):
     """Inserts the darken group just before the final output, keeping whatever fed it (Render
     Layers, or a chain such as Render Layers -> Glare), and adds the passes Image node.
@@ -226,11 +236,11 @@ def setup(scene, exr_path=None):
     node = image_node(scene, image)
     if not had_image_node:
         changes.append("added the Image node '%s'" % IMAGE_NODE)
-    output, output_input = compat.compositor_output(tree)
-    if output is None:
-        output, output_input = compat.new_compositor_output(tree)
+    output, created = compat.compositor_output(tree, bpy.types)
+    if created:
         output.location = (600, 100)
         changes.append("added the output node '%s'" % output.name)
+    output_input = output.inputs["Image"]
     group_node = tree.nodes.get(GROUP_NODE)
     if group_node is None:
         group_node = tree.nodes.new("CompositorNodeGroup")

@@ -151,6 +151,13 @@ def _bind(cdll):
     return cdll
 
 
+# Blender links libraries that define the same C symbols as ours under other ABIs (Blender 4+
+# links Embree 4, whose rtcIntersect1 and friends share Embree 3's names): bound through the
+# process's global scope, our calls would land in Blender's copy and trace nothing. RTLD_DEEPBIND
+# puts the library's own dependencies first; RTLD_LOCAL keeps its symbols out of Blender's way.
+_LOAD_MODE = os.RTLD_LOCAL | getattr(os, "RTLD_DEEPBIND", 0)
+
+
 def _load():
     """Loads the library once. Returns it, or None with _load_error set."""
     global _lib, _load_error, _looked
@@ -164,7 +171,7 @@ def _load():
                 reasons.append("%s: not found" % path)
                 continue
             try:
-                _lib = _bind(ctypes.CDLL(path))
+                _lib = _bind(ctypes.CDLL(path, mode=_LOAD_MODE))
                 atexit.register(shutdown)
                 return _lib
             except (OSError, AttributeError) as exc:

@@ -24,6 +24,13 @@ GROUP_NAME = "SoftShadow Replace"
 NODE_PREFIX = "SoftShadow Replace "
 
 
+def _mix(nodes, blend_type, factor=1.0):
+    """(node, factor, a, b, result) of a colour mix whose factor is set (ShaderNodeMix starts at 0.5)."""
+    mix = compat.new_color_mix(nodes, bpy.types, blend_type)
+    mix[1].default_value = factor
+    return mix
+
+
 def replace_group():
     """Image + Light × (mix(1, Visibility, Strength) − 1)."""
     group = bpy.data.node_groups.get(GROUP_NAME)
@@ -42,11 +49,11 @@ def replace_group():
     inputs = nodes.new("NodeGroupInput")
     outputs = nodes.new("NodeGroupOutput")
     inputs.location, outputs.location = (-500, 0), (500, 0)
-    factor, f_fac, f_a, f_b, f_out = compat.new_mix(nodes, "MIX")
+    factor, f_fac, f_a, f_b, f_out = _mix(nodes, "MIX")
     f_a.default_value = (1.0, 1.0, 1.0, 1.0)
-    shadowed, s_fac, s_a, s_b, s_out = compat.new_mix(nodes, "MULTIPLY")
-    without, w_fac, w_a, w_b, w_out = compat.new_mix(nodes, "SUBTRACT")
-    total, t_fac, t_a, t_b, t_out = compat.new_mix(nodes, "ADD")
+    shadowed, s_fac, s_a, s_b, s_out = _mix(nodes, "MULTIPLY")
+    without, w_fac, w_a, w_b, w_out = _mix(nodes, "SUBTRACT")
+    total, t_fac, t_a, t_b, t_out = _mix(nodes, "ADD")
     for node, x, y in ((factor, -250, -200), (shadowed, 0, -150), (without, 0, 100), (total, 250, 0)):
         node.location = (x, y)
     links.new(inputs.outputs["Strength"], f_fac)
@@ -168,17 +175,11 @@ def _eevee_light(scene, view_layer, obj, tree, layers, changes):
     rl.layer = layer_name
     rl.location = (layers.location.x, layers.location.y - 350 - 300 * len([n for n in tree.nodes if n.name.startswith(LAYERS_PREFIX)]))
     sub_name = LIGHT_PREFIX + obj.name
-    sub = tree.nodes.get(sub_name)
-    if sub is None:
-        sub, fac, a, b, out = compat.new_mix(tree.nodes, "SUBTRACT")
-        sub.name = sub_name
-        sub.label = "Light: " + obj.name
-    else:
-        fac, a, b, out = sub.inputs[0], sub.inputs[1], sub.inputs[2], sub.outputs[0]
-        if sub.bl_idname == "ShaderNodeMix":
-            by_id = {x.identifier: x for x in sub.inputs}
-            a, b = by_id["A_Color"], by_id["B_Color"]
-            out = next(x for x in sub.outputs if x.identifier == "Result_Color")
+    if tree.nodes.get(sub_name) is not None:  # (made again: its sockets differ by version)
+        tree.nodes.remove(tree.nodes[sub_name])
+    sub, fac, a, b, out = _mix(tree.nodes, "SUBTRACT")
+    sub.name = sub_name
+    sub.label = "Light: " + obj.name
     sub.location = (rl.location.x + rl.width + 60, rl.location.y)
     _link(tree, layers.outputs["Image"], a)
     _link(tree, rl.outputs["Image"], b)
@@ -190,10 +191,10 @@ def setup(scene, view_layer, node):
     between what fed the output and the output. Returns [what changed, in words]."""
     changes = []
     tree = compat.compositor_tree(scene, create=True, bpy_data=bpy.data)
-    output, output_input = compat.compositor_output(tree)
-    if output is None:
-        output, output_input = compat.new_compositor_output(tree)
+    output, created = compat.compositor_output(tree, bpy.types)
+    if created:
         changes.append("added the output node '%s'" % output.name)
+    output_input = output.inputs["Image"]
     layers = _render_layers(tree, view_layer, changes)
     feed = _artist_feed(output_input) or layers.outputs["Image"]
     darken = tree.nodes.get(compositor.GROUP_NODE)
@@ -264,8 +265,9 @@ def teardown(scene, view_layer):
     changes = []
     tree = compat.compositor_tree(scene, create=False)
     if tree is not None:
-        output, output_input = compat.compositor_output(tree)
-        feed = _artist_feed(output_input) if output is not None else None
+        output, _ = compat.compositor_output(tree, bpy.types)
+        output_input = output.inputs["Image"]
+        feed = _artist_feed(output_input)
         ours = [n for n in tree.nodes if n.name.startswith((NODE_PREFIX, LIGHT_PREFIX, LAYERS_PREFIX))]
         for node in ours:
             changes.append("removed '%s'" % node.name)

@@ -5,7 +5,7 @@
 // Install: copy this file into the Manager's `scripts/` folder and restart the Manager; the job
 // type "Blender Render with Soft Shadows" appears in the Blender add-on's submission panel.
 // Each task runs:
-//   blender -b -y FILE.blend --python-exit-code 3 --addons softshadow
+//   blender -b -y FILE.blend --python-exit-code 3 --addons ADDON_MODULE
 //           --python-expr CHECK --render-output OUT --render-format FMT --render-frame A..B
 // and exits non-zero when the add-on is missing on the worker (CHECK) or a frame's passes fail
 // (the add-on exits 3 before that frame is rendered): Flamenco then fails the task.
@@ -34,6 +34,12 @@ const JOB_TYPE = {
             key: "render_output_path", type: "string", subtype: "file_path", editable: false,
             eval: "str(Path(abspath(settings.render_output_root), jobname, jobname + '_######'))",
             description: "Final file path of the frames; '#' become the frame number",
+        },
+        {
+            key: "addon_module", type: "string", default: "softshadow", visible: "submission",
+            description: "The add-on's module on the workers: 'softshadow' when installed as a " +
+                "legacy add-on, 'bl_ext.<repository>.softshadow' as an extension (4.2+, e.g. " +
+                "bl_ext.user_default.softshadow)",
         },
         {
             key: "fail_on_pass_failure", type: "bool", default: true, visible: "submission",
@@ -97,7 +103,7 @@ function authorRenderTasks(settings, renderOutput) {
             blendfile: settings.blendfile,
             args: sceneArgs.concat([
                 "--python-exit-code", String(EXIT_FAILED),
-                "--addons", "softshadow",
+                "--addons", settings.addon_module || "softshadow",
                 "--python-expr", workerCheck(settings),
                 "--render-output", renderOutput,
                 "--render-format", settings.format,

@@ -1,7 +1,6 @@
 # What every Blender test shares: loading the add-on, a small scene, pixel look-ups, a runner.
 # SPDX-License-Identifier: GPL-3.0-or-later
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -9,8 +8,13 @@ import traceback
 
 ROOT = os.environ.get("SOFTSHADOW_ROOT") or os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 ADDON_PATH = os.environ.get("SOFTSHADOW_ADDON_PATH") or os.path.join(ROOT, "blender_addon")
-if ADDON_PATH not in sys.path:
+# Set by `run.sh --zip` (the version matrix): the module name of the add-on installed from the zip
+# ("softshadow" as a legacy add-on, "bl_ext.user_default.softshadow" as an extension). Unset,
+# the tests import the source tree and load SOFTSHADOW_LIB.
+INSTALLED_MODULE = os.environ.get("SOFTSHADOW_ADDON_MODULE")
+if not INSTALLED_MODULE and ADDON_PATH not in sys.path:
     sys.path.insert(0, ADDON_PATH)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 try:
     import bpy
@@ -51,10 +55,47 @@ def run(namespace):
 
 
 def addon():
+    """The add-on's package, registered."""
+    if INSTALLED_MODULE:
+        import addon_utils
+
+        def fail(exc):
+            raise exc
+        if not hasattr(bpy.types.Scene, "softshadow"):
+            addon_utils.enable(INSTALLED_MODULE, default_set=True, handle_error=fail)
+        return sys.modules[INSTALLED_MODULE]
     import softshadow
     if not hasattr(bpy.types.Scene, "softshadow"):
         softshadow.register()
     return softshadow
+
+
+def child_blender(folder):
+    """(arguments, environment) for a child Blender that loads the add-on the way this one does."""
+    if INSTALLED_MODULE:
+        return ["--addons", INSTALLED_MODULE], dict(os.environ)
+    scripts = os.path.join(folder, "scripts")
+    os.makedirs(os.path.join(scripts, "addons"), exist_ok=True)
+    link = os.path.join(scripts, "addons", "softshadow")
+    if not os.path.exists(link):
+        os.symlink(os.path.join(ADDON_PATH, "softshadow"), link)
+    return ["--addons", "softshadow"], dict(os.environ, BLENDER_USER_SCRIPTS=scripts)
+
+
+def our_tracebacks(log):
+    """The Python tracebacks in a Blender log that pass through the add-on. Blender's own add-ons
+    may fail on a distribution's packaging (Debian sid's 5.2 lacks cattrs for bl_pkg): not ours."""
+    found = []
+    for block in log.split("Traceback (most recent call last):")[1:]:
+        lines = block.splitlines()[1:]
+        frames = []
+        for line in lines:
+            frames.append(line)
+            if not line.startswith(" "):  # the exception line ends the traceback
+                break
+        if any("softshadow" in line for line in frames):
+            found.append("\n".join(frames))
+    return found
 
 
 def tempdir(tag):
@@ -171,45 +212,17 @@ def build_dir():
 
 
 def exr_channels(path):
-    """Channel names of an EXR, through OpenImageIO's oiiotool."""
-    out = subprocess.run(["oiiotool", "--info", "-v", path], capture_output=True, text=True, check=True).stdout
-    for line in out.splitlines():
-        line = line.strip()
-        if line.startswith("channel list:"):
-            return [c.strip() for c in line.split(":", 1)[1].split(",")]
-    raise Failure("no channel list in oiiotool output for %s:\n%s" % (path, out))
+    """Channel names of an EXR, in the file's order (tests/blender/exr_reader.py)."""
+    import exr_reader
+    return list(exr_reader.read(path))
 
 
 def exr_channel(path, channel):
-    """One EXR channel as a numpy (H, W) array, row 0 = top (through oiiotool --dumpdata, which
-    prints 9 decimals: exact to 5e-10, far below any tolerance used here)."""
-    import re
-    import numpy as np
-    folder = tempfile.mkdtemp(prefix="softshadow-ch-")
-    try:
-        single = os.path.join(folder, "c.exr")
-        subprocess.run(["oiiotool", path, "--ch", channel, "-o", single],
-                       capture_output=True, text=True, check=True)
-        text = subprocess.run(["oiiotool", "--dumpdata", single], capture_output=True, text=True,
-                              check=True).stdout
-    finally:
-        shutil.rmtree(folder, ignore_errors=True)
-    size = re.search(r":\s*(\d+) x\s*(\d+), 1 channel", text)
-    check(size is not None, "oiiotool could not read channel %s of %s" % (channel, path))
-    w, h = int(size.group(1)), int(size.group(2))
-    out = np.full((h, w), np.nan, np.float32)
-    for x, y, v in re.findall(r"Pixel \((\d+), (\d+)\): (\S+)", text):
-        out[int(y), int(x)] = float(v)
-    check(np.isfinite(out).all(), "every pixel of %s read" % channel)
-    return out
-
-
-def addon_scripts(folder):
-    """A user scripts folder holding the add-on, so `--addons softshadow` finds it."""
-    scripts = os.path.join(folder, "scripts", "addons")
-    os.makedirs(scripts)
-    os.symlink(os.path.join(ADDON_PATH, "softshadow"), os.path.join(scripts, "softshadow"))
-    return os.path.join(folder, "scripts")
+    """One EXR channel as a numpy (H, W) float32 array, row 0 = top."""
+    import exr_reader
+    channels = exr_reader.read(path)
+    check(channel in channels, "channel %s in %s: %s" % (channel, path, sorted(channels)))
+    return channels[channel].astype("float32")
 
 
 def png_gray(path):
@@ -236,17 +249,14 @@ def flat_white_workbench(scene):
     scene.render.image_settings.file_format = "PNG"
 
 
-def blender_batch(blend, args, scripts, env=None, addon=True, argv=None):
-    """`blender -b blend [--addons softshadow] args...` (or `blender -b argv...`) ->
-    CompletedProcess (stdout+stderr in .log)."""
-    import bpy as _bpy
-    full_env = dict(os.environ, BLENDER_USER_SCRIPTS=scripts)
+def blender_batch(folder, blend, args, env=None, argv=None):
+    """`blender -b blend <the add-on> args...`, or `blender -b argv...` as given, with the add-on
+    reachable the way this Blender loads it -> CompletedProcess (stdout+stderr in .log)."""
+    addon_args, full_env = child_blender(folder)
     full_env.update(env or {})
-    if argv is not None:
-        command = [_bpy.app.binary_path, "-b"] + list(argv)
-    else:
-        command = [_bpy.app.binary_path, "-b", blend] + (["--addons", "softshadow"] if addon else []) + list(args)
-    run = subprocess.run(command, capture_output=True, text=True, env=full_env, timeout=900)
+    tail = list(argv) if argv is not None else [blend] + addon_args + list(args)
+    run = subprocess.run([bpy.app.binary_path, "-b"] + tail, capture_output=True, text=True,
+                         env=full_env, timeout=900)
     run.log = run.stdout + run.stderr
     return run
 

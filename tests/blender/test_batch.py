@@ -58,7 +58,6 @@ def _check_composite(scene, folder, frame):
 def test_exactly_the_frames_asked_for():
     folder = sstest.tempdir("frames")
     scene, blend = _blend(folder, current=1)
-    scripts = sstest.addon_scripts(folder)
     # Set-up made the current frame's (1) file; it must be left exactly as it is by renders of
     # other frames.
     sentinel = os.path.join(folder, "passes", "softshadow_0001.exr")
@@ -71,7 +70,7 @@ def test_exactly_the_frames_asked_for():
                 os.remove(os.path.join(folder, "passes", name))
         for name in [n for n in os.listdir(folder) if n.endswith(".png")]:
             os.remove(os.path.join(folder, name))
-        run = sstest.blender_batch(blend, args, scripts)
+        run = sstest.blender_batch(folder, blend, args)
         sstest.check(run.returncode == 0, "%s: exit %d\n%s" % (args, run.returncode, run.log[-3000:]))
         want = ["softshadow_0001.exr"] + ["softshadow_%04d.exr" % f for f in frames]
         sstest.check(_files(folder, "passes") == want, "%s: pass files %s, want %s" % (args, _files(folder, "passes"), want))
@@ -89,7 +88,7 @@ def test_library_missing_exits_3_before_the_frame_and_removes_the_stale_file():
     stale = os.path.join(folder, "passes", "softshadow_0002.exr")
     shutil.copy(os.path.join(folder, "passes", "softshadow_0001.exr"), stale)  # an earlier run's
     missing = os.path.join(folder, "no-such-dir", "libsoftshadow.so")
-    run = sstest.blender_batch(os.path.join(folder, "batch.blend"), ["-f", "2"], sstest.addon_scripts(folder),
+    run = sstest.blender_batch(folder, os.path.join(folder, "batch.blend"), ["-f", "2"],
                                env={"SOFTSHADOW_LIB": missing})
     sstest.check(run.returncode == ss.handlers.EXIT_FAILED, "exit %d, want %d\n%s" % (
         run.returncode, ss.handlers.EXIT_FAILED, run.log[-3000:]))
@@ -106,7 +105,7 @@ def test_unwritable_folder_exits_3():
     open(blocker, "w").close()
     scene.softshadow.output_path = os.path.join(blocker, "softshadow_####.exr")  # a file is no folder
     bpy.ops.wm.save_as_mainfile(filepath=blend)
-    run = sstest.blender_batch(blend, ["-f", "3"], sstest.addon_scripts(folder))
+    run = sstest.blender_batch(folder, blend, ["-f", "3"])
     sstest.check(run.returncode == ss.handlers.EXIT_FAILED, "exit %d\n%s" % (run.returncode, run.log[-3000:]))
     sstest.check("frame 3" in run.stderr and "cannot write the pass file" in run.stderr,
                  "message names the frame and the cause:\n%s" % run.stderr[-2000:])
@@ -118,8 +117,7 @@ def test_continue_setting_renders_on():
     scene, blend = _blend(folder)
     scene.softshadow.on_failure = "CONTINUE"
     bpy.ops.wm.save_as_mainfile(filepath=blend)
-    run = sstest.blender_batch(blend, ["-f", "2"], sstest.addon_scripts(folder),
-                               env={"SOFTSHADOW_LIB": os.path.join(folder, "none.so")})
+    run = sstest.blender_batch(folder, blend, ["-f", "2"], env={"SOFTSHADOW_LIB": os.path.join(folder, "none.so")})
     sstest.check(run.returncode == 0, "CONTINUE: exit %d\n%s" % (run.returncode, run.log[-2000:]))
     sstest.check("frame 2" in run.log and "libsoftshadow could not be loaded" in run.log, "still reported")
     sstest.check(os.path.exists(os.path.join(folder, "render_0002.png")), "the frame rendered")
@@ -130,7 +128,7 @@ def test_missing_sockets_stop_before_any_frame():
     scene, blend = _blend(folder)
     sstest.add_light("Added Later", location=(2, -2, 5), size=0.3)
     bpy.ops.wm.save_as_mainfile(filepath=blend)
-    run = sstest.blender_batch(blend, ["-f", "2"], sstest.addon_scripts(folder))
+    run = sstest.blender_batch(folder, blend, ["-f", "2"])
     sstest.check(run.returncode == ss.handlers.EXIT_FAILED, "exit %d\n%s" % (run.returncode, run.log[-2000:]))
     sstest.check("Added_Later_auto" in run.stderr and "Set Up Compositor" in run.stderr,
                  "names the missing pass and the fix:\n%s" % run.stderr[-2000:])
@@ -147,7 +145,7 @@ def test_a_light_that_does_not_render_needs_no_socket():
     hidden.objects.link(light)
     hidden.hide_render = True
     bpy.ops.wm.save_as_mainfile(filepath=blend)
-    run = sstest.blender_batch(blend, ["-f", "2"], sstest.addon_scripts(folder))
+    run = sstest.blender_batch(folder, blend, ["-f", "2"])
     sstest.check(run.returncode == 0, "exit %d\n%s" % (run.returncode, run.log[-2000:]))
     bpy.data.collections.remove(hidden)
 
@@ -156,7 +154,7 @@ def test_a_scene_that_did_not_opt_in_computes_nothing():
     folder = sstest.tempdir("optin")
     scene, blend = _blend(folder, enabled=False)
     sstest.check(not scene.softshadow.enabled, "passes are off in a new scene")
-    run = sstest.blender_batch(blend, ["-f", "1"], sstest.addon_scripts(folder))
+    run = sstest.blender_batch(folder, blend, ["-f", "1"])
     sstest.check(run.returncode == 0, "exit %d\n%s" % (run.returncode, run.log[-2000:]))
     sstest.check(os.path.exists(os.path.join(folder, "render_0001.png")), "the frame rendered")
     exrs = [os.path.join(r, f) for r, _, fs in os.walk(folder) for f in fs if f.endswith(".exr")]
@@ -171,7 +169,7 @@ def test_default_names_follow_the_render_output_for_every_view_layer():
     scene.render.filepath = os.path.join(folder, "out", "shot_###")
     scene.view_layers.new("Second Layer")
     bpy.ops.wm.save_as_mainfile(filepath=blend)
-    run = sstest.blender_batch(blend, ["-f", "2"], sstest.addon_scripts(folder))
+    run = sstest.blender_batch(folder, blend, ["-f", "2"])
     sstest.check(run.returncode == 0, "exit %d\n%s" % (run.returncode, run.log[-3000:]))
     got = _files(folder, os.path.join("out", "softshadow"))
     want = ["shot_Scene_Second Layer_002.exr", "shot_Scene_ViewLayer_002.exr"]
@@ -189,11 +187,11 @@ def _flamenco_tasks(settings):
     return json.loads(out.stdout)
 
 
-def _run_task(task, scripts, env=None):
+def _run_task(folder, task, env=None):
     """A task's blender-render command as a Flamenco worker runs it ({blenderArgs}: -b -y)."""
     params = task["commands"][0]["parameters"]
     argv = ["-y"] + params["argsBefore"] + [params["blendfile"]] + params["args"]
-    return sstest.blender_batch(None, None, scripts, env=env, argv=argv)
+    return sstest.blender_batch(folder, None, None, env=env, argv=argv)
 
 
 def test_flamenco_tasks_run_and_fail_as_a_worker_would():
@@ -205,11 +203,11 @@ def test_flamenco_tasks_run_and_fail_as_a_worker_would():
     out = os.path.join(folder, "farm", "shot_####")
     tasks = _flamenco_tasks({"frames": "2-4", "chunk_size": 2, "render_output_root": folder,
                              "render_output_path": out, "fail_on_pass_failure": True,
-                             "blendfile": blend, "format": "PNG", "scene": scene.name})
+                             "blendfile": blend, "format": "PNG", "scene": scene.name,
+                             "addon_module": sstest.child_blender(folder)[0][1]})
     sstest.check([t["name"] for t in tasks] == ["render-2-3", "render-4"], "chunks: %s" % tasks)
-    scripts = sstest.addon_scripts(folder)
     for task in tasks:
-        run = _run_task(task, scripts)
+        run = _run_task(folder, task)
         sstest.check(run.returncode == 0, "%s: exit %d\n%s" % (task["name"], run.returncode, run.log[-3000:]))
     frames = sorted(f for f in os.listdir(os.path.join(folder, "farm")) if f.endswith(".png"))
     sstest.check(frames == ["shot_0002.png", "shot_0003.png", "shot_0004.png"], "frames: %s" % frames)
@@ -218,11 +216,14 @@ def test_flamenco_tasks_run_and_fail_as_a_worker_would():
     sstest.check(_files(folder, "passes") == ["softshadow_%04d.exr" % f for f in (1, 2, 3, 4)],
                  "the passes of exactly the frames rendered: %s" % _files(folder, "passes"))
     # A worker whose library is missing: the task fails with exit 3, naming the frame.
-    run = _run_task(tasks[1], scripts, env={"SOFTSHADOW_LIB": os.path.join(folder, "none.so")})
+    run = _run_task(folder, tasks[1], env={"SOFTSHADOW_LIB": os.path.join(folder, "none.so")})
     sstest.check(run.returncode == 3 and "frame 4" in run.stderr, "failed task: %d\n%s" % (run.returncode, run.log[-2000:]))
     # A worker without the add-on: the check fails the task before anything renders.
     os.remove(os.path.join(folder, "farm", "shot_0004.png"))
-    run = _run_task(tasks[1], os.path.join(folder, "no-scripts"))
+    lacking = _flamenco_tasks({"frames": "4", "chunk_size": 1, "render_output_root": folder,
+                               "render_output_path": out, "blendfile": blend, "format": "PNG",
+                               "scene": scene.name, "addon_module": "softshadow_not_installed"})
+    run = _run_task(folder, lacking[0])
     sstest.check(run.returncode == 3 and "not installed or not enabled" in run.log,
                  "no add-on: exit %d\n%s" % (run.returncode, run.log[-2000:]))
     sstest.check(not os.path.exists(os.path.join(folder, "farm", "shot_0004.png")), "nothing rendered")

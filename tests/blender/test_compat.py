@@ -6,7 +6,7 @@ from types import SimpleNamespace as NS
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sstest  # noqa: E402
-from softshadow import compat  # noqa: E402
+compat = sstest.addon().compat
 
 
 class FakeGroups:
@@ -111,62 +111,25 @@ def test_renderer_shadow_3x_cycles_and_4x_shared():
     sstest.check(eevee3.use_shadow is False and eevee3.cycles.cast_shadow is True, "EEVEE: use_shadow always")
 
 
-class FakeNodes(list):
-    def __init__(self, known):
-        super().__init__()
-        self.known = known
-
-    def new(self, kind):
-        if kind not in self.known:
-            raise RuntimeError("Node type %s undefined" % kind)
-        node = self.known[kind]()
-        self.append(node)
-        return node
-
-
-def _socket(identifier, name):
-    return NS(identifier=identifier, name=name, default_value=None)
-
-
-def _mix_rgb():
-    return NS(bl_idname="CompositorNodeMixRGB", blend_type="MIX",
-              inputs=[_socket("Fac", "Fac"), _socket("Image", "Image"), _socket("Image_001", "Image")],
-              outputs=[_socket("Image", "Image")])
-
-
-def _shader_mix():
-    ids = ["Factor_Float", "Factor_Vector", "A_Float", "B_Float", "A_Vector", "B_Vector", "A_Color", "B_Color"]
-    return NS(bl_idname="ShaderNodeMix", data_type="FLOAT", blend_type="MIX",
-              inputs=[_socket(i, i.split("_")[0]) for i in ids],
-              outputs=[_socket(i, "Result") for i in ("Result_Float", "Result_Vector", "Result_Color")])
-
-
-def test_mix_node_up_to_4x_and_5x():
-    node, fac, a, b, out = compat.new_mix(FakeNodes({"CompositorNodeMixRGB": _mix_rgb}), "MULTIPLY", 0.5)
-    sstest.check(node.bl_idname == "CompositorNodeMixRGB" and node.blend_type == "MULTIPLY", "3.x/4.x MixRGB")
-    sstest.check(fac.default_value == 0.5 and a is node.inputs[1] and b is node.inputs[2], "MixRGB sockets")
-    node, fac, a, b, out = compat.new_mix(FakeNodes({"ShaderNodeMix": _shader_mix}), "ADD")
-    sstest.check(node.data_type == "RGBA" and node.blend_type == "ADD", "5.x: ShaderNodeMix in RGBA")
-    sstest.check((fac.identifier, a.identifier, b.identifier, out.identifier) ==
-                 ("Factor_Float", "A_Color", "B_Color", "Result_Color"), "5.x colour sockets")
-
-
-def test_compositor_output_composite_or_group_output():
-    composite = NS(bl_idname="CompositorNodeComposite", inputs=["image"])
-    tree = NS(nodes=[NS(bl_idname="CompositorNodeRLayers", inputs=[]), composite])
-    sstest.check(compat.compositor_output(tree) == (composite, "image"), "up to 4.x: Composite")
-    output = NS(bl_idname="NodeGroupOutput", is_active_output=True, inputs=["image"])
-    tree = NS(nodes=[NS(bl_idname="NodeGroupOutput", is_active_output=False, inputs=["x"]), output])
-    sstest.check(compat.compositor_output(tree) == (output, "image"), "5.x: the active Group Output")
-    sstest.check(compat.compositor_output(NS(nodes=[])) == (None, None), "none")
-
-
-def test_eevee_engine_id():
-    def render(ids):
-        items = [NS(identifier=i) for i in ids]
-        return NS(bl_rna=NS(properties={"engine": NS(enum_items=items)}))
-    sstest.check(compat.eevee_engine_id(render(["BLENDER_EEVEE", "CYCLES"])) == "BLENDER_EEVEE", "3.x and 5.x")
-    sstest.check(compat.eevee_engine_id(render(["BLENDER_EEVEE_NEXT", "CYCLES"])) == "BLENDER_EEVEE_NEXT", "4.2-4.x")
+def test_this_blenders_shapes():
+    # The real API of the Blender running the test (the version matrix runs it in each).
+    import bpy
+    scene = bpy.context.scene
+    scene.render.engine = compat.eevee_engine_id(scene.render)
+    sstest.check(scene.render.engine.startswith("BLENDER_EEVEE"), "EEVEE chosen: %s" % scene.render.engine)
+    tree = compat.compositor_tree(scene, create=True, bpy_data=bpy.data)
+    sstest.check(tree is not None and tree.bl_idname == "CompositorNodeTree", "a compositor tree")
+    output, _ = compat.compositor_output(tree, bpy.types)
+    again, created_again = compat.compositor_output(tree, bpy.types)
+    sstest.check(again == output and not created_again, "one final output node")
+    sstest.check("Image" in output.inputs, "the final output takes an Image")
+    node, factor, a, b, result = compat.new_color_mix(tree.nodes, bpy.types, "MULTIPLY")
+    sstest.check(node.blend_type == "MULTIPLY", "mix node blend type")
+    sstest.check(a.type == "RGBA" and b.type == "RGBA" and result.type == "RGBA" and factor.type == "VALUE",
+                 "colour sockets: %s %s %s %s" % (factor.type, a.type, b.type, result.type))
+    light = bpy.data.lights.new("compat-light", "POINT")
+    sstest.check(compat.light_radius(light) >= 0.0, "point light radius readable")
+    bpy.data.lights.remove(light)
 
 
 if __name__ == "__main__":

@@ -28,7 +28,7 @@ def test_setup_then_rerender_does_not_pile_up():
     sstest.check(result == {"FINISHED"}, "set-up operator: %s" % result)
     result = bpy.ops.softshadow.render_passes()
     sstest.check(result == {"FINISHED"}, "render operator: %s" % result)
-    tree = scene.node_tree
+    tree = ss.compat.compositor_tree(scene)
     first = _counts(tree)
     for _ in range(2):
         bpy.ops.softshadow.render_passes()
@@ -49,8 +49,9 @@ def test_setup_then_rerender_does_not_pile_up():
     link = group.inputs["Visibility"].links[0]
     sstest.check(link.from_node == node and link.from_socket.name == "Key_shadow_map",
                  "darken group reads the pass: %s.%s" % (link.from_node.name, link.from_socket.name))
-    composite = next(n for n in tree.nodes if n.bl_idname == "CompositorNodeComposite")
-    sstest.check(composite.inputs["Image"].links[0].from_node == group, "group feeds the Composite")
+    output = ss.compositor.final_output(scene)
+    sstest.check(output.inputs["Image"].links[0].from_node == group,
+                 "group feeds the final output (%s)" % output.bl_idname)
     layers = group.inputs["Image"].links[0].from_node
     sstest.check(layers.bl_idname == "CompositorNodeRLayers", "group darkens the render layer")
 
@@ -70,7 +71,7 @@ def test_chosen_pass_and_sequence_frame():
             sstest.check(sorted(choices) == ["FIRST", "Fill_shadow_map", "Key_shadow_map"],
                          "passes to choose from: %s" % choices)
             scene.softshadow.compositor_pass = "Fill_shadow_map"
-    tree = scene.node_tree
+    tree = ss.compat.compositor_tree(scene)
     group = tree.nodes[ss.compositor.GROUP_NODE]
     sstest.check(group.inputs["Visibility"].links[0].from_socket.name == "Fill_shadow_map", "chosen pass linked")
     node = tree.nodes[ss.compositor.IMAGE_NODE]

@@ -27,10 +27,11 @@ def test_f12_under_xvfb():
     scene.render.use_lock_interface = False  # the passes' switch must turn it on
     blend = os.path.join(folder, "gui.blend")
     bpy.ops.wm.save_as_mainfile(filepath=blend)
-    env = dict(os.environ, BLENDER_USER_SCRIPTS=sstest.addon_scripts(folder), SOFTSHADOW_GUI_OUT=folder)
+    addon_args, env = sstest.child_blender(folder)
+    env["SOFTSHADOW_GUI_OUT"] = folder
     child = os.path.join(os.path.dirname(os.path.abspath(__file__)), "gui_render_child.py")
     run = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", bpy.app.binary_path, blend,
-                          "--addons", "softshadow", "--python", child],
+                          *addon_args, "--python", child],
                          capture_output=True, text=True, env=env, timeout=600)
     log = run.stdout + run.stderr
     info_path = os.path.join(folder, "gui.json")

@@ -31,6 +31,7 @@ def _cycles_scene(folder):
     scene.view_settings.view_transform = "Standard"
     scene.render.image_settings.file_format = "OPEN_EXR"
     scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.exr_codec = "ZIP"  # (what the tests' EXR reader reads)
     scene.render.film_transparent = False
     key = scene.objects["Key"].data
     key.softshadow.method = "reference"

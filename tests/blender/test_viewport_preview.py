@@ -36,15 +36,12 @@ def test_preview_under_xvfb():
     scene.objects["Key"].data.softshadow.method = "shadow_map"
     blend = os.path.join(folder, "preview.blend")
     bpy.ops.wm.save_as_mainfile(filepath=blend)
-    scripts = os.path.join(folder, "scripts", "addons")
-    os.makedirs(scripts)
-    os.symlink(os.path.join(sstest.ADDON_PATH, "softshadow"), os.path.join(scripts, "softshadow"))
     points = {"shadow": list(sstest.shadow_centre(-1.0)), "far": [-3.5, -2.8, 0.0]}
-    env = dict(os.environ, BLENDER_USER_SCRIPTS=os.path.join(folder, "scripts"),
-               SOFTSHADOW_PREVIEW_OUT=folder, SOFTSHADOW_PREVIEW_POINTS=json.dumps(points))
+    addon_args, env = sstest.child_blender(folder)
+    env.update(SOFTSHADOW_PREVIEW_OUT=folder, SOFTSHADOW_PREVIEW_POINTS=json.dumps(points))
     child = os.path.join(os.path.dirname(os.path.abspath(__file__)), "viewport_child.py")
     run = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", bpy.app.binary_path, blend,
-                          "--addons", "softshadow", "--python", child],
+                          *addon_args, "--python", child],
                          capture_output=True, text=True, env=env, timeout=600)
     log = run.stdout + run.stderr
     info_path = os.path.join(folder, "info.json")

@@ -31,7 +31,7 @@ test("the stand-in chunks frames as Flamenco does", () => {
 test("the job type declares its settings", () => {
     const {JOB_TYPE} = loadJobType(JOB_FILE);
     const keys = JOB_TYPE.settings.map((s) => s.key);
-    for (const key of ["frames", "chunk_size", "render_output_path", "fail_on_pass_failure", "blendfile", "format", "scene"]) {
+    for (const key of ["frames", "chunk_size", "render_output_path", "addon_module", "fail_on_pass_failure", "blendfile", "format", "scene"]) {
         assert.ok(keys.includes(key), `setting ${key}`);
     }
 });
@@ -74,6 +74,12 @@ test("a frame list with gaps, one frame per task, and no forced failure policy",
     assert.ok(!args.includes("--scene"), "no --scene without a scene name");
     const check = args[args.indexOf("--python-expr") + 1];
     assert.ok(!check.includes("on_failure"), "the file's own On Failure setting is kept");
+});
+
+test("the add-on's module for an extension install", () => {
+    const [task] = loadJobType(JOB_FILE).compile(settings({frames: "1", addon_module: "bl_ext.user_default.softshadow"}));
+    const args = task.commands[0].parameters.args;
+    assert.equal(args[args.indexOf("--addons") + 1], "bl_ext.user_default.softshadow");
 });
 
 test("refuses what cannot work", () => {
