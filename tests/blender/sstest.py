@@ -112,13 +112,14 @@ def clear_scene():
             if key != "rna_type":
                 props.property_unset(key)
     scene.frame_current = 1
-    tree = getattr(scene, "node_tree", None)
-    if tree is not None:  # back to a new file's compositor: Render Layers -> Composite
+    from softshadow import compat
+    tree = compat.compositor_tree(scene)
+    if tree is not None:  # back to a new file's compositor: Render Layers -> final output
         tree.nodes.clear()
         layers = tree.nodes.new("CompositorNodeRLayers")
-        composite = tree.nodes.new("CompositorNodeComposite")
-        composite.location = (400, 0)
-        tree.links.new(layers.outputs["Image"], composite.inputs["Image"])
+        output, _ = compat.compositor_output(tree, bpy.types)
+        output.location = (400, 0)
+        tree.links.new(layers.outputs["Image"], output.inputs["Image"])
     for layer in list(scene.view_layers)[1:]:
         scene.view_layers.remove(layer)
     for obj in list(bpy.data.objects):

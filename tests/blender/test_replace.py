@@ -52,7 +52,6 @@ def _render(scene, path, samples):
 def test_replace_matches_cycles_true_shadows():
     folder = sstest.tempdir("replace")
     scene = _cycles_scene(folder)
-    scene.use_nodes = True
     truth = _render(scene, os.path.join(folder, "truth"), TRUTH_SAMPLES)
 
     # Darken: the renderer's shadow stays and the pass darkens it again.
@@ -65,7 +64,7 @@ def test_replace_matches_cycles_true_shadows():
     key = scene.objects["Key"]
     sstest.check(key.lightgroup == "ss_Key", "light group: %r" % key.lightgroup)
     sstest.check(not ss.compat.renderer_shadow(key.data), "the renderer's shadow is off")
-    tree = scene.node_tree
+    tree = ss.compat.compositor_tree(scene)
     sstest.check(ss.compositor.GROUP_NODE not in tree.nodes, "no Darken group with Replace")
     group = tree.nodes["SoftShadow Replace Key"]
     sstest.check(group.inputs["Light"].links[0].from_socket.name == "Combined_ss_Key", "light group pass wired")
@@ -104,10 +103,9 @@ def test_replace_chains_one_group_per_light_after_the_artists_chain():
     fill.data.softshadow.method = "shadow_map"
     plain = sstest.add_light("NoPass", location=(-2, 2, 5), size=0.3)
     plain.data.softshadow.enabled = False
-    scene.use_nodes = True
-    tree = scene.node_tree
+    tree = ss.compat.compositor_tree(scene, create=True, bpy_data=bpy.data)
     layers = next(n for n in tree.nodes if n.bl_idname == "CompositorNodeRLayers")
-    composite = next(n for n in tree.nodes if n.bl_idname == "CompositorNodeComposite")
+    composite, _ = ss.compat.compositor_output(tree, bpy.types)
     glare = tree.nodes.new("CompositorNodeGlare")
     tree.links.new(layers.outputs["Image"], glare.inputs["Image"])
     tree.links.new(glare.outputs["Image"], composite.inputs["Image"])
@@ -135,7 +133,6 @@ def test_replace_in_eevee_through_a_view_layer_without_the_light():
     scene.eevee.taa_render_samples = 16
     key = scene.objects["Key"]
     key.data.softshadow.samples = 64
-    scene.use_nodes = True
     truth = _render(scene, os.path.join(folder, "eevee-truth"), 0)
     scene.softshadow.composite = "REPLACE"
     sstest.check(bpy.ops.softshadow.setup_compositor() == {"FINISHED"}, "set-up")
