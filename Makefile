@@ -14,9 +14,9 @@ DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-
   libopenexr-dev libglm-dev libembree-dev libegl-dev libegl1-mesa-dev libosmesa6-dev \
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
   blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev \
-  clang-14 libclang-rt-14-dev mmdebstrap
+  clang-14 libclang-rt-14-dev mmdebstrap nodejs
 
-.PHONY: deps build demo test test-native test-asan test-tsan test-blender test-matrix test-fuzz bench addon clean
+.PHONY: deps build demo test test-native test-asan test-tsan test-blender test-matrix test-fuzz test-farm bench addon clean
 
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
@@ -33,7 +33,7 @@ demo: build
 	bash examples/run_demo.sh $(BUILD)
 
 test: build
-	$(MAKE) --no-print-directory test-native test-fuzz test-blender test-matrix test-asan test-tsan
+	$(MAKE) --no-print-directory test-native test-fuzz test-blender test-farm test-matrix test-asan test-tsan
 
 test-native:
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -42,6 +42,10 @@ test-native:
 FUZZ_SECONDS ?= 45
 test-fuzz: build
 	bash tests/fuzz/run.sh $(BUILD) $(FUZZ_SECONDS)
+
+# The Flamenco job type compiled against a stand-in of the Manager's job-compiler API.
+test-farm:
+	node --test farm/flamenco/tests/
 
 test-blender:
 	bash tests/blender/run.sh $(BUILD)

@@ -4,7 +4,7 @@ import os
 
 import bpy
 
-from . import compositor, native, passes, scene_export
+from . import compositor, native, output_paths, passes, replace, scene_export
 
 
 def _evaluated_depsgraph(scene, depsgraph=None):
@@ -41,40 +41,107 @@ render_passes.last_problems = []
 render_passes.last_chosen = {}
 
 
-def output_directory(scene):
-    """Where the frame EXRs go: the scene setting, else the render output's folder."""
-    setting = scene.softshadow.output_dir
-    if setting:
-        return bpy.path.abspath(setting)
-    frame_path = scene.render.frame_path(frame=scene.frame_current)
-    return os.path.dirname(bpy.path.abspath(frame_path)) or bpy.app.tempdir
+def rendering_view_layers(scene):
+    """The view layers a render of `scene` renders (only the active one with 'Render Single Layer')."""
+    if scene.render.use_single_layer:
+        active = bpy.context.view_layer if bpy.context.scene == scene else scene.view_layers[0]
+        return [active]
+    # (EEVEE Replace's helper layers render too, but need no passes of their own)
+    return [layer for layer in scene.view_layers if layer.use and not replace.is_helper_layer(layer)]
 
 
-def frame_exr_path(scene, frame=None):
+def pass_file_template(scene):
+    """The scene's template for pass files, absolute ({scene}, {view_layer}, # for the frame)."""
+    template = scene.softshadow.output_path or output_paths.default_template(scene.render.filepath)
+    return bpy.path.abspath(template)
+
+
+def frame_exr_path(scene, frame=None, view_layer=None):
+    """The pass file of one frame and view layer (default: the current frame, the context's layer)."""
     frame = scene.frame_current if frame is None else frame
-    return passes.exr_path_for_frame(output_directory(scene), frame)
+    if view_layer is None:
+        view_layer = bpy.context.view_layer if bpy.context.scene == scene else scene.view_layers[0]
+    return output_paths.expand(pass_file_template(scene), scene.name, view_layer.name, frame)
 
 
-def render_frame(scene, depsgraph=None, progress=None):
-    """Computes the current frame's passes, writes its EXR and refreshes the compositor node.
+def _layer_depsgraph(scene, view_layer):
+    if bpy.context.scene == scene and bpy.context.view_layer == view_layer:
+        return bpy.context.evaluated_depsgraph_get()
+    graph = view_layer.depsgraph
+    graph.update()
+    return graph
+
+
+def _remove_stale(path):
+    """The frame's old pass file goes before it is recomputed: a failure leaves no file, never
+    an earlier run's shadow."""
+    try:
+        os.remove(path)
+    except (FileNotFoundError, NotADirectoryError):
+        pass
+
+
+def render_frame(scene, depsgraph=None, progress=None, view_layer=None):
+    """Computes one view layer's passes at the current frame, writes its EXR and refreshes the
+    compositor node. The frame's old file is removed first.
 
     Returns (exr path or '', problems, chosen methods). Never leaves a half-written file."""
-    graph = _evaluated_depsgraph(scene, depsgraph)
-    exported = scene_export.export(graph, scene, mode="RENDER")
+    return _render_layer(scene, view_layer, depsgraph, progress)[:3]
+
+
+def _render_layer(scene, view_layer, depsgraph=None, progress=None):
+    if view_layer is None:
+        view_layer = depsgraph.view_layer if depsgraph is not None else (
+            bpy.context.view_layer if bpy.context.scene == scene else scene.view_layers[0])
+    target = frame_exr_path(scene, view_layer=view_layer)
+    _remove_stale(target)
+    graph = depsgraph if depsgraph is not None else _layer_depsgraph(scene, view_layer)
+    exported = scene_export.export(graph, scene, mode="RENDER", view_layer=view_layer)
     result = passes.compute(exported, extra_layers=scene.softshadow.extra_layers, keep_results=True,
                             progress=progress)
     path = ""
     try:
         if result.results:
-            path = frame_exr_path(scene)
-            passes.write_exr(result, path)
+            try:
+                passes.write_exr(result, target)
+                path = target
+            except (OSError, native.SoftShadowError) as exc:
+                result.problems.append("cannot write the pass file %s: %s" % (target, exc))
         elif not result.problems:
             result.problems.append("no light casts a soft-shadow pass (enable one in the light's properties)")
     finally:
         result.close()
-    if path:
-        compositor.refresh(scene, path)
-    return path, result.problems, result.chosen
+    if path and _is_compositor_layer(scene, view_layer):
+        problem = compositor.refresh(scene, path)
+        if problem:
+            result.problems.append(problem)
+    return path, result.problems, result.chosen, result.failed_lights
+
+
+def compositor_view_layer(scene):
+    """The view layer whose passes the compositor's Image node reads: the first that renders."""
+    layers = rendering_view_layers(scene)
+    return layers[0] if layers else scene.view_layers[0]
+
+
+def _is_compositor_layer(scene, view_layer):
+    return compositor_view_layer(scene) == view_layer
+
+
+def remove_frame_files(scene):
+    """Removes the current frame's pass file of every rendering view layer."""
+    for layer in rendering_view_layers(scene):
+        _remove_stale(frame_exr_path(scene, view_layer=layer))
+
+
+def render_frame_layers(scene):
+    """Every rendering view layer's passes at the current frame, as the render handler needs
+    them: [(view layer name, path or '', problems, chosen, failed lights)]."""
+    layers = rendering_view_layers(scene)
+    problem = output_paths.template_problem(pass_file_template(scene), len(layers))
+    if problem:
+        return [(layer.name, "", [problem], {}, []) for layer in layers]
+    return [(layer.name,) + tuple(_render_layer(scene, layer)) for layer in layers]
 
 
 def export_scene_file(scene, path, depsgraph=None):

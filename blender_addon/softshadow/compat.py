@@ -148,3 +148,37 @@ def add_group_socket(group, in_out, socket_type, name):
         return interface.new_socket(name, in_out=in_out, socket_type=socket_type)
     sockets = group.inputs if in_out == "INPUT" else group.outputs
     return sockets.new(socket_type, name)
+
+
+def _cycles_own_shadow(light, engine):
+    cycles = getattr(light, "cycles", None)
+    return engine == "CYCLES" and cycles is not None and hasattr(cycles, "cast_shadow")
+
+
+def set_renderer_shadow(light, on, engine="CYCLES"):
+    """Switches a render engine's own shadow of a light: Cycles' `cast_shadow` up to 3.6, else
+    `use_shadow` (EEVEE's in every version; shared with Cycles from 4.0 on)."""
+    if _cycles_own_shadow(light, engine):
+        light.cycles.cast_shadow = on
+    else:
+        light.use_shadow = on
+
+
+def renderer_shadow(light, engine="CYCLES"):
+    if _cycles_own_shadow(light, engine):
+        return bool(light.cycles.cast_shadow)
+    return bool(light.use_shadow)
+
+
+def lightgroup_pass(view_layer, obj, name):
+    """Puts a light object in a Cycles light group of the view layer (3.2+), made when missing.
+    Returns the Render Layers output that carries the group: "Combined_<name>"."""
+    if name not in [group.name for group in view_layer.lightgroups]:
+        view_layer.lightgroups.add(name=name)
+    obj.lightgroup = name
+    return "Combined_" + name
+
+
+def supports_lightgroups(view_layer):
+    return hasattr(view_layer, "lightgroups")
+

@@ -2,10 +2,11 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Nodes are found by name, so setting up or refreshing again never piles up nodes."""
 import os
+import zlib
 
 import bpy
 
-from . import compat
+from . import compat, scene_export
 
 IMAGE_NAME = "SoftShadow Passes"
 IMAGE_NODE = "SoftShadow Passes"
@@ -18,10 +19,17 @@ def _tree(scene, create=True):
 
 
 def passes_image(exr_path):
-    """The image datablock reading the EXR sequence that `exr_path` is one frame of."""
+    """The image datablock reading the EXR sequence that `exr_path` is one frame of. It exists
+    before its first file does: a render must not add datablocks (its dependency graph was built
+    before, and would not see them until the next frame)."""
     image = bpy.data.images.get(IMAGE_NAME)
     if image is None:
-        image = bpy.data.images.load(exr_path, check_existing=False)
+        if os.path.exists(exr_path):
+            image = bpy.data.images.load(exr_path, check_existing=False)
+        else:
+            image = bpy.data.images.new(IMAGE_NAME, 4, 4, float_buffer=True)
+            image.source = "FILE"
+            image.filepath = exr_path
         image.name = IMAGE_NAME
     elif bpy.path.abspath(image.filepath) != os.path.abspath(exr_path):
         image.filepath = exr_path
@@ -98,18 +106,114 @@ def pass_sockets(node):
     return [s.name for s in node.outputs if s.enabled and s.name not in ("Image", "Alpha")]
 
 
+# Blender keeps no reference to the strings of a dynamic enum: they must outlive the call.
+_enum_items = []
+FIRST_PASS = "FIRST"  # the choice before the artist made one (enum number 0)
+
+
+def visibility_passes(node):
+    """The main passes (`<light>_<method>`), not their mask, umbra or debug layers."""
+    from .passes import METHODS
+    endings = tuple("_" + m for m in METHODS + ("auto",))
+    return [name for name in pass_sockets(node) if name.endswith(endings)]
+
+
+def pass_enum_items(scene):
+    """The passes the compositor can darken by: the outputs of the passes Image node. Each item's
+    number is derived from its name, so a stored choice survives passes being added or removed."""
+    tree = _tree(scene, create=False) if scene is not None else None
+    node = tree.nodes.get(IMAGE_NODE) if tree is not None else None
+    names = visibility_passes(node) if node is not None else []
+    _enum_items[:] = [(FIRST_PASS, "First Pass", "The first pass of the file (render once: the passes "
+                       "appear in this list)", 0)]
+    _enum_items.extend((name, name, "Darken by the pass %s" % name, pass_enum_number(name)) for name in names)
+    return _enum_items
+
+
+def pass_enum_number(name):
+    """The enum number of a pass name (0: the first pass), the same whatever the list holds."""
+    return 0 if name in ("", FIRST_PASS) else 1 + zlib.crc32(name.encode()) % 0x7FFFFFF0
+
+
+def pass_enum_name(number):
+    return next((item[0] for item in _enum_items if item[3] == number and item[0] != FIRST_PASS), "")
+
+
+def expected_passes(scene, view_layer):
+    """The main pass names a render will write for the view layer's plainly placed lights (pass
+    names are `<light>_<method asked for>`, so they are known before anything is computed)."""
+    names = []
+    for obj in scene_export.rendering_objects(view_layer):
+        light = obj.data if obj.type == "LIGHT" else None
+        settings = getattr(light, "softshadow", None)
+        if settings is None or not settings.enabled:
+            continue
+        if not (compat.light_use_shadow(light) or settings.replaces_shadow):
+            continue
+        names.append(scene_export.pass_name(obj.name, settings.method or "auto"))
+    return names
+
+
+def missing_sockets(scene, view_layer):
+    """The expected passes the compositor's Image node has no socket for. A render cannot add
+    them for its first frame (its copy of the node tree is made before the frame's passes are),
+    so they are caught before it starts. [] when the compositor is not set up."""
+    tree = _tree(scene, create=False)
+    node = tree.nodes.get(IMAGE_NODE) if tree is not None else None
+    wired = tree is not None and any(n.name.startswith("SoftShadow ") and n.bl_idname == "CompositorNodeGroup"
+                                     for n in tree.nodes)
+    if node is None or not wired:
+        return []
+    have = set(pass_sockets(node))
+    return [name for name in expected_passes(scene, view_layer) if name not in have]
+
+
+def apply_strength(scene):
+    """The scene's Strength on the darken group node (called whenever the slider moves)."""
+    tree = _tree(scene, create=False)
+    for node in (tree.nodes if tree is not None else ()):
+        if node.name.startswith("SoftShadow ") and "Strength" in node.inputs:
+            node.inputs["Strength"].default_value = scene.softshadow.strength
+
+
+def relink_chosen(scene):
+    """Links the pass chosen in the UI right away (the set-up need not run again)."""
+    tree = _tree(scene, create=False)
+    node = tree.nodes.get(IMAGE_NODE) if tree is not None else None
+    group_node = tree.nodes.get(GROUP_NODE) if tree is not None else None
+    if node is not None and group_node is not None and "Visibility" in group_node.inputs:
+        _relink(tree, group_node, node, _chosen_pass(scene))
+
+
+def _chosen_pass(scene):
+    return scene.softshadow.compositor_pass_name
+
+
 def _relink(tree, group_node, node, pass_name):
-    names = pass_sockets(node)
+    """Links the chosen pass to the group. A choice that is not among the passes is left
+    unlinked and said (no silent fall-back to another light's shadow); no choice yet takes the
+    first pass. Returns (linked pass or None, problem or '')."""
+    names = visibility_passes(node)
     if not names:
-        return None
-    chosen = pass_name if pass_name in names else names[0]
+        return None, ""
+    if pass_name and pass_name not in names:
+        return None, "the pass '%s' chosen to darken by is not in the pass file (it has %s)" % (
+            pass_name, ", ".join(names))
+    chosen = pass_name or names[0]
     target = group_node.inputs["Visibility"]
     current = target.links[0].from_socket if target.is_linked else None
     if current is None or current.node != node or current.name != chosen:
         for link in list(target.links):
             tree.links.remove(link)
         tree.links.new(node.outputs[chosen], target)
-    return chosen
+    return chosen, ""
+
+
+def place_between(before, node, output):
+    """Lays `node` out right of `before`, moving the output further right when it is in the way."""
+    node.location = (before.location.x + before.width + 80, before.location.y)
+    if output.location.x < node.location.x + node.width + 80:
+        output.location = (node.location.x + node.width + 80, output.location.y)
 
 
 def final_output(scene):
@@ -122,53 +226,73 @@ def final_output(scene):
 
 
 def setup(scene, exr_path=None):
-    """Render Layers -> darken group (by the chosen pass) -> final output, plus the Image node."""
+    """Inserts the darken group just before the final output, keeping whatever fed it (Render
+    Layers, or a chain such as Render Layers -> Glare), and adds the passes Image node.
+    Returns (Image node, [what changed, in words])."""
+    changes = []
     tree = _tree(scene)
-    image = passes_image(exr_path) if exr_path and os.path.exists(exr_path) else bpy.data.images.get(IMAGE_NAME)
+    image = passes_image(exr_path) if exr_path else bpy.data.images.get(IMAGE_NAME)
+    had_image_node = tree.nodes.get(IMAGE_NODE) is not None
     node = image_node(scene, image)
-    layers = _find(tree, "CompositorNodeRLayers")
-    if layers is None:
-        layers = tree.nodes.new("CompositorNodeRLayers")
-        layers.location = (-300, 100)
-    composite = final_output(scene)
+    if not had_image_node:
+        changes.append("added the Image node '%s'" % IMAGE_NODE)
+    output, created = compat.compositor_output(tree, bpy.types)
+    if created:
+        output.location = (600, 100)
+        changes.append("added the output node '%s'" % output.name)
+    output_input = output.inputs["Image"]
     group_node = tree.nodes.get(GROUP_NODE)
     if group_node is None:
         group_node = tree.nodes.new("CompositorNodeGroup")
         group_node.name = GROUP_NODE
         group_node.label = "Soft Shadow Darken"
-        group_node.location = (layers.location.x + layers.width + 250, layers.location.y)
-        node.location = (layers.location.x, layers.location.y - 450)
-        if composite.location.x < group_node.location.x + 250:
-            composite.location = (group_node.location.x + 250, group_node.location.y)
+        changes.append("added the group node '%s'" % GROUP_NODE)
     if group_node.node_tree is None:
         group_node.node_tree = darken_group()
     group_node.inputs["Strength"].default_value = scene.softshadow.strength
-    if not group_node.inputs["Image"].is_linked:
-        tree.links.new(layers.outputs["Image"], group_node.inputs["Image"])
-    for link in list(composite.inputs["Image"].links):
-        if link.from_node != group_node:
+    feeding = output_input.links[0].from_socket if output_input.is_linked else None
+    if feeding is None or feeding.node != group_node:
+        if feeding is None:
+            layers = _find(tree, "CompositorNodeRLayers")
+            if layers is None:
+                layers = tree.nodes.new("CompositorNodeRLayers")
+                layers.location = (output.location.x - 900, output.location.y)
+                changes.append("added a Render Layers node")
+            feeding = layers.outputs["Image"]
+        for link in list(group_node.inputs["Image"].links):
             tree.links.remove(link)
-    if not composite.inputs["Image"].is_linked:
-        tree.links.new(group_node.outputs["Image"], composite.inputs["Image"])
-    _relink(tree, group_node, node, scene.softshadow.compositor_pass)
-    return node
+        tree.links.new(feeding, group_node.inputs["Image"])
+        for link in list(output_input.links):
+            tree.links.remove(link)
+        tree.links.new(group_node.outputs["Image"], output_input)
+        place_between(feeding.node, group_node, output)
+        node.location = (group_node.location.x - 120, group_node.location.y - 480)
+        changes.append("inserted '%s' between %s.%s and %s" % (
+            GROUP_NODE, feeding.node.name, feeding.name, output.name))
+    chosen, problem = _relink(tree, group_node, node, _chosen_pass(scene))
+    if problem:
+        changes.append(problem)
+    elif chosen:
+        changes.append("darkening by %s" % chosen)
+    return node, changes
 
 
 def refresh(scene, exr_path):
-    """After a frame's EXR was written: point the image at it, reload, update the sockets."""
+    """After a frame's EXR was written: point the image at it, reload, update the sockets.
+    Returns a problem ('' when none)."""
     tree = _tree(scene, create=False)
     image = passes_image(exr_path)
     image.reload()
     image.size[:]  # touching the buffer makes Blender read the passes (DESIGN.md)
     if tree is None:
-        return None
+        return ""
     node = tree.nodes.get(IMAGE_NODE)
     if node is None:
-        return None
+        return ""
     if node.image != image:
         node.image = image
     _set_sequence(node, scene)
     group_node = tree.nodes.get(GROUP_NODE)
     if group_node is not None and "Visibility" in group_node.inputs:
-        _relink(tree, group_node, node, scene.softshadow.compositor_pass)
-    return node
+        return _relink(tree, group_node, node, _chosen_pass(scene))[1]
+    return ""

@@ -1,63 +1,98 @@
-# When the passes are computed for a render: before each frame (F12, animation, background -a).
+# When the passes are computed for a render: before each frame that renders, at that frame.
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Before each frame the passes are computed, written as one EXR per frame next to the render
-output, and the compositor's Image node is refreshed, so the compositor sees them without clicks.
+"""render_pre is the one place: it fires once for each frame that renders (F12, animation,
+`-f N`, `-s A -e B -a`, `-f A..B`) with the scene already at that frame. render_init is too
+early: it fires before `-f N` sets the frame, so work there would compute the file's current
+frame instead.
 
-render_init does the current frame: the render copies the compositor's node tree before the
-first render_pre, so the Image node's pass sockets and links must exist by then. render_pre does
-every later frame of an animation (the file of each frame is read from disk at compositing).
-Nothing here may raise into Blender: every failure becomes a printed, stored message."""
+In the background (`blender -b`) a frame whose passes failed stops Blender with EXIT_FAILED
+before that frame renders (scene setting On Failure); nothing here may raise into Blender.
+
+Where the handlers run: on the main thread with `blender -b`; on the render thread for F12 and
+Ctrl+F12 in the interface. There they touch Blender data only with Lock Interface on, Blender's
+documented condition for handlers that read and change data during a render (turning the passes
+on sets it); the GUI render test records where each handler ran."""
+import os
+import sys
 import threading
 
 import bpy
 
-from . import api, native
+from . import api, compositor, native
+
+# Blender exits 0 on success and 1 on its own errors (e.g. a failed --python script); 3 says
+# "the soft-shadow passes of a frame failed".
+EXIT_FAILED = 3
 
 # The last frame's outcome, for the UI (render handlers may run off the main thread, where
 # writing RNA properties is not safe).
-last_report = {"frame": None, "path": "", "problems": [], "chosen": {}}
+last_report = {"frame": None, "path": "", "problems": [], "chosen": {}, "layers": {}}
+
+# Where each handler ran last, and whether the interface was locked (the GUI render test reads it).
+handler_threads = {}
 
 
 def _sync_frame(scene):
-    """The view layer's depsgraph at the frame being rendered.
-
-    An animation render sets the frame without evaluating the view layer's depsgraph; on the
-    main thread (always so with `blender -b ... -a`) we evaluate it for the new frame."""
+    """Evaluates the scene at the frame being rendered (an animation render sets the frame
+    without evaluating the view layers' depsgraphs)."""
     depsgraph = bpy.context.evaluated_depsgraph_get()
-    evaluated_frame = depsgraph.scene_eval.frame_current
-    if evaluated_frame != scene.frame_current:
-        if threading.current_thread() is threading.main_thread():
-            scene.frame_set(scene.frame_current)
-            depsgraph = bpy.context.evaluated_depsgraph_get()
-        else:
-            print("softshadow: the passes of frame %d use the scene as evaluated at frame %d "
-                  "(render animations from the command line for exact frames)"
-                  % (scene.frame_current, evaluated_frame))
-    return depsgraph
+    if depsgraph.scene_eval.frame_current == scene.frame_current:
+        return
+    if threading.current_thread() is threading.main_thread():
+        scene.frame_set(scene.frame_current)
+    else:
+        print("softshadow: the passes of frame %d use the scene as evaluated at frame %d "
+              "(render animations from the command line for exact frames)"
+              % (scene.frame_current, depsgraph.scene_eval.frame_current))
 
 
-_done_in_init = {"frame": None}
+def _data_access_allowed(scene):
+    """Blender data may be read and changed here: on the main thread (always so with `blender
+    -b`), or on the render thread while the interface is locked (Blender's rule for handlers)."""
+    return threading.current_thread() is threading.main_thread() or scene.render.use_lock_interface
 
 
 def _compute(scene):
-    report = {"frame": scene.frame_current, "path": "", "problems": [], "chosen": {}}
+    """{view layer: (path, problems, chosen, failed lights)}; every failure becomes a problem."""
+    if not _data_access_allowed(scene):
+        return {"": ("", ["the passes were not computed: Render > Lock Interface is off, and this "
+                          "render runs its handlers beside the interface (turn it on, or turn the "
+                          "passes off and on again)"], {}, [])}
     try:
+        api.remove_frame_files(scene)
         if not native.available():
-            report["problems"].append(native.status()["error"])
-        else:
-            path, problems, chosen = api.render_frame(scene, _sync_frame(scene))
-            report.update(path=path, problems=list(problems), chosen=dict(chosen))
+            return {layer.name: ("", [native.status()["error"]], {}, [])
+                    for layer in api.rendering_view_layers(scene)}
+        _sync_frame(scene)
+        return {name: (path, list(problems), dict(chosen), list(failed))
+                for name, path, problems, chosen, failed in api.render_frame_layers(scene)}
     except (native.SoftShadowError, native.LibraryUnavailable) as exc:
-        report["problems"].append(str(exc))
-    except Exception as exc:  # a bug of ours must not stop the user's render
-        report["problems"].append("internal error: %s: %s" % (type(exc).__name__, exc))
-    last_report.clear()
-    last_report.update(report)
-    for problem in report["problems"]:
-        print("softshadow: frame %d: %s" % (report["frame"], problem))
-    if report["path"]:
-        chosen = ", ".join("%s: %s" % item for item in report["chosen"].items())
-        print("softshadow: frame %d: wrote %s (%s)" % (report["frame"], report["path"], chosen))
+        return {"": ("", [str(exc)], {}, [])}
+    except Exception as exc:  # a bug of ours must not stop the user's render uncontrolled
+        return {"": ("", ["internal error: %s: %s" % (type(exc).__name__, exc)], {}, [])}
+
+
+def _failures(layers):
+    """The causes that make a frame's passes failed: no file, or a light that got no pass."""
+    causes = []
+    for name, (path, problems, _chosen, failed) in layers.items():
+        where = "view layer '%s': " % name if name else ""
+        if not path:
+            causes.append(where + ("; ".join(problems) or "no pass file was written"))
+        elif failed:
+            causes.append(where + "no pass for light(s) %s: %s" % (", ".join(failed), "; ".join(problems)))
+    return causes
+
+
+def _stop(frame, causes):
+    """Ends a background render before the frame renders: no picture from missing passes."""
+    where = "before the first frame" if frame is None else "frame %d" % frame
+    message = "softshadow: %s: the passes failed, stopping the render (exit code %d): %s" % (
+        where, EXIT_FAILED, " | ".join(causes))
+    print(message, file=sys.stderr)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(EXIT_FAILED)  # (a SystemExit raised in a handler is caught and printed by Blender)
 
 
 def _enabled(scene):
@@ -65,22 +100,58 @@ def _enabled(scene):
     return props is not None and props.enabled
 
 
+def _record(frame, layers):
+    problems, chosen, paths = [], {}, []
+    for name, (path, layer_problems, layer_chosen, _failed) in layers.items():
+        problems += layer_problems
+        chosen.update(layer_chosen)
+        if path:
+            paths.append(path)
+    last_report.clear()
+    last_report.update(frame=frame, path=paths[0] if paths else "", problems=problems, chosen=chosen,
+                       layers=dict(layers))
+    for problem in problems:
+        print("softshadow: frame %d: %s" % (frame, problem))
+    for path in paths:
+        print("softshadow: frame %d: wrote %s (%s)" % (
+            frame, path, ", ".join("%s: %s" % item for item in chosen.items())))
+
+
 @bpy.app.handlers.persistent
 def on_render_init(scene, *_args):
-    _done_in_init["frame"] = None
-    if _enabled(scene):
-        _compute(scene)
-        _done_in_init["frame"] = scene.frame_current
+    """Before any frame: the checks that need no frame (the frame is not set yet here)."""
+    handler_threads["render_init"] = {"main_thread": threading.current_thread() is threading.main_thread(),
+                                      "lock_interface": bool(scene.render.use_lock_interface)}
+    if not _enabled(scene):
+        return
+    causes = []
+    try:
+        missing = compositor.missing_sockets(scene, api.compositor_view_layer(scene))
+        if missing:
+            causes.append("the compositor's '%s' node has no socket for %s yet: run Set Up "
+                          "Compositor again (and save) before rendering"
+                          % (compositor.IMAGE_NODE, ", ".join(missing)))
+    except Exception as exc:
+        causes.append("internal error: %s: %s" % (type(exc).__name__, exc))
+    for cause in causes:
+        print("softshadow: %s" % cause)
+    if causes and bpy.app.background and scene.softshadow.on_failure == "STOP":
+        _stop(None, causes)
 
 
 @bpy.app.handlers.persistent
 def on_render_pre(scene, *_args):
-    if _done_in_init["frame"] == scene.frame_current:
-        _done_in_init["frame"] = None  # render_init already did this frame
+    handler_threads["render_pre"] = {"main_thread": threading.current_thread() is threading.main_thread(),
+                                     "lock_interface": bool(scene.render.use_lock_interface),
+                                     "frame": scene.frame_current}
+    if not _enabled(scene):
         return
-    _done_in_init["frame"] = None
-    if _enabled(scene):
-        _compute(scene)
+    frame = scene.frame_current
+    layers = _compute(scene)
+    _record(frame, layers)
+    causes = _failures(layers)
+    if causes and bpy.app.background and scene.softshadow.on_failure == "STOP":
+        _stop(frame, causes)
 
 
 _HANDLERS = (("render_init", on_render_init), ("render_pre", on_render_pre))

@@ -1,9 +1,11 @@
 # What the user can run: passes for this frame, the compositor set-up, the scene file for the CLI.
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Every operator body is wrapped: failures become self.report messages, never tracebacks."""
+import os
+
 import bpy
 
-from . import api, compositor, native
+from . import api, compositor, native, replace
 
 
 def _library_ready(op):
@@ -53,19 +55,39 @@ class SOFTSHADOW_OT_render_passes(bpy.types.Operator):
 
 
 class SOFTSHADOW_OT_setup_compositor(bpy.types.Operator):
-    """Add the passes Image node and a group that darkens the render layer by a pass"""
+    """Insert a group that darkens the final image by a pass just before the compositor's output
+(keeping the rest of the tree), and the Image node reading the passes"""
     bl_idname = "softshadow.setup_compositor"
     bl_label = "Set Up Soft Shadow Compositing"
     bl_options = {"REGISTER", "UNDO"}
 
     def execute(self, context):
         scene = context.scene
+        view_layer = api.compositor_view_layer(scene)
+        replacing = scene.softshadow.composite == "REPLACE"
+        if replacing and replace.problem(scene, view_layer):
+            self.report({"ERROR"}, "Soft Shadow: " + replace.problem(scene, view_layer))
+            return {"CANCELLED"}
         try:
-            path = api.frame_exr_path(scene)
-            node = compositor.setup(scene, path)
+            path = api.frame_exr_path(scene, view_layer=view_layer)
+            if compositor.missing_sockets(scene, view_layer) or not os.path.exists(path):
+                # The Image node gets its pass sockets from a pass file: make this frame's now,
+                # so a render's first frame finds them (and a saved file carries them).
+                if _library_ready(self):
+                    path, problems, _ = api.render_frame(scene, view_layer=view_layer)
+                    _report_problems(self, problems)
+            path = path or api.frame_exr_path(scene, view_layer=view_layer)
+            if replacing:
+                node = compositor.image_node(scene, compositor.passes_image(path))
+                changes = replace.setup(scene, view_layer, node)
+            else:
+                changes = replace.teardown(scene, view_layer)
+                node, more = compositor.setup(scene, path)
+                changes += more
         except Exception as exc:
             self.report({"ERROR"}, "Soft Shadow: compositor set-up failed: %s" % exc)
             return {"CANCELLED"}
+        self.report({"INFO"}, "Soft Shadow: " + ("; ".join(changes) or "the compositor was already set up"))
         if not compositor.pass_sockets(node):
             self.report({"INFO"}, "Soft Shadow: nodes added; passes appear after the first render")
         return {"FINISHED"}

@@ -12,6 +12,7 @@ class FrameResult:
     results: list = field(default_factory=list)   # native.Result, for ss_write_exr
     chosen: dict = field(default_factory=dict)    # light name -> the methods that ran, 'auto' resolved ("a, b")
     problems: list = field(default_factory=list)
+    failed_lights: list = field(default_factory=list)  # wanted lights that got no pass
     view_layer: str = "ViewLayer"
     exr_path: str = ""
 
@@ -85,8 +86,9 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
     try:
         jobs = [(l, m) for l, ms in _wanted(exported, lights, methods, only_enabled) for m in ms]
         for number, (light, method) in enumerate(jobs):
-            if light["name"] not in indices or (light["name"], method) in out.arrays:
-                continue  # skipped, or already made: 'auto' resolved to a method also asked for
+            if light["name"] not in indices:
+                out.failed_lights.append(light["name"])
+                continue
             options = light.get("options", {})
 
             def step(fraction, stage, number=number):
@@ -100,16 +102,18 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
                 if exc.cancelled:
                     raise
                 out.problems.append("light '%s' with %s: %s" % (light["name"], method, exc))
+                out.failed_lights.append(light["name"])
                 continue
             ran = result.method
-            if (light["name"], ran) in out.arrays:
-                result.close()  # the same (light, method, settings) as a pass already made
-                continue
-            ran_before = out.chosen.get(light["name"])
-            out.chosen[light["name"]] = ran if not ran_before else ran_before + ", " + ran
-            layers = result.layers()
-            if "V" in layers:
-                out.arrays[(light["name"], ran)] = layers["V"]
+            # Arrays are keyed by the method that ran, so 'auto' resolving to a method also asked
+            # for gives one array; the EXR names passes by the method asked for ('<light>_auto'
+            # stays wired whatever auto picks), so there both results are kept.
+            if (light["name"], ran) not in out.arrays:
+                ran_before = out.chosen.get(light["name"])
+                out.chosen[light["name"]] = ran if not ran_before else ran_before + ", " + ran
+                layers = result.layers()
+                if "V" in layers:
+                    out.arrays[(light["name"], ran)] = layers["V"]
             if keep_results:
                 out.results.append(result)
             else:
@@ -117,10 +121,6 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
     finally:
         scene.close()
     return out
-
-
-def exr_path_for_frame(directory, frame):
-    return os.path.join(directory, "softshadow_%04d.exr" % frame)
 
 
 def write_exr(frame_result, path):

@@ -25,22 +25,87 @@ class SoftShadowLightSettings(bpy.types.PropertyGroup):
     settings: bpy.props.StringProperty(
         name="Method Settings", default="",
         description="Advanced method quality settings as key=value;key=value")
+    replaces_shadow: bpy.props.BoolProperty(
+        name="Pass Replaces the Shadow", default=False, options={"HIDDEN"},
+        description="Set by the Replace composite: the renderer's shadow of this light is off "
+                    "and the pass puts the shadow back")
+    home_collections: bpy.props.StringProperty(
+        name="Collections Before Replace", default="", options={"HIDDEN"},
+        description="EEVEE Replace moves the light into a collection of its own; these are the "
+                    "collections it goes back to (names joined by ';')")
+
+
+FAILURE_ITEMS = [
+    ("STOP", "Stop the Render",
+     "In the background (blender -b) exit with code 3 before a frame whose passes failed is "
+     "rendered; the interface reports the problem and goes on"),
+    ("CONTINUE", "Report and Continue",
+     "Report the problem and render the frame without its passes, also in the background"),
+]
+
+
+def _enabled_changed(self, context):
+    # In the interface the render handlers run on the render thread; Blender's rule for handlers
+    # that touch data there is a locked interface (bpy.app.handlers, "Note on Altering Data").
+    if self.enabled:
+        self.id_data.render.use_lock_interface = True
+
+
+def _strength_changed(self, context):
+    from . import compositor  # (properties register first: no import at module level)
+    compositor.apply_strength(context.scene)
+
+
+def _pass_items(self, context):
+    from . import compositor
+    return compositor.pass_enum_items(context.scene if context else None)
+
+
+# The choice is kept by name (compositor_pass_name): a dynamic enum stores a number, which would
+# silently point at another pass when the list changes.
+def _pass_get(self):
+    from . import compositor
+    return compositor.pass_enum_number(self.compositor_pass_name)
+
+
+def _pass_set(self, value):
+    from . import compositor
+    self.compositor_pass_name = compositor.pass_enum_name(value)
+    compositor.relink_chosen(bpy.context.scene)
 
 
 class SoftShadowSceneSettings(bpy.types.PropertyGroup):
     enabled: bpy.props.BoolProperty(
-        name="Soft Shadow Passes", default=True,
-        description="Compute the passes before each render and write them as a multilayer EXR")
-    output_dir: bpy.props.StringProperty(
-        name="Output Folder", subtype="DIR_PATH", default="",
-        description="Where the per-frame EXR goes (empty: next to the render output)")
+        name="Soft Shadow Passes", default=False, update=_enabled_changed,
+        description="Compute the passes before each render of this scene and write them as a "
+                    "multilayer EXR per frame and view layer (also locks the interface during "
+                    "renders, as Blender requires of handlers that read and change data)")
+    on_failure: bpy.props.EnumProperty(
+        name="On Failure", items=FAILURE_ITEMS, default="STOP",
+        description="What a render does when a frame's passes cannot be made")
+    output_path: bpy.props.StringProperty(
+        name="Pass Files", subtype="FILE_PATH", default="",
+        description="Template of the pass files: {scene}, {view_layer} and # for the frame "
+                    "(empty: a 'softshadow' folder beside the render output, following its # padding)")
     extra_layers: bpy.props.BoolProperty(
         name="Extra Layers", default=False,
         description="Also write umbra, penumbra, mask and the methods' debug layers")
-    compositor_pass: bpy.props.StringProperty(
-        name="Darken By", default="",
-        description="The pass the compositor's darken group multiplies by (empty: the first)")
+    composite: bpy.props.EnumProperty(
+        name="Composite", default="DARKEN", items=[
+            ("DARKEN", "Darken", "Multiply the final image by one pass (a quick look: the renderer's "
+             "own shadow stays, so that light's shadow is darkened twice)"),
+            ("REPLACE", "Replace", "Each light's own shadow is switched off in the renderer, its "
+             "contribution (Cycles: a light group; EEVEE: a view layer without it) is multiplied "
+             "by its pass and summed back"),
+        ], description="How Set Up Compositor uses the passes")
+    compositor_pass_name: bpy.props.StringProperty(name="Darken By (name)", default="",
+                                                   options={"HIDDEN"})
+    compositor_pass: bpy.props.EnumProperty(
+        name="Darken By", items=_pass_items, get=_pass_get, set=_pass_set,
+        description="The pass the compositor's darken group multiplies by (the passes of the last "
+                    "pass file)")
     strength: bpy.props.FloatProperty(name="Strength", default=1.0, min=0.0, max=1.0,
+                                      update=_strength_changed,
                                       description="How strongly the darken group applies the pass")
     preview: bpy.props.BoolProperty(
         name="Viewport Preview", default=False,

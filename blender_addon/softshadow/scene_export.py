@@ -145,6 +145,12 @@ def _object_visible(obj, mode, view_layer, render_collections):
         return original.visible_get()
 
 
+def rendering_objects(view_layer):
+    """The view layer's own objects that a render includes (instances left aside)."""
+    collections = _render_visible_collections(view_layer)
+    return [obj for obj in view_layer.objects if _object_visible(obj, "RENDER", view_layer, collections)]
+
+
 def _local_mesh_arrays(obj):
     """(vertices (N,3) float32 local, triangles (M,3) uint32) of an evaluated object."""
     mesh = obj.to_mesh()
@@ -178,7 +184,13 @@ def _light_from_object(name, obj, matrix):
         angle=getattr(data, "angle", 0.0) if data.type == "SUN" else 0.0,
         spot_size=getattr(data, "spot_size", 0.0) if data.type == "SPOT" else 0.0,
         spot_blend=getattr(data, "spot_blend", 0.0) if data.type == "SPOT" else 0.0,
-        use_shadow=compat.light_use_shadow(data))
+        use_shadow=compat.light_use_shadow(data) or _replaces_shadow(obj))
+
+
+def _replaces_shadow(obj):
+    """A light whose renderer shadow the Replace composite switched off still casts our pass."""
+    props = getattr(obj.original.data, "softshadow", None)
+    return bool(props is not None and props.replaces_shadow)
 
 
 def _light_settings(obj):

@@ -96,9 +96,13 @@ class SOFTSHADOW_PT_output(bpy.types.Panel):
         layout.use_property_split = True
         col = layout.column()
         col.active = props.enabled
-        col.prop(props, "output_dir")
+        col.prop(props, "output_path")
+        col.prop(props, "on_failure")
         col.prop(props, "extra_layers")
-        col.prop(props, "compositor_pass")
+        col.prop(props, "composite")
+        sub = col.column()
+        sub.active = props.composite == "DARKEN"
+        sub.prop(props, "compositor_pass")
         col.prop(props, "strength")
         row = layout.row(align=True)
         row.operator("softshadow.render_passes", icon="RENDER_STILL", text="Render Passes")

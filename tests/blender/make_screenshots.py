@@ -18,7 +18,8 @@ import bpy  # noqa: E402
 sstest.addon()
 folder = sstest.tempdir("shots")
 scene = sstest.standard_scene(320, 240)
-scene.softshadow.output_dir = os.path.join(folder, "passes")
+scene.softshadow.output_path = os.path.join(os.path.join(folder, "passes"), "softshadow_####.exr")
+scene.softshadow.enabled = True
 blend = os.path.join(folder, "shots.blend")
 bpy.ops.wm.save_as_mainfile(filepath=blend)
 out = os.environ.get("SOFTSHADOW_SHOTS") or os.path.join(sstest.ROOT, "docs", "images")

@@ -1,6 +1,7 @@
 # What every Blender test shares: loading the add-on, a small scene, pixel look-ups, a runner.
 # SPDX-License-Identifier: GPL-3.0-or-later
 import os
+import subprocess
 import sys
 import tempfile
 import traceback
@@ -111,6 +112,16 @@ def clear_scene():
             if key != "rna_type":
                 props.property_unset(key)
     scene.frame_current = 1
+    from softshadow import compat
+    tree = compat.compositor_tree(scene)
+    if tree is not None:  # back to a new file's compositor: Render Layers -> final output
+        tree.nodes.clear()
+        layers = tree.nodes.new("CompositorNodeRLayers")
+        output, _ = compat.compositor_output(tree, bpy.types)
+        output.location = (400, 0)
+        tree.links.new(layers.outputs["Image"], output.inputs["Image"])
+    for layer in list(scene.view_layers)[1:]:
+        scene.view_layers.remove(layer)
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
     for block in (bpy.data.meshes, bpy.data.lights, bpy.data.cameras):
@@ -213,3 +224,45 @@ def exr_channel(path, channel):
     channels = exr_reader.read(path)
     check(channel in channels, "channel %s in %s: %s" % (channel, path, sorted(channels)))
     return channels[channel].astype("float32")
+
+
+def png_gray(path):
+    """A PNG's mean of R, G, B as a numpy (H, W) array, row 0 = top."""
+    import numpy as np
+    image = bpy.data.images.load(path, check_existing=False)
+    w, h = image.size
+    pixels = np.empty(w * h * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    return np.flipud(pixels.reshape(h, w, 4))[..., :3].mean(axis=2)
+
+
+def flat_white_workbench(scene):
+    """Workbench, flat white, no shadows of its own: any darkening comes from the pass."""
+    scene.render.engine = "BLENDER_WORKBENCH"
+    shading = scene.display.shading
+    shading.light = "FLAT"
+    shading.color_type = "SINGLE"
+    shading.single_color = (1.0, 1.0, 1.0)
+    shading.show_shadows = False
+    shading.show_cavity = False
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "PNG"
+
+
+def blender_batch(folder, blend, args, env=None, argv=None):
+    """`blender -b blend <the add-on> args...`, or `blender -b argv...` as given, with the add-on
+    reachable the way this Blender loads it -> CompletedProcess (stdout+stderr in .log)."""
+    addon_args, full_env = child_blender(folder)
+    full_env.update(env or {})
+    tail = list(argv) if argv is not None else [blend] + addon_args + list(args)
+    run = subprocess.run([bpy.app.binary_path, "-b"] + tail, capture_output=True, text=True,
+                         env=full_env, timeout=900)
+    run.log = run.stdout + run.stderr
+    return run
+
+
+def exr_rgb(path):
+    """An RGB(A) EXR's colour as a numpy (H, W, 3) array, row 0 = top."""
+    import numpy as np
+    return np.stack([exr_channel(path, c) for c in "RGB"], axis=2)

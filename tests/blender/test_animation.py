@@ -2,7 +2,6 @@
 # occluder, and a composited output darkened where the pass is dark?
 # SPDX-License-Identifier: GPL-3.0-or-later
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -19,45 +18,26 @@ XS = (-3.0, -2.0, -1.0)  # the occluder's x on frames 1, 2, 3 (its shadow: -2, 0
 def _make_blend(folder):
     scene = sstest.standard_scene(W, H)
     scene.objects["Key"].data.softshadow.method = "shadow_map"
+    scene.softshadow.enabled = True
     box = scene.objects["Occluder"]
     for frame, x in enumerate(XS, start=1):
         box.location.x = x
         box.keyframe_insert("location", index=0, frame=frame)
     scene.frame_start, scene.frame_end = 1, len(XS)
-    # Workbench, flat white, no shadows of its own: any darkening comes from the pass.
-    scene.render.engine = "BLENDER_WORKBENCH"
-    shading = scene.display.shading
-    shading.light = "FLAT"
-    shading.color_type = "SINGLE"
-    shading.single_color = (1.0, 1.0, 1.0)
-    shading.show_shadows = False
-    shading.show_cavity = False
-    scene.view_settings.view_transform = "Standard"
-    scene.render.image_settings.file_format = "PNG"
+    sstest.flat_white_workbench(scene)
     scene.render.filepath = os.path.join(folder, "render_####")
-    scene.softshadow.output_dir = os.path.join(folder, "passes")
+    scene.softshadow.output_path = os.path.join(os.path.join(folder, "passes"), "softshadow_####.exr")
     sstest.check(bpy.ops.softshadow.setup_compositor() == {"FINISHED"}, "compositor set up")
     path = os.path.join(folder, "anim.blend")
     bpy.ops.wm.save_as_mainfile(filepath=path)
     return scene, path
 
 
-def _png(path):
-    image = bpy.data.images.load(path, check_existing=False)
-    w, h = image.size
-    pixels = np.empty(w * h * 4, np.float32)
-    image.pixels.foreach_get(pixels)
-    bpy.data.images.remove(image)
-    return np.flipud(pixels.reshape(h, w, 4))[..., :3].mean(axis=2)  # row 0 = top
-
-
 def test_three_frame_animation_render():
     folder = sstest.tempdir("anim")
     scene, blend = _make_blend(folder)
-    addon_args, env = sstest.child_blender(folder)
-    run = subprocess.run([bpy.app.binary_path, "-b", blend, *addon_args, "-a"],
-                         capture_output=True, text=True, env=env, timeout=900)
-    log = run.stdout + run.stderr
+    run = sstest.blender_batch(folder, blend, ["-a"])
+    log = run.log
     sstest.check(run.returncode == 0, "blender -a failed:\n%s" % log[-3000:])
     sstest.check(not sstest.our_tracebacks(log), "no traceback of ours:\n%s" % log[-3000:])
     centres, composite_ratio = [], []
@@ -76,7 +56,7 @@ def test_three_frame_animation_render():
         expect = sstest.pixel_of(scene, sstest.shadow_centre(x))
         sstest.check(v[expect] < 0.05, "frame %d: dark where the geometry puts the shadow %s (V=%.3f)"
                      % (frame, expect, v[expect]))
-        picture = _png(png)
+        picture = sstest.png_gray(png)
         lit = (v > 0.95) & (picture > 0.5)
         sstest.check(lit.sum() > 50, "frame %d: lit ground visible" % frame)
         ratio = picture[dark].mean() / picture[lit].mean()

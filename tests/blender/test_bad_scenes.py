@@ -14,7 +14,7 @@ ss = sstest.addon()
 def _bad_scene(folder):
     scene = sstest.standard_scene(32, 24)
     scene.objects["Key"].data.softshadow.method = "shadow_map"
-    scene.softshadow.output_dir = folder
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
     nan = sstest.add_box("NaNBox", 0.5, (2, 2, 1))
     nan.data.vertices[0].co = (math.nan, 0.0, 0.0)
     sstest.add_plane("NoFaces", 1.0, (0, 2, 1), faces=False)
@@ -62,6 +62,8 @@ def test_no_camera():
         sstest.check(False, "the operator must report an error")
     except RuntimeError as exc:
         sstest.check("no pass" in str(exc) or "camera" in str(exc), "error report: %s" % exc)
+    scene.softshadow.enabled = True
+    scene.softshadow.on_failure = "CONTINUE"  # (STOP would end this test's Blender)
     ss.handlers.on_render_pre(scene)  # the render handler must not raise either
     sstest.check(any("camera" in p for p in ss.handlers.last_report["problems"]), "handler stored the problem")
 

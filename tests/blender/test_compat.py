@@ -97,6 +97,20 @@ def test_group_sockets_both_shapes():
     sstest.check(compat.group_sockets(new, "OUTPUT") == ["Image"], "4.x interface outputs")
 
 
+def test_renderer_shadow_3x_cycles_and_4x_shared():
+    light3 = NS(use_shadow=True, cycles=NS(cast_shadow=True))
+    compat.set_renderer_shadow(light3, False)
+    sstest.check(light3.cycles.cast_shadow is False and light3.use_shadow is True,
+                 "3.x: Cycles' own cast_shadow off, EEVEE's use_shadow (our pass switch) kept")
+    sstest.check(compat.renderer_shadow(light3) is False, "3.x read back")
+    light4 = NS(use_shadow=True, cycles=NS())
+    compat.set_renderer_shadow(light4, False)
+    sstest.check(light4.use_shadow is False and compat.renderer_shadow(light4) is False, "4.0+: use_shadow")
+    eevee3 = NS(use_shadow=True, cycles=NS(cast_shadow=True))
+    compat.set_renderer_shadow(eevee3, False, engine="BLENDER_EEVEE")
+    sstest.check(eevee3.use_shadow is False and eevee3.cycles.cast_shadow is True, "EEVEE: use_shadow always")
+
+
 def test_this_blenders_shapes():
     # The real API of the Blender running the test (the version matrix runs it in each).
     import bpy

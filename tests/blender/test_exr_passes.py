@@ -19,7 +19,7 @@ def _scene_with_two_lights(folder):
     rim = sstest.add_light("Rim.Light 2", location=(1, 1, 5), size=0.3)
     rim.data.softshadow.method = "reference"
     rim.data.softshadow.samples = 4
-    scene.softshadow.output_dir = folder
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
     bpy.context.view_layer.update()
     return scene
 
@@ -77,6 +77,35 @@ def test_extra_layers_and_values():
     direct = ss.render_passes(scene, lights="Key", methods="shadow_map")[("Key", "shadow_map")]
     sstest.check(stored.shape == direct.shape, "shape %s vs %s" % (stored.shape, direct.shape))
     sstest.check(float(np.abs(stored - direct).max()) <= 1e-6, "EXR equals the array")
+
+
+def _header_methods(path):
+    import exr_reader
+    kind, raw = exr_reader.attributes(path).get("softshadow/methods", (None, b""))
+    sstest.check(kind == "string", "softshadow/methods in the header of %s: %s" % (path, kind))
+    return dict(item.split("=") for item in raw.decode().split(";"))
+
+
+def test_auto_keeps_its_pass_name_and_the_header_says_what_ran():
+    folder = sstest.tempdir("exr-auto")
+    scene = sstest.standard_scene(48, 32)
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
+    key = scene.objects["Key"].data
+    key.softshadow.method = "auto"
+    ran = []
+    for shape in ("DISK", "RECTANGLE"):
+        key.shape = shape
+        key.size_y = 1.0
+        bpy.context.view_layer.update()
+        path, problems, chosen = ss.api.render_frame(scene)
+        sstest.check(path and problems == [], "%s: written, no problems: %s" % (shape, problems))
+        channels = sstest.exr_channels(path)
+        sstest.check("ViewLayer.Key_auto.V" in channels, "%s: stable pass name: %s" % (shape, channels))
+        header = _header_methods(path)
+        sstest.check(header == {"Key_auto": chosen["Key"]}, "%s: header %s, report %s" % (shape, header, chosen))
+        sstest.check(chosen["Key"] in ss.passes.METHODS, "a real method ran: %s" % chosen)
+        ran.append(chosen["Key"])
+    print("   auto ran", ran)
 
 
 if __name__ == "__main__":

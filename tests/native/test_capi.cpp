@@ -14,6 +14,7 @@
 #include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include "capi/capi_internal.h"
@@ -210,6 +211,7 @@ TEST(CApi, WriteExrNamesPassesAndFailsCleanly) {
     ss_result r;
     r.light = "Key.001 lamp";
     r.method = "reference";
+    r.requested = "reference";
     r.layers.add("V", ss::Image(6, 4, 0.25f));
     r.layers.add("mask", ss::Image(6, 4, 1.0f));
     const ss_result* list[] = {&r};
@@ -226,6 +228,28 @@ TEST(CApi, WriteExrNamesPassesAndFailsCleanly) {
     EXPECT_FALSE(fs::exists(dir / "no_such_folder"));
     EXPECT_EQ(ss_write_exr(out.c_str(), "ViewLayer", list, 0), SS_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+    fs::remove_all(dir);
+}
+
+TEST(CApi, WriteExrKeepsAutoPassNamesAndRecordsTheMethodThatRan) {
+    fs::path dir = tempDir("exr-auto");
+    ss_result r;
+    r.light = "Key Light";
+    r.method = "pcss";
+    r.requested = "auto";
+    r.layers.add("V", ss::Image(6, 4, 0.5f));
+    r.layers.add("mask", ss::Image(6, 4, 1.0f));
+    const ss_result* list[] = {&r};
+    std::string out = (dir / "auto.exr").string();
+    ASSERT_EQ(ss_write_exr(out.c_str(), "ViewLayer", list, 1), SS_OK) << ss_last_error();
+    ss::ExrContents back = ss::readMultilayerExr(out);
+    ASSERT_EQ(back.passes.size(), 2u);
+    EXPECT_TRUE(back.find("Key_Light_auto"));
+    EXPECT_TRUE(back.find("Key_Light_auto_mask"));
+    auto in = OIIO::ImageInput::open(out);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute(ss::kExrMethodsAttribute), "Key_Light_auto=pcss");
+    in->close();
     fs::remove_all(dir);
 }
 

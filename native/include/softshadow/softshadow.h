@@ -164,7 +164,9 @@ SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const c
                                  const float** pixels, int32_t* width, int32_t* height);
 
 /* Writes results as one multilayer EXR (atomically): channel
- * "<view_layer>.<light>_<method>[_<layer>].V" per layer. */
+ * "<view_layer>.<light>_<method>[_<layer>].V" per layer, <method> as asked of ss_render (a light
+ * rendered with "auto" keeps the pass name "<light>_auto" whatever ran); the header attribute
+ * "softshadow/methods" lists "<pass>=<method that ran>;..." for the main passes. */
 SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
                               const ss_result* const* results, int32_t result_count);
 

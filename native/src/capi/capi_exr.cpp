@@ -27,14 +27,16 @@ SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
         std::string layer = view_layer ? view_layer : "ViewLayer";
         ss::checkViewLayerName(layer);
         std::vector<ss::ExrPassRef> passes;
+        std::string methods;  // "<pass>=<method that ran>;..."
         for (int32_t i = 0; i < result_count; ++i) {
             const ss_result* r = results[i];
             if (!r)
                 ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_write_exr: results[" + std::to_string(i) + "] is null");
             for (const auto& [name, image] : r->layers.items)
-                passes.push_back({ss::passName(r->light, r->method, name), &image});
+                passes.push_back({ss::passName(r->light, r->requested, name), &image});
+            methods += (methods.empty() ? "" : ";") + ss::passName(r->light, r->requested, "V") + "=" + r->method;
         }
-        ss::writeMultilayerExr(path, layer, passes);
+        ss::writeMultilayerExr(path, layer, passes, methods);
     });
 }
 
@@ -53,7 +55,8 @@ SS_API ss_status ss_exr_writer_add(ss_exr_writer* writer, const ss_result* resul
         require(result, "ss_exr_writer_add", "result");
         if (writer->finished) ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_exr_writer_add: the writer has finished");
         for (const auto& [name, image] : result->layers.items)
-            writer->spool.add(ss::passName(result->light, result->method, name), image);
+            writer->spool.add(ss::passName(result->light, result->requested, name), image);
+        writer->spool.noteMethod(ss::passName(result->light, result->requested, "V"), result->method);
     });
 }
 

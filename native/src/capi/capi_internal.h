@@ -32,7 +32,8 @@ struct ss_scene {
 
 struct ss_result {
     ss::Layers layers;
-    std::string method;  // the method that ran ("auto" resolved)
+    std::string method;     // the method that ran ("auto" resolved)
+    std::string requested;  // the method asked for: it names the EXR pass, so `auto` stays stable
     std::string light;   // the light's real name
 };
 

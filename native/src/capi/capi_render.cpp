@@ -52,6 +52,7 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         settings.cancel = &context->closing;
         auto result = std::make_unique<ss_result>();
         result->light = lights[size_t(light_index)].name;
+        result->requested = method;
         result->layers = context->renderer.render(scene->scene, light_index, method, settings, &result->method);
         if (result->method.empty()) result->method = method;
         *out = result.release();

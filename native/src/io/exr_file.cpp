@@ -52,7 +52,7 @@ void checkPasses(const std::string& path, const std::string& viewLayer,
 constexpr uint64_t kBandBytes = 64ull << 20;
 
 void writeExrBands(const std::string& file, const std::string& shownPath, const std::string& viewLayer, int w,
-                   int h, const std::vector<ExrPassRows>& passes) {
+                   int h, const std::vector<ExrPassRows>& passes, const std::string& methods) {
     const size_t n = passes.size();
     const uint64_t rowBytes = uint64_t(w) * sizeof(float) * n;
     Imf::Header header(w, h);
@@ -60,6 +60,7 @@ void writeExrBands(const std::string& file, const std::string& shownPath, const 
     // passes, ZIPS (one row a chunk) keeps that buffer small.
     header.compression() = rowBytes * 16 > kBandBytes ? Imf::ZIPS_COMPRESSION : Imf::ZIP_COMPRESSION;
     header.insert("Software", Imf::StringAttribute("softshadow " SS_VERSION));
+    if (!methods.empty()) header.insert(kExrMethodsAttribute, Imf::StringAttribute(methods));
     for (const ExrPassRows& p : passes) header.channels().insert(channelName(viewLayer, p.pass), Imf::Channel(Imf::FLOAT));
     const int band = int(std::clamp<uint64_t>(kBandBytes / std::max<uint64_t>(rowBytes, 1), 1, uint64_t(h)));
     const size_t passFloats = size_t(band) * size_t(w);
@@ -226,7 +227,7 @@ void checkDeclaredSize(const std::string& path, uint64_t fileBytes, const Declar
 }  // namespace
 
 void writeMultilayerExr(const std::string& path, const std::string& viewLayer,
-                        const std::vector<ExrPassRef>& passes) {
+                        const std::vector<ExrPassRef>& passes, const std::string& methods) {
     checkPasses(path, viewLayer, passes);
     const int w = passes.front().image->width, h = passes.front().image->height;
     checkExrShape(path, passes.size(), w);
@@ -237,7 +238,7 @@ void writeMultilayerExr(const std::string& path, const std::string& viewLayer,
                             std::copy_n(image->pixels.data() + size_t(y0) * w, size_t(count) * w, out);
                         }});
     }
-    writeMultilayerExrRows(path, viewLayer, w, h, rows);
+    writeMultilayerExrRows(path, viewLayer, w, h, rows, methods);
 }
 
 void checkPassName(const std::string& path, const std::string& viewLayer, const std::string& pass) {
@@ -264,9 +265,9 @@ void checkExrShape(const std::string& path, size_t passes, int width) {
 }
 
 void writeMultilayerExrRows(const std::string& path, const std::string& viewLayer, int width, int height,
-                            const std::vector<ExrPassRows>& passes) {
+                            const std::vector<ExrPassRows>& passes, const std::string& methods) {
     checkExrShape(path, passes.size(), width);
-    writeAtomically(path, [&](const std::string& temp) { writeExrBands(temp, path, viewLayer, width, height, passes); });
+    writeAtomically(path, [&](const std::string& temp) { writeExrBands(temp, path, viewLayer, width, height, passes, methods); });
 }
 
 const ExrPass* ExrContents::find(const std::string& pass) const {

@@ -96,7 +96,11 @@ void ExrSpool::write() {
                                     offset + rowBytes * uint64_t(y0), path_);
                         }});
     }
-    writeMultilayerExrRows(path_, viewLayer_, width_, height_, rows);
+    writeMultilayerExrRows(path_, viewLayer_, width_, height_, rows, methods_);
+}
+
+void ExrSpool::noteMethod(const std::string& pass, const std::string& method) {
+    methods_ += (methods_.empty() ? "" : ";") + pass + "=" + method;
 }
 
 }  // namespace ss

@@ -24,6 +24,8 @@ public:
     // Appends a pass (same size as the first; a unique name whose channel fits EXR's 255 bytes).
     void add(const std::string& pass, const Image& image);
     size_t passCount() const { return passes_.size(); }
+    // Records which method made a pass, for the header's kExrMethodsAttribute (io/exr_file.h).
+    void noteMethod(const std::string& pass, const std::string& method);
     // Writes the EXR atomically (io/exr_file.h). Throws SS_ERROR_INVALID_ARGUMENT with no pass.
     void write();
 
@@ -38,6 +40,7 @@ private:
     uint64_t end_ = 0;
     std::vector<Spooled> passes_;
     std::set<std::string> names_;
+    std::string methods_;  // "<pass>=<method>;..."
 };
 
 }  // namespace ss
