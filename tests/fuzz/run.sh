@@ -25,7 +25,9 @@ EXR=("$ROOT"/native/src/io/{exr_file,input_file,atomic_file}.cpp)
 
 build() {  # name sources...
   local name=$1; shift
-  if [ ! -x "$OUT/$name" ] || [ -n "$(find "$@" "$ROOT/tests/fuzz/$name.cpp" "$BUILD/libsoftshadow_static.a" -newer "$OUT/$name" 2>/dev/null | head -1)" ]; then
+  # Rebuilt when any source or header of the library, or the target, is newer than it.
+  if [ ! -x "$OUT/$name" ] || [ -n "$(find "$ROOT/native/src" "$ROOT/native/include" "$ROOT/tests/fuzz/$name.cpp" \
+        "$BUILD/libsoftshadow_static.a" -newer "$OUT/$name" 2>/dev/null | head -1)" ]; then
     echo "fuzz: building $name"
     ccache_cmd=$(command -v ccache || true)
     $ccache_cmd "$CXX" "${FLAGS[@]}" "$ROOT/tests/fuzz/$name.cpp" "$@" "${LIBS[@]}" -o "$OUT/$name"
