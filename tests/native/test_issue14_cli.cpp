@@ -240,7 +240,8 @@ TEST(Issue14, N09_CompareRefusesAnEmptyMask) {
 
 bool hasTemporaryFile(const fs::path& dir) {
     for (const auto& e : fs::directory_iterator(dir))
-        if (e.path().filename().string().rfind(".ss", 0) == 0) return true;
+        if (e.path().filename().string().rfind(".ss", 0) == 0 && e.path().filename().string().find(".tmp") != std::string::npos)
+            return true;
     return false;
 }
 
