@@ -21,7 +21,7 @@ FLAGS=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recov
 LIBS=("$BUILD/libsoftshadow_static.a" -lembree3 $(pkg-config --libs OpenEXR) -ldl -pthread)
 CORE=("$ROOT"/native/src/core/{names,scene,light,camera,mesh}.cpp)
 SCENE=("$ROOT"/native/src/io/{scene_file,json_node,json_reader,input_file,primitives}.cpp)
-EXR=("$ROOT"/native/src/io/{exr_file,input_file,atomic_file}.cpp)
+EXR=("$ROOT"/native/src/io/{exr_file,exr_limits,input_file,atomic_file}.cpp)
 
 build() {  # name sources...
   local name=$1; shift
