@@ -181,6 +181,7 @@ TEST(Issue14, N07_SettingValuesMustBeFiniteAndInRange) {
     expectFailure(cli(render + " -m shadow_map --set bias=inf"), {"'bias' = 'inf'", "not a finite number"});
     expectFailure(cli(render + " -m shadow_map --set slope_bias=nan"), {"'slope_bias'", "finite"});
     expectFailure(cli(render + " -m shadow_map --set bias=-1"), {"'bias' = '-1'", "outside [0, 1000]"});
+    expectFailure(cli(render + " -m shadow_map --set bias=1 --set bias=2"), {"setting 'bias' is given twice"});
     expectFailure(cli(render + " -m shadow_map --set shadow_map_size=nan"), {"'shadow_map_size'", "not a finite number"});
     for (const char* v : {"1e30", "-100", "0.5", "100000"})
         expectFailure(cli(render + " -m shadow_map --set shadow_map_size=" + v),
