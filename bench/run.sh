@@ -67,6 +67,29 @@ SS_BENCH_SCENES="$SCENE_LIST" SS_BENCH_OUT="$WORK/ours" "$BENCH" --benchmark_fil
   --benchmark_out="$OUT/scene_files.json" --benchmark_out_format=json > "$WORK/scene_files.txt" 2>&1 ||
   { tail -n 30 "$WORK/scene_files.txt"; exit 1; }
 
+# 4b. Memory against the light count (docs/reliability.md): shadow_map on a ring of N lights,
+#     the maximum resident set of the whole `softshadow render`.
+log "memory with many lights"
+if [ "$QUICK" = 1 ]; then COUNTS="50 200"; else COUNTS="50 500 2000"; fi
+{
+  echo "# Memory against the light count"
+  echo
+  echo "\`softshadow render -m shadow_map --no-extra\` on a ring of disk lights (bench/many_lights.py, 256x192,"
+  echo "2048² shadow maps), maximum resident set from \`/usr/bin/time -v\`."
+  echo
+  echo "| lights | passes | max RSS (MB) | seconds |"
+  echo "|---|---|---|---|"
+  for n in $COUNTS; do
+    python3 "$HERE/many_lights.py" "$n" "$WORK/lights_$n.json"
+    /usr/bin/time -v "$CLI" render "$WORK/lights_$n.json" -m shadow_map --no-extra -o "$WORK/lights_$n.exr" \
+      > "$WORK/lights_$n.txt" 2> "$WORK/lights_$n.time"
+    rss=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$WORK/lights_$n.time")
+    secs=$(sed -n 's/.*total \([0-9.]*\) s/\1/p' "$WORK/lights_$n.txt")
+    echo "| $n | $((2 * n)) | $((rss / 1024)) | $secs |"
+  done
+} > "$OUT/memory.md"
+cat "$OUT/memory.md"
+
 # 5. Errors against the truth, and image strips (method | truth | 4 x |error|).
 log "errors and image strips"
 for dir in "$WORK"/scenes/*/; do

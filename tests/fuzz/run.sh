@@ -21,11 +21,13 @@ FLAGS=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recov
 LIBS=("$BUILD/libsoftshadow_static.a" -lembree3 $(pkg-config --libs OpenEXR) -ldl -pthread)
 CORE=("$ROOT"/native/src/core/{names,scene,light,camera,mesh}.cpp)
 SCENE=("$ROOT"/native/src/io/{scene_file,json_node,json_reader,input_file,primitives}.cpp)
-EXR=("$ROOT"/native/src/io/{exr_file,input_file,atomic_file}.cpp)
+EXR=("$ROOT"/native/src/io/{exr_file,exr_limits,input_file,atomic_file}.cpp)
 
 build() {  # name sources...
   local name=$1; shift
-  if [ ! -x "$OUT/$name" ] || [ -n "$(find "$@" "$ROOT/tests/fuzz/$name.cpp" "$BUILD/libsoftshadow_static.a" -newer "$OUT/$name" 2>/dev/null | head -1)" ]; then
+  # Rebuilt when any source or header of the library, or the target, is newer than it.
+  if [ ! -x "$OUT/$name" ] || [ -n "$(find "$ROOT/native/src" "$ROOT/native/include" "$ROOT/tests/fuzz/$name.cpp" \
+        "$BUILD/libsoftshadow_static.a" -newer "$OUT/$name" 2>/dev/null | head -1)" ]; then
     echo "fuzz: building $name"
     ccache_cmd=$(command -v ccache || true)
     $ccache_cmd "$CXX" "${FLAGS[@]}" "$ROOT/tests/fuzz/$name.cpp" "$@" "${LIBS[@]}" -o "$OUT/$name"

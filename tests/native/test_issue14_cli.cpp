@@ -76,8 +76,20 @@ TEST(Issue14, N02_FailedPreviewFolderKeepsTheOldExr) {
     EXPECT_EQ(readFile(dir / "out.exr"), "old\n");
     EXPECT_EQ(readFile(dir / "afile"), "x\n");
     EXPECT_EQ(entries(dir), before);
-    // An EXR that cannot be written keeps the old previews too.
+    // A render that fails after earlier results' previews were staged keeps the old EXR and
+    // the old previews (penumbra_map refuses a sun, after shadow_map rendered it).
     fs::create_directories(dir / "png");
+    writeFile(dir / "png" / "Sun_shadow_map.png", "old sun preview");
+    writeFile(dir / "sun.json", sceneJson(R"({"name":"Sun","type":"sun","direction":[0.2,0,-1],"angle":0.05})"));
+    expectFailure(cli("render " + q(dir / "sun.json") + " -m shadow_map,penumbra_map -o " + q(dir / "out.exr") +
+                      " --png-dir " + q(dir / "png")),
+                  {"penumbra_map", "Sun", "sun"});
+    EXPECT_EQ(readFile(dir / "out.exr"), "old\n");
+    EXPECT_EQ(readFile(dir / "png" / "Sun_shadow_map.png"), "old sun preview");
+    EXPECT_EQ(entries(dir / "png"), 1u);  // no staged preview left behind
+    EXPECT_EQ(entries(dir), before + 2);  // sun.json and png/
+    fs::remove(dir / "png" / "Sun_shadow_map.png");
+    // An EXR that cannot be written keeps the old previews too.
     CliRun first = cli("render " + q(dir / "s.json") + " -m shadow_map -o " + q(dir / "out.exr") + " --png-dir " + q(dir / "png"));
     ASSERT_EQ(first.code, 0) << first.err;
     std::string preview = readFile(dir / "png" / "Key_shadow_map.png");
@@ -169,6 +181,7 @@ TEST(Issue14, N07_SettingValuesMustBeFiniteAndInRange) {
     expectFailure(cli(render + " -m shadow_map --set bias=inf"), {"'bias' = 'inf'", "not a finite number"});
     expectFailure(cli(render + " -m shadow_map --set slope_bias=nan"), {"'slope_bias'", "finite"});
     expectFailure(cli(render + " -m shadow_map --set bias=-1"), {"'bias' = '-1'", "out of range [0, 1000]"});
+    expectFailure(cli(render + " -m shadow_map --set bias=1 --set bias=2"), {"setting 'bias' is given twice"});
     expectFailure(cli(render + " -m shadow_map --set shadow_map_size=nan"), {"'shadow_map_size'", "not a finite number"});
     for (const char* v : {"1e30", "-100", "0.5", "100000"})
         expectFailure(cli(render + " -m shadow_map --set shadow_map_size=" + v),
@@ -228,7 +241,8 @@ TEST(Issue14, N09_CompareRefusesAnEmptyMask) {
 
 bool hasTemporaryFile(const fs::path& dir) {
     for (const auto& e : fs::directory_iterator(dir))
-        if (e.path().filename().string().rfind(".ss", 0) == 0) return true;
+        if (e.path().filename().string().rfind(".ss", 0) == 0 && e.path().filename().string().find(".tmp") != std::string::npos)
+            return true;
     return false;
 }
 

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/exr_file.h"
+#include "io/scene_file.h"
 #include "methods/method.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
@@ -227,6 +228,37 @@ TEST(Issue14, N04_ExrWriterGathersResultsOneByOne) {
     ss_context_destroy(context);
     ss_scene_destroy(scene);
     fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ss
+
+namespace ss {
+namespace {
+
+// 12, the loader's own guards: deep nesting stops before the stack does, and a bad number deep
+// in an array names its element.
+TEST(Issue14, N12_SceneLoaderNamesPathsAndLimitsNesting) {
+    std::string deep = R"({"format":"softshadow-scene","version":1,"metadata":)" + std::string(100, '[') +
+                       std::string(100, ']') + "}";
+    try {
+        parseSceneText(deep, ".", "deep.json");
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.status(), SS_ERROR_IO);
+        EXPECT_NE(std::string(e.what()).find("deep.json"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("nesting deeper than 64 levels"), std::string::npos) << e.what();
+    }
+    std::string overflow = R"({"format":"softshadow-scene","version":1,
+      "meshes":[{"name":"M","positions":[0,0,0, 1,0,0, 0,1e999,0],"triangles":[0,1,2]}]})";
+    try {
+        parseSceneText(overflow, ".", "big.json");
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("big.json': meshes[0].positions[7]: malformed JSON: number overflow"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace

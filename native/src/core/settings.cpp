@@ -39,7 +39,11 @@ std::map<std::string, std::string> parseSettings(const std::string& text) {
             size_t eq = item.find('=');
             if (eq == std::string::npos || eq == 0)
                 fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + item + "' is not key=value");
-            out[item.substr(0, eq)] = item.substr(eq + 1);
+            std::string key = item.substr(0, eq);
+            if (out.count(key))
+                fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' is given twice ('" + out[key] + "', '" +
+                                                    item.substr(eq + 1) + "'); give it once");
+            out[key] = item.substr(eq + 1);
         }
         start = end + 1;
     }

@@ -49,12 +49,17 @@ ExrSpool::ExrSpool(const std::string& path, const std::string& viewLayer) : path
     checkViewLayerName(viewLayer);
     std::filesystem::path target(resolveOutputPath(path));
     std::filesystem::path dir = target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
-    static std::atomic<unsigned> counter{0};
-    std::string name = ".ss" + std::to_string(getpid()) + "_" + std::to_string(counter++) + ".spool";
-    std::string spool = (dir / name).string();
-    fd_ = open(spool.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    // A file without a name (O_TMPFILE), so nothing can be left behind; where the file system
+    // lacks that, a named file unlinked at once.
+    fd_ = open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+    if (fd_ < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL)) {
+        static std::atomic<unsigned> counter{0};
+        std::string name = ".ss" + std::to_string(getpid()) + "_" + std::to_string(counter++) + ".spool";
+        std::string spool = (dir / name).string();
+        fd_ = open(spool.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+        if (fd_ >= 0) unlink(spool.c_str());
+    }
     if (fd_ < 0) fail(SS_ERROR_IO, "cannot write EXR '" + path + "': " + std::strerror(errno));
-    unlink(spool.c_str());  // the open descriptor keeps the data; no name is ever left behind
 }
 
 ExrSpool::~ExrSpool() {

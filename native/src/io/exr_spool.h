@@ -15,7 +15,8 @@ namespace ss {
 class ExrSpool {
 public:
     // Checks the output path and view layer now (ss::Error naming them) and opens the spool in
-    // the output's folder, unlinked at once: nothing is left behind whatever happens.
+    // the output's folder without a name (O_TMPFILE, else unlinked at once): nothing is left
+    // behind whatever happens.
     ExrSpool(const std::string& path, const std::string& viewLayer);
     ~ExrSpool();
     ExrSpool(const ExrSpool&) = delete;
