@@ -6,7 +6,7 @@ import zlib
 
 import bpy
 
-from . import compat, scene_export
+from . import compat, native, scene_export
 
 IMAGE_NAME = "SoftShadow Passes"
 IMAGE_NODE = "SoftShadow Passes"
@@ -113,8 +113,11 @@ FIRST_PASS = "FIRST"  # the choice before the artist made one (enum number 0)
 
 def visibility_passes(node):
     """The main passes (`<light>_<method>`), not their mask, umbra or debug layers."""
-    from .passes import METHODS
-    endings = tuple("_" + m for m in METHODS + ("auto",))
+    try:
+        methods = native.method_names()
+    except native.LibraryUnavailable:
+        methods = ()  # no library, no new passes: only a light on auto's name is known
+    endings = tuple("_" + m for m in methods + ("auto",))
     return [name for name in pass_sockets(node) if name.endswith(endings)]
 
 
