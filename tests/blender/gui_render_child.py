@@ -4,9 +4,13 @@
 its own thread), and once it completes writes where each handler ran and what it produced."""
 import json
 import os
+import sys
 import time
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sstest  # noqa: E402
 
 OUT = os.environ["SOFTSHADOW_GUI_OUT"]
 state = {"started": False, "done": False, "t": time.time()}
@@ -18,7 +22,7 @@ def _complete(*_args):
 
 
 def _finish(error=""):
-    import softshadow
+    softshadow = sstest.addon()
     report = softshadow.handlers.last_report
     info = {"error": error, "threads": softshadow.handlers.handler_threads,
             "frame": report.get("frame"), "path": report.get("path"), "problems": report.get("problems"),

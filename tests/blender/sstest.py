@@ -112,7 +112,7 @@ def clear_scene():
             if key != "rna_type":
                 props.property_unset(key)
     scene.frame_current = 1
-    from softshadow import compat
+    compat = addon().compat
     tree = compat.compositor_tree(scene)
     if tree is not None:  # back to a new file's compositor: Render Layers -> final output
         tree.nodes.clear()
