@@ -10,8 +10,6 @@
 #include <memory>
 
 #include "cli_common.h"
-#include "io/pass_names.h"
-#include "io/png_preview.h"
 #include "progress_bar.h"
 
 namespace ss::cli {
@@ -155,12 +153,10 @@ int runRender(const std::vector<std::string>& argv) {
                     const float* pixels;
                     int32_t w, h;
                     check(ss_result_layer(r.get(), i, &name, &pixels, &w, &h));
-                    Image img(w, h);
-                    img.pixels.assign(pixels, pixels + size_t(w) * h);
                     std::string path = (fs::path(dir) / (passName(ss_result_light(r.get()),
                                                                   ss_result_method(r.get()), name) +
                                                          ".png")).string();
-                    writePngPreview(path, img);
+                    check(ss_write_png_preview(path.c_str(), pixels, w, h));
                     pngs.push_back(path);
                 }
         } catch (const std::exception&) {

@@ -162,6 +162,21 @@ SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const c
 SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
                               const ss_result* const* results, int32_t result_count);
 
+/* The pass name of one layer: "<light>_<method>[_<layer>]" (dots and spaces become '_'; the
+ * layer "V" is the pass itself). Fails naming the size needed when the buffer is too small. */
+SS_API ss_status ss_pass_name(const char* light, const char* method, const char* layer, char* buffer,
+                              size_t buffer_size);
+/* An 8-bit grayscale PNG of one layer (values in [0,1] -> 0..255, rows top first), written
+ * atomically. */
+SS_API ss_status ss_write_png_preview(const char* path, const float* pixels, int32_t width, int32_t height);
+/* Compares the passes of one or two EXRs (path_b NULL: one file, each method against the
+ * `against` method, default "reference"). mask: NULL or "" = the pixels both passes' own masks
+ * hold, "none" = every pixel, else a pass name. Writes a JSON array of rows {"a", "b", "mask",
+ * "pixels", "rmse", "mean", "p99", "max", "umbra_iou", "lit_iou"} into buffer; *length (may be
+ * NULL) receives the bytes needed with the terminating zero, also when the buffer is too small. */
+SS_API ss_status ss_compare_exr(const char* path_a, const char* path_b, const char* against, const char* mask,
+                                char* buffer, size_t buffer_size, size_t* length);
+
 /* The `sweep` method's shadow mesh for one light (CPU geometry, no GL context needed), so a host
  * can bring it in as geometry: triangles on the receiver plane, world-space vertices with a shadow
  * intensity each (0 lit .. 1 umbra; V = 1 - intensity, Gouraud-interpolated). Options as for
