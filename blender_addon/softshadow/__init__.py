@@ -11,8 +11,6 @@ bl_info = {
     "category": "Render",
 }
 
-import sys
-
 try:
     import bpy  # noqa: F401
 except ImportError:  # imported by the pure-Python tests: only scene_export/compat are used
@@ -24,14 +22,7 @@ if bpy is not None:
 
     _MODULES = (properties, operators, ui, handlers, preview)
 
-    # Pipeline scripts `import softshadow` in every Blender and both install modes: as an
-    # extension the package is `bl_ext.<repo>.softshadow`, and the repository's name is the
-    # studio's choice, so the enabled add-on also answers to its plain name.
-    PUBLIC_NAME = "softshadow"
-
     def register():
-        if __name__ != PUBLIC_NAME:
-            sys.modules.setdefault(PUBLIC_NAME, sys.modules[__name__])
         native.reset_after_shutdown()
         for module in _MODULES:
             module.register()
@@ -45,5 +36,3 @@ if bpy is not None:
             except (RuntimeError, ValueError) as exc:
                 print("softshadow: unregister %s: %s" % (module.__name__, exc))
         native.shutdown()
-        if __name__ != PUBLIC_NAME and sys.modules.get(PUBLIC_NAME) is sys.modules[__name__]:
-            del sys.modules[PUBLIC_NAME]

@@ -50,6 +50,19 @@ class SoftShadowSceneSettings(bpy.types.PropertyGroup):
         description="Resolution of the viewport preview relative to the viewport")
     last_report: bpy.props.StringProperty(name="Last Report", default="")
 
+    # Pipeline scripts reach the add-on through the scene in every Blender and both install modes:
+    # as an extension its package is `bl_ext.<repository>.softshadow`, a name the studio chooses,
+    # and an extension may not add a top-level module of its own.
+    def render_passes(self, lights=None, methods=None, extra_layers=False):
+        """The passes of this scene's current frame: see api.render_passes."""
+        from . import api
+        return api.render_passes(self.id_data, lights=lights, methods=methods, extra_layers=extra_layers)
+
+    def passes_problems(self):
+        """What the last render_passes call left out, and why."""
+        from . import api
+        return list(api.render_passes.last_problems)
+
 
 CLASSES = (SoftShadowLightSettings, SoftShadowSceneSettings)
 

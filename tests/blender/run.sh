@@ -16,23 +16,9 @@ if [ "${1:-}" = "--zip" ]; then
   ZIP=$(cd "$(dirname "${2:?usage: run.sh --zip ZIP extension|legacy}")" && pwd)/$(basename "$2")
   MODE=${3:?usage: run.sh --zip ZIP extension|legacy}
   shift 3
-  # A user folder of its own: nothing of the developer's, the add-on only where the zip put it.
-  export HOME; HOME=$(mktemp -d)
-  unset SOFTSHADOW_LIB SOFTSHADOW_ADDON_PATH SOFTSHADOW_BUILD_DIR XDG_CONFIG_HOME BLENDER_USER_SCRIPTS
-  case "$MODE" in
-    extension)
-      "$BLENDER" --background --factory-startup --command extension install-file -r user_default \
-        -e "$ZIP" >"$HOME/install.log" 2>&1
-      export SOFTSHADOW_ADDON_MODULE=bl_ext.user_default.softshadow ;;
-    legacy)
-      "$BLENDER" --background --factory-startup --python-exit-code 1 --python-expr \
-        "import bpy; bpy.ops.preferences.addon_install(filepath=r'$ZIP'); bpy.ops.wm.save_userpref()" \
-        >"$HOME/install.log" 2>&1
-      export SOFTSHADOW_ADDON_MODULE=softshadow ;;
-    *) echo "run.sh: mode must be extension or legacy, not '$MODE'" >&2; exit 2 ;;
-  esac || { echo "FAIL installing $ZIP as $MODE"; sed 's/^/    /' "$HOME/install.log"; exit 1; }
-  export SOFTSHADOW_ZIP="$ZIP"
-  echo "installed $(basename "$ZIP") as $MODE in $("$BLENDER" --version 2>/dev/null | head -n 1)"
+  # shellcheck source=install_zip.sh
+  . "$HERE/install_zip.sh"
+  install_zip "$ZIP" "$MODE" || exit 1
 else
   BUILD_DIR=$(cd "${1:?usage: run.sh BUILD_DIR [TEST...]}" && pwd)
   shift

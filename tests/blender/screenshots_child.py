@@ -1,10 +1,16 @@
 # How the user guide's screenshots are taken: a real Blender window under Xvfb (see make_screenshots.py).
 # SPDX-License-Identifier: GPL-3.0-or-later
+import json
 import os
+import sys
 import time
 
 import bpy
 from mathutils import Quaternion
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sstest  # noqa: E402
+import xvfb_screen  # noqa: E402
 
 OUT = os.environ["SOFTSHADOW_SHOTS"]
 state = {"step": 0, "t": time.time()}
@@ -16,14 +22,15 @@ def _areas():
 
 
 def _shot(area, name):
-    win, _ = _areas()
-    region = next(r for r in area.regions if r.type == "WINDOW")
-    with bpy.context.temp_override(window=win, area=area, region=region):
-        bpy.ops.screen.screenshot_area(filepath=os.path.join(OUT, name))
+    # The screen as Xvfb holds it, and where the area is: make_screenshots.py crops and saves it.
+    base = os.path.join(OUT, os.path.splitext(name)[0])
+    xvfb_screen.snapshot(os.environ["SOFTSHADOW_XVFB_FBDIR"], base + ".xwd")
+    with open(base + ".json", "w") as f:
+        json.dump([area.x, area.y, area.width, area.height], f)
 
 
 def step():
-    import softshadow
+    softshadow = sstest.addon()
     win, areas = _areas()
     scene = bpy.context.scene
     if "areas" not in state:  # kept: the 3D view becomes the node editor on the way
@@ -63,11 +70,22 @@ def step():
         view3d.type = "NODE_EDITOR"
         view3d.ui_type = "CompositorNodeTree"
     elif s == 5:
+        editor = view3d.spaces.active
+        editor.show_region_ui = False  # the sidebar would hide the final output node
+        if hasattr(editor, "show_region_asset_shelf"):
+            editor.show_region_asset_shelf = False
         region = next(r for r in view3d.regions if r.type == "WINDOW")
         with bpy.context.temp_override(window=win, area=view3d, region=region):
             bpy.ops.node.view_all()
     elif s == 6:
         _shot(view3d, "compositor.png")
+        if bpy.app.version < (4, 2, 0):
+            bpy.ops.wm.quit_blender()
+            return None
+        view3d.type = "PREFERENCES"
+        bpy.context.preferences.active_section = "EXTENSIONS"
+    elif s == 7:
+        _shot(view3d, "extension-5x.png" if bpy.app.version >= (5, 0, 0) else "extension-4x.png")
         bpy.ops.wm.quit_blender()
         return None
     state["step"] += 1

@@ -12,11 +12,8 @@ set -uo pipefail
 ZIP=$(cd "$(dirname "${1:?usage: run.sh ZIP}")" && pwd)/$(basename "$1")
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
-CACHE=${SOFTSHADOW_ROOTFS_CACHE:-/var/cache/softshadow/rootfs}
-MIRROR=${SOFTSHADOW_DEBIAN_MIRROR:-http://deb.debian.org/debian}
-# What a user's machine has: Blender, numpy (Blender's Python needs it), GL runtime, X for the
-# windowed preview test, unzip. Nothing the library is built with.
-PACKAGES=blender,python3-numpy,libegl1,libgl1-mesa-dri,xvfb,xauth,unzip
+# shellcheck source=rootfs.sh
+. "$HERE/rootfs.sh"
 SUITES=${SOFTSHADOW_MATRIX_SUITES:-trixie sid}
 # Every Blender test but those about the source tree itself (SOFTSHADOW_LIB, package.sh).
 SOURCE_ONLY=" test_register test_package test_scene_export_pure "
@@ -30,40 +27,9 @@ failures=0
 skipped=()
 banner() { printf '\n==== %s ====\n' "$*"; }
 
-rootfs() {  # rootfs SUITE -> prints the folder, builds it when missing or its package list changed
-  local suite=$1 dir="$CACHE/$1"
-  if [ ! -f "$dir/.softshadow-packages" ] || [ "$(cat "$dir/.softshadow-packages")" != "$PACKAGES" ]; then
-    rm -rf "$dir" "$dir.tmp"
-    mkdir -p "$CACHE"
-    if ! mmdebstrap --variant=apt --aptopt='Acquire::Check-Valid-Until "false"' \
-         --include="$PACKAGES" "$suite" "$dir.tmp" "$MIRROR" >"$CACHE/$suite.log" 2>&1; then
-      tail -n 5 "$CACHE/$suite.log" >&2
-      rm -rf "$dir.tmp"
-      return 1
-    fi
-    echo "$PACKAGES" >"$dir.tmp/.softshadow-packages"
-    mv "$dir.tmp" "$dir"
-  fi
-  echo "$dir"
-}
-
-in_chroot() {  # in_chroot DIR COMMAND...: /proc, /dev, /sys mounted for the command, then unmounted
-  local dir=$1; shift
-  local m mounted=()
-  for m in proc dev sys; do
-    mount --bind "/$m" "$dir/$m" && mounted+=("$dir/$m")
-  done
-  chroot "$dir" "$@"
-  local rc=$?
-  for m in "${mounted[@]}"; do umount -l "$m"; done
-  return $rc
-}
-
-run_suite_in() {  # run_suite_in DIR: copies the zip and the tests in, runs both install modes
-  local dir=$1 work=/tmp/softshadow-matrix
-  rm -rf "$dir$work"; mkdir -p "$dir$work/tests"
-  cp "$ZIP" "$dir$work/"
-  cp -r "$ROOT/tests/blender" "$dir$work/tests/"
+run_suite_in() {  # run_suite_in DIR: the suite against the extension, a short one against the legacy add-on
+  local dir=$1 work
+  work=$(copy_into "$dir" "$ZIP")
   local zip="$work/$(basename "$ZIP")"
   in_chroot "$dir" env -i PATH=/usr/bin:/bin LANG=C.UTF-8 bash "$work/tests/blender/run.sh" \
     --zip "$zip" extension "${TESTS[@]}" || failures=$((failures + 1))
