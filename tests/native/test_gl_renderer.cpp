@@ -27,14 +27,7 @@ Scene twoLightScene() {
     return s;
 }
 
-ss_status statusOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.status();
-    }
-    return SS_OK;
-}
+using test::statusOf;
 
 TEST(GlRendererCache, SharedPassesAreDrawnOncePerSceneRevision) {
     Scene scene = twoLightScene();
