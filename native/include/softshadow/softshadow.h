@@ -112,7 +112,9 @@ SS_API void ss_render_options_default(ss_render_options* options);
 SS_API ss_status ss_context_create(ss_backend backend, ss_context** out);
 /* Safe while an ss_render on the context runs on another thread: that render is cancelled at
    its next check (it returns SS_ERROR_CANCELLED) and destroy returns once it has. A call that
-   starts on the context after destroy has begun is refused (or, after it returned, invalid). */
+   starts on the context after destroy has begun is refused (or, after it returned, invalid).
+   Never call it from a progress callback of a render on the same context: it would wait for
+   itself. */
 SS_API void ss_context_destroy(ss_context* context);
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size);
 /* Joins every render thread the library started. Call from the host before it exits. */
