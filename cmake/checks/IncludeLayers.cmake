@@ -17,9 +17,7 @@ set(layer_methods 4)
 set(layer_renderer 5)
 set(layer_capi 6)
 set(layer_cli 7)
-# The CLI still reads and writes images through io/ for `compare` and its PNG previews; the C
-# API has no image functions yet (docs/architecture.md, "Known gaps").
-set(allowed "cli->io")
+set(allowed "")
 
 file(GLOB_RECURSE files ${ROOT}/native/src/*.h ${ROOT}/native/src/*.cpp ${ROOT}/native/cli/*.h
      ${ROOT}/native/cli/*.cpp)

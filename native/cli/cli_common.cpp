@@ -82,4 +82,10 @@ ss_backend parseBackend(const std::string& name) {
     throw CliError("unknown backend '" + name + "' (expected egl, osmesa or auto)");
 }
 
+std::string passName(const char* light, const char* method, const char* layer) {
+    char name[1024];
+    check(ss_pass_name(light, method, layer, name, sizeof name));
+    return name;
+}
+
 }  // namespace ss::cli

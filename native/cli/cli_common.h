@@ -39,6 +39,8 @@ private:
 };
 
 std::vector<std::string> splitList(const std::string& text, char separator = ',');
+// The pass name of a result's layer (ss_pass_name).
+std::string passName(const char* light, const char* method, const char* layer);
 ss_backend parseBackend(const std::string& name);
 
 int runInfo(const std::vector<std::string>& args);

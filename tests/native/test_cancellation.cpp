@@ -12,14 +12,7 @@
 namespace ss {
 namespace {
 
-ss_status statusOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.status();
-    }
-    return SS_OK;
-}
+using test::statusOf;
 
 TEST(Cancellation, DbufferVolumesStopWhenCancelled) {
     Scene scene = test::sceneConcave();

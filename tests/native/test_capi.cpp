@@ -410,3 +410,54 @@ TEST(CApiContext, UnknownSettingKeyIsRefusedNamingIt) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CApiImages, PassNamesAndComparisonsForTheCli) {
+    char name[64];
+    ASSERT_EQ(ss_pass_name("Area.001 key", "shadow_map", "mask", name, sizeof name), SS_OK);
+    EXPECT_STREQ(name, "Area_001_key_shadow_map_mask");
+    ASSERT_EQ(ss_pass_name("Key", "pcss", "V", name, sizeof name), SS_OK);
+    EXPECT_STREQ(name, "Key_pcss");
+    EXPECT_EQ(ss_pass_name("Key", "pcss", "V", name, 4), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(errorHas("9 are needed")) << ss_last_error();
+
+    // One reference render written, then compared with itself: zero error, and the length of
+    // the rows is named when the buffer is too small.
+    fs::path dir = tempDir("compare");
+    ss_context* ctx = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &ctx), SS_OK);
+    ss_scene* scene = smallScene(16, 12);
+    ss_render_options o;
+    ss_render_options_default(&o);
+    o.samples = 4;
+    ss_result* r = nullptr;
+    ASSERT_EQ(ss_render(ctx, scene, 0, "reference", &o, &r), SS_OK);
+    std::string exr = (dir / "a.exr").string();
+    ASSERT_EQ(ss_write_exr(exr.c_str(), "ViewLayer", &r, 1), SS_OK);
+    size_t length = 0;
+    char tiny[8];
+    EXPECT_EQ(ss_compare_exr(exr.c_str(), exr.c_str(), nullptr, nullptr, tiny, sizeof tiny, &length),
+              SS_ERROR_INVALID_ARGUMENT);
+    ASSERT_GT(length, sizeof tiny);
+    std::string json(length, '\0');
+    ASSERT_EQ(ss_compare_exr(exr.c_str(), exr.c_str(), nullptr, nullptr, json.data(), json.size(), &length), SS_OK);
+    EXPECT_NE(json.find("\"rmse\":0,"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"a\":\"Key_001_reference\""), std::string::npos) << json;
+    EXPECT_EQ(ss_compare_exr((dir / "missing.exr").string().c_str(), nullptr, nullptr, nullptr, json.data(),
+                             json.size(), &length),
+              SS_ERROR_IO);
+    EXPECT_TRUE(errorHas("missing.exr")) << ss_last_error();
+
+    const float pixels[4] = {0.0f, 0.25f, 0.5f, 1.0f};
+    std::string png = (dir / "v.png").string();
+    EXPECT_EQ(ss_write_png_preview(png.c_str(), pixels, 2, 2), SS_OK);
+    EXPECT_TRUE(fs::exists(png));
+    EXPECT_EQ(ss_write_png_preview(png.c_str(), pixels, 0, 2), SS_ERROR_INVALID_ARGUMENT);
+    ss_result_destroy(r);
+    ss_scene_destroy(scene);
+    ss_context_destroy(ctx);
+    fs::remove_all(dir);
+}
+
+}  // namespace

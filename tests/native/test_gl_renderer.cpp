@@ -27,14 +27,7 @@ Scene twoLightScene() {
     return s;
 }
 
-ss_status statusOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.status();
-    }
-    return SS_OK;
-}
+using test::statusOf;
 
 TEST(GlRendererCache, SharedPassesAreDrawnOncePerSceneRevision) {
     Scene scene = twoLightScene();
@@ -132,7 +125,9 @@ TEST(GlRendererCache, ShutdownStressDuringRendersNeverCrashes) {
     for (int i = 0; i < 40; ++i) {
         try {
             Layers l = renderer.render(scene, i % 2, "shadow_map", RenderSettings{}, nullptr);
-            if (i % 2 == 0) EXPECT_EQ(l.find("V")->pixels, expected);
+            if (i % 2 == 0) {
+                EXPECT_EQ(l.find("V")->pixels, expected);
+            }
             ++ok;
         } catch (const Error& e) {
             EXPECT_EQ(e.status(), SS_ERROR_GL) << e.what();

@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/error.h"
 #include "io/primitives.h"
 #include "softshadow/softshadow.h"
 
@@ -172,6 +173,15 @@ std::vector<NamedScene> sharedScenes(const SceneParams& p) {
 bool quickTests() {
     const char* q = std::getenv("SS_TEST_QUICK");
     return q && *q && std::string(q) != "0";
+}
+
+ss_status statusOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.status();
+    }
+    return SS_OK;
 }
 
 }  // namespace ss::test

@@ -1,6 +1,7 @@
 // Which small code-built scenes every method's quality test renders (shared; additive edits only).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "core/light.h"
 #include "core/mesh.h"
 #include "core/scene.h"
+#include "softshadow/softshadow.h"
 
 namespace ss::test {
 
@@ -63,5 +65,8 @@ std::vector<NamedScene> sharedScenes(const SceneParams& p = {});
 
 // True when SS_TEST_QUICK is set (sanitizer runs): tests shrink sizes and sample counts.
 bool quickTests();
+
+// The status `f` throws as ss::Error, or SS_OK when it returns.
+ss_status statusOf(const std::function<void()>& f);
 
 }  // namespace ss::test

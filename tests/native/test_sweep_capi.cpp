@@ -51,5 +51,9 @@ TEST(SweepCapi, ShadowMeshOfTheBox) {
     ss_sweep_mesh_destroy(mesh);
     EXPECT_NE(ss_sweep_shadow_mesh(scene, 7, &o, &mesh), SS_OK);
     EXPECT_NE(std::string(ss_last_error()).find("light index"), std::string::npos);
+    // The same settings reader as ss_render: a key the sweep does not read is refused by name.
+    o.settings = "boarder=0.5";
+    EXPECT_EQ(ss_sweep_shadow_mesh(scene, 0, &o, &mesh), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(ss_last_error()).find("no setting 'boarder'"), std::string::npos) << ss_last_error();
     ss_scene_destroy(scene);
 }

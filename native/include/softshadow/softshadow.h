@@ -118,7 +118,9 @@ SS_API void ss_remove_temporary_files(void);
 SS_API ss_status ss_context_create(ss_backend backend, ss_context** out);
 /* Safe while an ss_render on the context runs on another thread: that render is cancelled at
    its next check (it returns SS_ERROR_CANCELLED) and destroy returns once it has. A call that
-   starts on the context after destroy has begun is refused (or, after it returned, invalid). */
+   starts on the context after destroy has begun is refused (or, after it returned, invalid).
+   Never call it from a progress callback of a render on the same context: it would wait for
+   itself. */
 SS_API void ss_context_destroy(ss_context* context);
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size);
 /* Joins every render thread the library started. Call from the host before it exits. */
@@ -179,6 +181,20 @@ SS_API ss_status ss_exr_writer_create(const char* path, const char* view_layer, 
 SS_API ss_status ss_exr_writer_add(ss_exr_writer* writer, const ss_result* result);
 SS_API ss_status ss_exr_writer_finish(ss_exr_writer* writer);
 SS_API void ss_exr_writer_destroy(ss_exr_writer* writer);
+/* The pass name of one layer: "<light>_<method>[_<layer>]" (dots and spaces become '_'; the
+ * layer "V" is the pass itself). Fails naming the size needed when the buffer is too small. */
+SS_API ss_status ss_pass_name(const char* light, const char* method, const char* layer, char* buffer,
+                              size_t buffer_size);
+/* An 8-bit grayscale PNG of one layer (values in [0,1] -> 0..255, rows top first), written
+ * atomically. */
+SS_API ss_status ss_write_png_preview(const char* path, const float* pixels, int32_t width, int32_t height);
+/* Compares the passes of one or two EXRs (path_b NULL: one file, each method against the
+ * `against` method, default "reference"). mask: NULL or "" = the pixels both passes' own masks
+ * hold, "none" = every pixel, else a pass name. Writes a JSON array of rows {"a", "b", "mask",
+ * "pixels", "rmse", "mean", "p99", "max", "umbra_iou", "lit_iou"} into buffer; *length (may be
+ * NULL) receives the bytes needed with the terminating zero, also when the buffer is too small. */
+SS_API ss_status ss_compare_exr(const char* path_a, const char* path_b, const char* against, const char* mask,
+                                char* buffer, size_t buffer_size, size_t* length);
 
 /* The `sweep` method's shadow mesh for one light (CPU geometry, no GL context needed), so a host
  * can bring it in as geometry: triangles on the receiver plane, world-space vertices with a shadow

@@ -1,10 +1,13 @@
-// How the C API writes render results as one multilayer EXR, at once or gathered result by result.
+// How the C API writes render results as one multilayer EXR (at once, or gathered result by
+// result) and PNG previews, names passes and compares visibility EXRs.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "capi/capi_internal.h"
 #include "core/names.h"
+#include "io/exr_compare.h"
 #include "io/exr_file.h"
 #include "io/exr_spool.h"
 #include "io/pass_names.h"
+#include "io/png_preview.h"
 
 using namespace ss::capi;
 
@@ -71,6 +74,39 @@ SS_API ss_status ss_exr_writer_finish(ss_exr_writer* writer) {
 
 SS_API void ss_exr_writer_destroy(ss_exr_writer* writer) {
     guarded([&] { delete writer; });
+}
+
+SS_API ss_status ss_pass_name(const char* light, const char* method, const char* layer, char* buffer,
+                              size_t buffer_size) {
+    return guarded([&] {
+        require(light, "ss_pass_name", "light");
+        require(method, "ss_pass_name", "method");
+        copyOut(ss::passName(light, method, layer ? layer : "V"), buffer, buffer_size, "ss_pass_name");
+    });
+}
+
+SS_API ss_status ss_write_png_preview(const char* path, const float* pixels, int32_t width, int32_t height) {
+    return guarded([&] {
+        require(path, "ss_write_png_preview", "path");
+        require(pixels, "ss_write_png_preview", "pixels");
+        if (width <= 0 || height <= 0)
+            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_write_png_preview: " + std::to_string(width) + "x" +
+                                                    std::to_string(height) + " is not an image size");
+        ss::Image image(width, height);
+        image.pixels.assign(pixels, pixels + size_t(width) * size_t(height));
+        ss::writePngPreview(path, image);
+    });
+}
+
+SS_API ss_status ss_compare_exr(const char* path_a, const char* path_b, const char* against, const char* mask,
+                                char* buffer, size_t buffer_size, size_t* length) {
+    return guarded([&] {
+        require(path_a, "ss_compare_exr", "path_a");
+        std::string json = ss::compareExrFiles(path_a, path_b ? path_b : "", against && *against ? against : "reference",
+                                               mask ? mask : "");
+        if (length) *length = json.size() + 1;
+        copyOut(json, buffer, buffer_size, "ss_compare_exr");
+    });
 }
 
 }  // extern "C"
