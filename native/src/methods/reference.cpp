@@ -17,7 +17,7 @@ class ReferenceMethod final : public Method {
 public:
     const char* name() const override { return "reference"; }
     bool needsGl() const override { return false; }
-    std::vector<std::string> settingKeys() const override { return {"threads"}; }
+    std::vector<std::string> settingKeys() const override { return referenceSettingKeys(); }
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         return renderReference(frame.scene(), lightIndex, settings, &cache_);
     }

@@ -12,9 +12,9 @@ float shadowRayOffset(const SurfaceHit& hit, float sceneExtent) {
     return 4.0f * glm::dot(glm::abs(hit.normal), hit.pointError) + 1e-6f * sceneExtent;
 }
 
-PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& light,
-                                   const SurfaceHit& hit, const SampleSequence& sequence,
-                                   int samples, bool castShadows) {
+void addSamples(const TraceScene& scene, const LightSampler& light, const SurfaceHit& hit,
+                const SampleSequence& sequence, uint32_t begin, uint32_t end, bool castShadows,
+                SampleSums* sums) {
     const glm::vec3 origin = hit.point + shadowRayOffset(hit, scene.extent()) * hit.normal;
     // Per-thread scratch: one pixel's rays are gathered first and traced as packets.
     thread_local std::vector<glm::vec3> dirs;
@@ -22,8 +22,8 @@ PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& 
     thread_local std::vector<double> weights;
     thread_local std::vector<uint8_t> hidden;
     dirs.clear(), tFars.clear(), weights.clear();
-    for (int i = 0; i < samples; ++i) {
-        ShadowRay s = light.sample(hit.point, sequence.point(uint32_t(i)));
+    for (uint32_t i = begin; i < end; ++i) {
+        ShadowRay s = light.sample(hit.point, sequence.point(i));
         float cosSurface = glm::dot(hit.normal, s.toLight);
         if (!(cosSurface > 0.0f) || !(s.weight > 0.0f)) continue;  // below the horizon / dark
         glm::vec3 dir = s.toLight;
@@ -42,20 +42,29 @@ PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& 
         weights.push_back(double(s.weight) * double(cosSurface));
     }
     hidden.assign(weights.size(), 0);
-    if (castShadows && !weights.empty())
+    if (castShadows && !weights.empty()) {
         scene.occludedMany(origin, dirs.data(), tFars.data(), dirs.size(), hit.mesh, hit.triangle,
                            hidden.data());
+        sums->rays += int(weights.size());
+    }
     // Double sums in sample order: 4096 samples of widely varying weight must not lose the
     // small ones, and with nothing hidden the two sums are bit-identical (V == 1 exactly).
-    double sumWeight = 0.0, sumVisible = 0.0;
     for (size_t i = 0; i < weights.size(); ++i) {
-        sumWeight += weights[i];
-        if (!hidden[i]) sumVisible += weights[i];
+        sums->weight += weights[i];
+        if (!hidden[i]) sums->visible += weights[i];
+        else ++sums->hiddenRays;
     }
+}
+
+PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& light,
+                                   const SurfaceHit& hit, const SampleSequence& sequence,
+                                   int samples, bool castShadows) {
+    SampleSums sums;
+    addSamples(scene, light, hit, sequence, 0, uint32_t(samples), castShadows, &sums);
     PointVisibility out;
-    if (sumWeight > 0.0) {
+    if (sums.weight > 0.0) {
         out.reached = true;
-        out.visibility = float(sumVisible / sumWeight);
+        out.visibility = float(sums.visible / sums.weight);
     }
     return out;
 }

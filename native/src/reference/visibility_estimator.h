@@ -12,6 +12,22 @@ struct PointVisibility {
     bool reached = false;     // E_L > 0: some sample above the horizon carries weight
 };
 
+// The running sums of a point's light samples, in sample order (V = visible / weight).
+struct SampleSums {
+    double weight = 0.0, visible = 0.0;
+    int rays = 0;          // shadow rays traced (samples above the horizon with weight > 0)
+    int hiddenRays = 0;    // of those, the blocked ones
+    double visibility() const { return weight > 0.0 ? visible / weight : 1.0; }
+    // Every traced sample agrees: all blocked or all visible.
+    bool agree() const { return hiddenRays == 0 || hiddenRays == rays; }
+};
+
+// Adds samples [begin, end) of `sequence` to *sums (the estimator below, in pieces: rounds of
+// the adaptive sampling continue where the previous round stopped, with the same sums).
+void addSamples(const TraceScene& scene, const LightSampler& light, const SurfaceHit& hit,
+                const SampleSequence& sequence, uint32_t begin, uint32_t end, bool castShadows,
+                SampleSums* sums);
+
 // V = sum_s w_s vis_s / sum_s w_s over `samples` points of `sequence`, w_s = the sample's
 // weight times the cosine at the surface; samples at or below the horizon of `hit.normal`
 // count in neither sum. Shadow rays start at the point pushed off the surface by its error

@@ -12,6 +12,8 @@
 #include "gl/context.h"
 #include "gl/render_thread.h"
 #include "frame/frame.h"
+#include "reference/trace_scene_cache.h"
+#include "renderer/refinement.h"
 
 namespace ss {
 
@@ -28,6 +30,7 @@ struct Renderer::Impl {
         uint64_t sceneId = 0, revision = 0;
         std::unique_ptr<Frame> frame;
         std::map<std::string, std::unique_ptr<Method>> methods;
+        TraceSceneCache refineTrace;  // the BVH of "refine=on", built at its first use
     };
     std::unique_ptr<Cached> cache;
     CacheStats finished;  // of frames already dropped
@@ -162,7 +165,11 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
     if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
     Method& m = *it->second;
     Frame& frame = *cached.frame;
-    settings.requireKnownKeys(name, m.settingKeys());
+    std::vector<std::string> keys = m.settingKeys();
+    for (const std::string& k : refinementKeys())
+        if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+    settings.requireKnownKeys(name, keys);
+    const bool refine = refinementRequested(settings);  // a bad value fails before any work
     if (impl_->cacheTakenHook) impl_->cacheTakenHook();
 
     Layers layers;
@@ -179,6 +186,10 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
         });
     }
     checkLayers(layers, camera, name);
+    // Refinement traces on the caller's thread (progress may call Python); the reference is
+    // exact already, so it has nothing to refine.
+    if (refine && m.needsGl())
+        refineUncertainPixels(scene, lightIndex, settings, cached.refineTrace, layers);
     if (settings.extraLayers) addClassLayers(layers);
     if (methodUsed) *methodUsed = name;
     return layers;

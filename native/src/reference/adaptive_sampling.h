@@ -1,0 +1,43 @@
+// How the reference spends its light samples where they matter: rounds per pixel, stopped when decided.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "core/settings.h"
+#include "reference/trace_scene.h"
+
+namespace ss {
+
+// Per pixel, light samples (the same Owen-scrambled Sobol points as the fixed count) in rounds
+// of doubling size: `minSamples` first, then 2x, 4x, ... up to `maxSamples`.
+// - A pixel whose first round agrees (all blocked or all visible) is decided, unless a pixel
+//   within `guardBand` pixels disagrees: thin casters and shadow edges hide between samples.
+// - Every other pixel stops when its estimated error is at most `errorTarget` twice in a row
+//   (once when every sample so far agrees) or at `maxSamples`. The estimate of a round is half
+//   the difference between V of the samples before it and V of the round's own samples (each a
+//   power-of-two prefix or block of a (0,2)-sequence, so both are stratified estimates).
+struct AdaptiveSampling {
+    int minSamples = 16;
+    int maxSamples = 1024;
+    float errorTarget = 0.005f;
+    int guardBand = 2;
+};
+
+// The keys the adaptive sampling reads: "error_target" (0.0001..0.5, default 0.005) and
+// "guard_band" (pixels, 0..16, default 2); `maxSamples` is the render's sample count.
+std::vector<std::string> adaptiveSamplingKeys();
+AdaptiveSampling adaptiveSampling(const RenderSettings& settings, int maxSamples);
+
+// Traces the pixels where `select` is non-zero (every pixel when it is null) of the scene's
+// camera for light `lightIndex`. Where the light reaches the surface (E_L > 0) writes V into
+// *visibility and 1 into *mask (when not null); elsewhere leaves both as they are. *rays (when
+// not null) gets the shadow rays traced per selected pixel. Deterministic for settings.seed and
+// independent of the thread count.
+void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
+                   const AdaptiveSampling& sampling, const RenderSettings& settings,
+                   const Image* select, Image* visibility, Image* mask, Image* rays);
+
+}  // namespace ss

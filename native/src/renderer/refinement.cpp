@@ -1,0 +1,70 @@
+// How a GL method's uncertain pixels are re-traced: the penumbra plus a margin, adaptive rounds.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "renderer/refinement.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "reference/adaptive_sampling.h"
+#include "reference/render_reference.h"
+
+namespace ss {
+
+std::vector<std::string> refinementKeys() {
+    std::vector<std::string> keys{"refine", "refine_margin", "refine_samples"};
+    for (const std::string& k : adaptiveSamplingKeys()) keys.push_back(k);
+    return keys;
+}
+
+bool refinementRequested(const RenderSettings& settings) { return settings.flag("refine", false); }
+
+Image uncertainPixels(const Image& visibility, const Image& mask, int margin) {
+    const int width = visibility.width, height = visibility.height;
+    auto inMask = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < width && y < height && mask.at(x, y) != 0.0f;
+    };
+    // A pixel the pass cannot decide: V strictly between 0 and 1, or a certain V beside the
+    // opposite certain V (a hard method's shadow edge).
+    auto seed = [&](int x, int y) {
+        if (!inMask(x, y)) return false;
+        const float v = visibility.at(x, y);
+        if (v > 0.0f && v < 1.0f) return true;
+        const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+        for (int k = 0; k < 4; ++k)
+            if (inMask(x + dx[k], y + dy[k]) && visibility.at(x + dx[k], y + dy[k]) != v) return true;
+        return false;
+    };
+    Image out(width, height, 0.0f);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            if (!seed(x, y)) continue;
+            for (int j = std::max(0, y - margin); j <= std::min(height - 1, y + margin); ++j)
+                for (int i = std::max(0, x - margin); i <= std::min(width - 1, x + margin); ++i)
+                    if (inMask(i, j)) out.at(i, j) = 1.0f;
+        }
+    return out;
+}
+
+void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
+                           TraceSceneCache& cache, Layers& layers) {
+    const int margin = settings.integer("refine_margin", 3, 0, 32);
+    const int samples = settings.integer("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16);
+    const AdaptiveSampling sampling = adaptiveSampling(settings, samples);
+    Image* visibility = nullptr;
+    for (auto& [name, image] : layers.items)
+        if (name == "V") visibility = &image;
+    const Image* mask = layers.find("mask");
+    if (!visibility || !mask) fail(SS_ERROR_INTERNAL, "refine: the method made no V or mask layer");
+    Image select = uncertainPixels(*visibility, *mask, margin);
+
+    settings.report(0.0f, "building the ray-tracing scene");
+    std::shared_ptr<const TraceScene> trace = cache.get(scene);
+    Image rays(visibility->width, visibility->height, 0.0f);
+    traceAdaptive(scene, lightIndex, *trace, sampling, settings, &select, visibility, nullptr, &rays);
+    if (settings.extraLayers) {
+        layers.add("rays", std::move(rays));
+        layers.add("refined", std::move(select));
+    }
+}
+
+}  // namespace ss

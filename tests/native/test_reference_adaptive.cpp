@@ -1,0 +1,148 @@
+// Checks the reference's adaptive sampling: error against 4096 samples, rays saved, determinism, settings.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/error.h"
+#include "core/scene.h"
+#include "reference/render_reference.h"
+#include "reference/trace_scene_cache.h"
+#include "renderer/renderer.h"
+#include "test_scenes.h"
+
+namespace ss {
+namespace {
+
+RenderSettings fixedSamples(int samples) {
+    RenderSettings s;
+    s.samples = samples;
+    return s;
+}
+
+RenderSettings adaptiveSettings(const std::string& errorTarget) {
+    RenderSettings s;
+    s.options = {{"adaptive", "on"}, {"error_target", errorTarget}};
+    return s;
+}
+
+const Image& layer(const Layers& layers, const char* name) {
+    const Image* img = layers.find(name);
+    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
+    return *img;
+}
+
+test::SceneParams smallScene() {
+    test::SceneParams p;
+    p.width = 96;
+    p.height = 72;
+    return p;
+}
+
+struct Comparison {
+    double rmse = 0.0, maxAbs = 0.0;
+    int maskPixels = 0, maskDiffers = 0;
+};
+
+Comparison compare(const Layers& a, const Layers& truth) {
+    const Image &va = layer(a, "V"), &vt = layer(truth, "V"), &ma = layer(a, "mask"),
+                &mt = layer(truth, "mask");
+    Comparison c;
+    double sum = 0.0;
+    for (size_t i = 0; i < va.pixels.size(); ++i) {
+        if (ma.pixels[i] != mt.pixels[i]) ++c.maskDiffers;
+        if (mt.pixels[i] == 0.0f) continue;
+        const double d = double(va.pixels[i]) - double(vt.pixels[i]);
+        sum += d * d;
+        c.maxAbs = std::max(c.maxAbs, std::abs(d));
+        ++c.maskPixels;
+    }
+    c.rmse = c.maskPixels ? std::sqrt(sum / c.maskPixels) : 0.0;
+    return c;
+}
+
+double total(const Image& img) {
+    double s = 0.0;
+    for (float v : img.pixels) s += v;
+    return s;
+}
+
+TEST(ReferenceAdaptive, WithinItsErrorTargetOfA4096SampleReference) {
+    test::SceneParams p;
+    p.width = 64;
+    p.height = 48;
+    for (test::NamedScene& named : test::sharedScenes(p)) {
+        TraceSceneCache cache;
+        const Layers truth = renderReference(named.scene, 0, fixedSamples(4096), &cache);
+        for (const char* target : {"0.005", "0.02"}) {
+            const Layers adaptive = renderReference(named.scene, 0, adaptiveSettings(target), &cache);
+            const Comparison c = compare(adaptive, truth);
+            std::printf("%s target %s: RMSE %.5f, max %.4f over %d pixels, %.1f rays per pixel\n",
+                        named.name.c_str(), target, c.rmse, c.maxAbs, c.maskPixels,
+                        total(layer(adaptive, "rays")) / c.maskPixels);
+            EXPECT_EQ(c.maskDiffers, 0) << named.name;
+            EXPECT_GT(c.maskPixels, 2000) << named.name;
+            EXPECT_LE(c.rmse, std::stod(target)) << named.name << " at error_target " << target;
+        }
+    }
+}
+
+TEST(ReferenceAdaptive, TracesFarFewerRaysWhereMostPixelsAreLitOrInUmbra) {
+    // A small light: a thin penumbra around a wide umbra, lit ground elsewhere.
+    test::SceneParams p = smallScene();
+    p.lightDiameter = 0.3f;
+    Scene scene = test::sceneBox(p);
+    TraceSceneCache cache;
+    const Layers truth = renderReference(scene, 0, fixedSamples(4096), &cache);
+    const Layers adaptive = renderReference(scene, 0, adaptiveSettings("0.005"), &cache);
+    const Image& rays = layer(adaptive, "rays");
+    const Comparison c = compare(adaptive, truth);
+    const double perPixel = total(rays) / c.maskPixels;
+    std::printf("box, light 0.3: %.1f rays per pixel (fixed count 256; cap 1024), RMSE %.5f\n",
+                perPixel, c.rmse);
+    EXPECT_LE(c.rmse, 0.005);
+    EXPECT_LT(perPixel, 256.0 / 4.0);
+    // A lit pixel in the corner, far from the shadow, is decided by the first round.
+    EXPECT_EQ(rays.at(2, 2), 16.0f);
+    EXPECT_EQ(layer(adaptive, "V").at(2, 2), 1.0f);
+    // Some pixel, at the shadow's edge, needed more than the fixed count.
+    float most = 0.0f;
+    for (float r : rays.pixels) most = std::max(most, r);
+    EXPECT_GT(most, 256.0f);
+    EXPECT_LE(most, 1024.0f);
+}
+
+TEST(ReferenceAdaptive, DeterministicForASeedWhateverTheThreadCount) {
+    Scene scene = test::sceneTorus(smallScene());
+    RenderSettings one = adaptiveSettings("0.01"), two = one, other = one;
+    one.options["threads"] = "1";
+    two.options["threads"] = "2";
+    other.seed = 7;
+    const Layers a = renderReference(scene, 0, one), b = renderReference(scene, 0, two),
+                 c = renderReference(scene, 0, other);
+    EXPECT_EQ(layer(a, "V").pixels, layer(b, "V").pixels);
+    EXPECT_EQ(layer(a, "rays").pixels, layer(b, "rays").pixels);
+    EXPECT_NE(layer(a, "V").pixels, layer(c, "V").pixels);
+}
+
+TEST(ReferenceAdaptive, SettingsAreReadByNameAndRefusedOutOfRange) {
+    Scene scene = test::sceneBox(smallScene());
+    Renderer renderer(SS_BACKEND_AUTO);
+    auto statusWith = [&](const std::string& key, const std::string& value) {
+        RenderSettings s = adaptiveSettings("0.01");
+        s.options[key] = value;
+        return test::statusOf([&] { renderer.render(scene, 0, "reference", s, nullptr); });
+    };
+    EXPECT_EQ(statusWith("error_target", "0"), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(statusWith("guard_band", "-1"), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(statusWith("adaptive", "maybe"), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(statusWith("guard_band", "1"), SS_OK);
+    // Without "adaptive" the fixed count runs and there is no "rays" layer.
+    const Layers fixed = renderReference(scene, 0, fixedSamples(16));
+    EXPECT_EQ(fixed.find("rays"), nullptr);
+}
+
+}  // namespace
+}  // namespace ss
