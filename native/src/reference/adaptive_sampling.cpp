@@ -18,6 +18,12 @@ namespace {
 
 enum class PixelState : uint8_t { Skipped, Decided, Undecided };
 
+// Agreement decides a pixel only when it rests on at least half a first round of rays: near the
+// horizon one or two samples above it would decide the pixel alone.
+bool decidedByAgreement(const SampleSums& s, const AdaptiveSampling& a) {
+    return s.agree() && 2 * s.rays >= a.minSamples;
+}
+
 struct Tracer {
     const Scene& scene;
     const Light& light;
@@ -54,7 +60,7 @@ void continueRounds(const Tracer& t, const AdaptiveSampling& a, const SurfaceHit
         const double roundV = (sums->visible - before.visible) / roundWeight;
         const double error = 0.5 * std::abs(before.visibility() - roundV);
         passed = error <= a.errorTarget ? passed + 1 : 0;
-        if (passed >= (sums->agree() ? 1 : 2)) break;
+        if (passed >= (decidedByAgreement(*sums, a) ? 1 : 2)) break;
     }
 }
 
@@ -90,7 +96,8 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
             if (!selected(x, y) || !t.surface(x, y, &hit)) continue;
             const size_t i = size_t(y) * size_t(width) + size_t(x);
             t.add(hit, x, y, 0, uint32_t(sampling.minSamples), &sums[i]);
-            state[i] = sums[i].agree() ? PixelState::Decided : PixelState::Undecided;
+            const bool decided = !(sums[i].weight > 0.0) || decidedByAgreement(sums[i], sampling);
+            state[i] = decided ? PixelState::Decided : PixelState::Undecided;
         }
     });
 

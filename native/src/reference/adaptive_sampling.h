@@ -13,7 +13,8 @@ namespace ss {
 
 // Per pixel, light samples (the same Owen-scrambled Sobol points as the fixed count) in rounds
 // of doubling size: `minSamples` first, then 2x, 4x, ... up to `maxSamples`.
-// - A pixel whose first round agrees (all blocked or all visible) is decided, unless a pixel
+// - A pixel whose first round agrees (all blocked or all visible, at least minSamples / 2 rays
+//   above the horizon) or carries no weight at all is decided, unless a pixel
 //   within `guardBand` pixels disagrees: thin casters and shadow edges hide between samples.
 // - Every other pixel stops when its estimated error is at most `errorTarget` twice in a row
 //   (once when every sample so far agrees) or at `maxSamples`. The estimate of a round is half
