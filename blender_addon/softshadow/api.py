@@ -98,7 +98,7 @@ def _render_layer(scene, view_layer, depsgraph=None, progress=None):
     graph = depsgraph if depsgraph is not None else _layer_depsgraph(scene, view_layer)
     exported = scene_export.export(graph, scene, mode="RENDER", view_layer=view_layer)
     result = passes.compute(exported, extra_layers=scene.softshadow.extra_layers, keep_results=True,
-                            progress=progress)
+                            progress=progress, final=True)
     path = ""
     try:
         if result.results:

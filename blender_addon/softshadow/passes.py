@@ -73,9 +73,20 @@ def _wanted(exported, lights, methods, only_enabled):
     return chosen
 
 
+def _settings_for(options, method, final):
+    """The light's settings string; in a final render with Refine Final Renders on, plus
+    refine=on (the reference is exact already; a refine the user typed stays as typed)."""
+    text = options.get("settings") or ""
+    typed = [part.split("=", 1)[0].strip() for part in text.split(";") if part.strip()]
+    if final and options.get("refine_final") and method != "reference" and "refine" not in typed:
+        text = "refine=on" + (";" + text if text.strip() else "")
+    return text or None
+
+
 def compute(exported, lights=None, methods=None, extra_layers=False, only_enabled=True,
-            keep_results=False, progress=None):
-    """Renders every wanted (light, method). Failures become problems; the rest is produced."""
+            keep_results=False, progress=None, final=False):
+    """Renders every wanted (light, method). Failures become problems; the rest is produced.
+    `final`: a final render's passes (the lights' Refine Final Renders applies)."""
     out = FrameResult(problems=exported.problems, view_layer=exported.view_layer)
     if exported.camera is None:
         return out
@@ -96,7 +107,7 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
 
             try:
                 result = scene.render(indices[light["name"]], method, samples=options.get("samples", 0),
-                                      extra_layers=extra_layers, settings=options.get("settings") or None,
+                                      extra_layers=extra_layers, settings=_settings_for(options, method, final),
                                       progress=step if progress else None)
             except native.SoftShadowError as exc:
                 if exc.cancelled:

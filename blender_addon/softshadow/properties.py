@@ -25,6 +25,11 @@ class SoftShadowLightSettings(bpy.types.PropertyGroup):
     settings: bpy.props.StringProperty(
         name="Method Settings", default="",
         description="Advanced method quality settings as key=value;key=value")
+    refine_final: bpy.props.BoolProperty(
+        name="Refine Final Renders", default=False,
+        description="In final renders (F12, blender -b) ray trace the pixels the method cannot "
+                    "decide, its penumbra and a margin (the method's setting refine=on); the "
+                    "viewport preview stays fast")
     replaces_shadow: bpy.props.BoolProperty(
         name="Pass Replaces the Shadow", default=False, options={"HIDDEN"},
         description="Set by the Replace composite: the renderer's shadow of this light is off "

@@ -68,6 +68,7 @@ class SOFTSHADOW_PT_light(bpy.types.Panel):
         layout.prop(props, "method")
         layout.prop(props, "samples")
         layout.prop(props, "settings")
+        layout.prop(props, "refine_final")
         chosen = handlers.last_report.get("chosen", {})
         obj = context.object
         if obj is not None and obj.name in chosen:

@@ -108,5 +108,32 @@ def test_auto_keeps_its_pass_name_and_the_header_says_what_ran():
     print("   auto ran", ran)
 
 
+def test_refine_final_renders_trace_only_the_final_render():
+    folder = sstest.tempdir("exr-refine")
+    scene = sstest.standard_scene(48, 32)
+    key = scene.objects["Key"].data.softshadow
+    key.method = "pcss"
+    key.refine_final = True
+    scene.softshadow.extra_layers = True
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
+    bpy.context.view_layer.update()
+    scene.frame_current = 1
+    path, problems, _ = ss.api.render_frame(scene)
+    sstest.check(problems == [] and path, "written: %s" % problems)
+    refined = sstest.exr_channel(path, "ViewLayer.Key_pcss_refined.V")
+    v_final = sstest.exr_channel(path, "ViewLayer.Key_pcss.V")
+    sstest.check(0 < refined.sum() < refined.size / 2, "some pixels traced: %d" % refined.sum())
+    # Scripts' render_passes (like the viewport preview) are not final renders: the plain method.
+    v_plain = ss.render_passes(scene)[("Key", "pcss")]
+    certain = refined == 0
+    sstest.check(np.array_equal(v_final[certain], v_plain[certain]), "untouched where pcss is certain")
+    sstest.check(not np.array_equal(v_final[~certain], v_plain[~certain]), "traced where it is not")
+    # A refine typed in the light's settings is kept as typed, not given twice.
+    key.settings = "refine=off"
+    path, problems, _ = ss.api.render_frame(scene)
+    sstest.check(problems == [] and path, "written: %s" % problems)
+    sstest.check("ViewLayer.Key_pcss_refined.V" not in sstest.exr_channels(path), "refine=off typed wins")
+
+
 if __name__ == "__main__":
     sstest.run(dict(globals()))
