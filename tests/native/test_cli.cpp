@@ -127,6 +127,26 @@ TEST(Cli, RenderWritesExactPassNames) {
     fs::remove_all(dir);
 }
 
+TEST(Cli, AdaptiveReferenceAndRefinedPcssWriteTheirRayCounts) {
+    fs::path dir = tempDir("adaptive");
+    std::string out = (dir / "demo.exr").string();
+    CliRun r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m reference,pcss --width 64 "
+                   "-l Area --set refine=on --set adaptive=on --set error_target=0.02 -o '" + out + "'");
+    // adaptive is a reference key only: pcss refuses it by name.
+    expectFailure(r, {"method 'pcss' has no setting 'adaptive'"});
+    r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m pcss --width 64 --set refine=on -o '" + out + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    ss::ExrContents back = ss::readMultilayerExr(out);
+    ASSERT_TRUE(back.find("Area_pcss_rays"));
+    ASSERT_TRUE(back.find("Area_pcss_refined"));
+    r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m reference --width 64 --set adaptive=on -o '" +
+            out + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    back = ss::readMultilayerExr(out);
+    ASSERT_TRUE(back.find("Area_reference_rays"));
+    fs::remove_all(dir);
+}
+
 TEST(Cli, UnknownSettingKeyFailsNamingItAndTheKnownKeys) {
     // A typo (blocker_sample for blocker_samples) must not render the default with exit 0.
     fs::path dir = tempDir("setting_typo");
