@@ -22,8 +22,9 @@ struct Renderer::Impl {
     std::string infoJson;
     std::function<void()> cacheTakenHook;
 
-    // The shared passes and the method objects (with whatever they prepared) of the last
-    // scene revision rendered; a new (scene id, revision) replaces them.
+    // The shared passes of the last scene rendered (kept across its edits: the frame redraws
+    // only what an edit changed) and the method objects with whatever they prepared for its
+    // last revision; another scene id replaces both, a new revision only the methods.
     struct Cached {
         uint64_t sceneId = 0, revision = 0;
         std::unique_ptr<Frame> frame;
@@ -75,8 +76,28 @@ struct Renderer::Impl {
         cache.reset();
     }
 
+    // Method objects may hold GL objects: freed on the render thread, like the frame's.
+    void dropMethods() {
+        std::map<std::string, std::unique_ptr<Method>> stale;
+        stale.swap(cache->methods);
+        if (thread && thread->running()) {
+            try {
+                thread->run([&] { stale.clear(); });
+            } catch (const Error&) {
+                // Shut down in between: the context is gone and the handles just forget.
+            }
+        }
+    }
+
     Cached& cacheFor(const Scene& scene) {
-        if (cache && cache->sceneId == scene.id() && cache->revision == scene.revision()) return *cache;
+        if (cache && cache->sceneId == scene.id()) {
+            cache->frame->setScene(scene);  // the same scene, perhaps moved in memory
+            if (cache->revision != scene.revision()) {
+                dropMethods();
+                cache->revision = scene.revision();
+            }
+            return *cache;
+        }
         dropCache();
         cache = std::make_unique<Cached>();
         cache->sceneId = scene.id();
