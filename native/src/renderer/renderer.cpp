@@ -129,7 +129,7 @@ std::string Renderer::info() {
         gl::RenderThread& t = impl_->glThread();
         gl::Capabilities caps;
         t.run([&] { caps = gl::probeCapabilities(); });
-        impl_->infoJson = caps.toJson(t.backendName());
+        impl_->infoJson = caps.toJson(t.backendName(), t.device());
     }
     return impl_->infoJson;
 }
