@@ -270,6 +270,8 @@ def status():
         info["backend"] = str(details.get("backend", ""))
         info["renderer"] = str(details.get("renderer", ""))
         info["gl_version"] = str(details.get("gl_version", details.get("version", "")))
+        info["device"] = str(details.get("device", ""))
+        info["egl_devices"] = [str(d) for d in details.get("egl_devices", [])]
         info["details"] = details
     except (SoftShadowError, LibraryUnavailable) as exc:
         info["error"] = "GL context: %s" % exc
