@@ -296,7 +296,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     return *shadowMaps_.emplace(key, std::move(entry)).first->second.map;
 }
 
-void Frame::trimCache(size_t budgetBytes) {
+void Frame::dropStale() {
     dropStalePasses();
     // Maps of lights edited or removed since are never asked for again.
     for (auto it = shadowMaps_.begin(); it != shadowMaps_.end();) {
@@ -309,6 +309,9 @@ void Frame::trimCache(size_t budgetBytes) {
             it = shadowMaps_.erase(it);
         }
     }
+}
+
+void Frame::trimCache(size_t budgetBytes) {
     while (stats_.shadowMapBytes > budgetBytes && !shadowMaps_.empty()) {
         auto oldest = shadowMaps_.begin();
         for (auto it = shadowMaps_.begin(); it != shadowMaps_.end(); ++it)

@@ -134,8 +134,13 @@ public:
     // it. The reference stays valid until the next trimCache().
     const ShadowMap& shadowMap(int lightIndex, int size = 0);
     // Drops the least recently used shadow maps until the rest fit in `budgetBytes`. Called
-    // between renders (never during one, so the maps a render holds stay alive).
+    // between renders (never during one, so the maps a render holds stay alive). Reads no scene:
+    // the renderer trims frames of other scenes too.
     void trimCache(size_t budgetBytes);
+    // Drops the passes whose inputs changed and the maps of lights edited or removed since. Needs
+    // the scene: only after setScene() with the scene as it is now.
+    void dropStale();
+    size_t shadowMapBytes() const { return stats_.shadowMapBytes; }
 
     // ---- helpers ----
     // Draws every mesh whose flags contain all of `requiredFlags` with the bound program and
