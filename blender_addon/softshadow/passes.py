@@ -85,7 +85,11 @@ class LiveScene:
     def _add_mesh(self, mesh):
         index = self.scene.add_mesh(mesh["name"], self._coordinates(mesh), mesh["triangles"], mesh["flags"])
         if self.with_transforms:
-            self.scene.set_mesh_transform(index, mesh["matrix"])
+            try:
+                self.scene.set_mesh_transform(index, mesh["matrix"])
+            except native.SoftShadowError:
+                self.scene.remove_mesh(index)  # keeps the native indices equal to self.meshes'
+                raise
         self.meshes.append(mesh)
 
     def _add_light(self, light):
