@@ -274,6 +274,7 @@ def unregister():
     _state.done.clear()
     _state.keys.clear()
     _state.edits = []
-    _state.live.close()
+    with _state.live.lock:  # a worker that outlived the join above still holds it while rendering
+        _state.live.close()
     _state.full = True
     passes.release()
