@@ -36,7 +36,7 @@ class _State:
         self.full = True            # the next edit is a full export (object set changed, start)
         self.changed = set()        # objects an update touched since the last export
         self.geometry = set()       # of those, the ones whose mesh data changed
-        self.object_count = -1
+        self.object_names = frozenset()
         self.keys = {}              # region pointer -> key last asked for
         self.textures = {}          # region pointer -> (generation, GPUTexture)
         self.thread = None
@@ -142,8 +142,8 @@ def export_edit(depsgraph, scene):
     export when the object set changed, else the changed objects alone. Main thread."""
     identity = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
     placeholder = scene_export.camera_values(identity, identity, 8, 8)
-    count = len(scene.objects)
-    if _state.full or count != _state.object_count:
+    names = frozenset(obj.name for obj in scene.objects)  # an added, removed or renamed object
+    if _state.full or names != _state.object_names:
         exported = scene_export.export(depsgraph, scene, mode="VIEWPORT", camera=placeholder)
         edit = ("full", exported)
     elif _state.changed:
@@ -154,7 +154,7 @@ def export_edit(depsgraph, scene):
     else:
         return None
     _state.full = False
-    _state.object_count = count
+    _state.object_names = names
     _state.changed.clear()
     _state.geometry.clear()
     return edit

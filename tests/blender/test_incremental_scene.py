@@ -77,6 +77,26 @@ def test_moving_one_object_sends_its_matrix_and_moves_the_shadow():
         live.close()
 
 
+def test_a_renamed_object_is_not_drawn_twice():
+    scene = _scene()
+    preview._state.full = True
+    live = passes.LiveScene(with_transforms=True)
+    try:
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        camera = scene_export.scene_camera(scene, depsgraph)
+        preview._render_job(live, [preview.export_edit(depsgraph, scene)], camera, lambda: False)
+        scene.objects["Occluder"].name = "Plate"
+        bpy.context.view_layer.update()
+        edit = preview.export_edit(depsgraph, scene)
+        sstest.check(edit[0] == "full", "a rename exports the scene whole: %s" % edit[0])
+        preview._render_job(live, [edit], camera, lambda: False)
+        names = sorted(m["name"] for m in live.meshes)
+        sstest.check(names == ["Ground", "Other", "Plate"], "meshes after the rename: %s" % names)
+        sstest.check(live.scene.mesh_count() == 3, "the library has 3 meshes: %d" % live.scene.mesh_count())
+    finally:
+        live.close()
+
+
 def test_render_passes_sends_only_the_moved_mesh():
     scene = _scene()
     first = ss.render_passes(scene, methods=["shadow_map"])[("Key", "shadow_map")]
