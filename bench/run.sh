@@ -90,6 +90,16 @@ if [ "$QUICK" = 1 ]; then COUNTS="50 200"; else COUNTS="50 500 2000"; fi
 } > "$OUT/memory.md"
 cat "$OUT/memory.md"
 
+# 4c. render_passes on the second frame of an animation where one object moved: a scene built
+#     per call against the kept one (docs/architecture.md, the caches).
+log "render_passes on a warm scene"
+if [ "$QUICK" = 1 ]; then WARM_SIZE=256; else WARM_SIZE=1024; fi
+SOFTSHADOW_ADDON_PATH="$ROOT/blender_addon" "$BLENDER" --background --factory-startup --python-exit-code 1 \
+  --python "$HERE/warm_render_passes.py" -- "$OUT/warm_render_passes.md" "$WARM_SIZE" 3 > "$WORK/warm.log" 2>&1 ||
+  { tail -n 40 "$WORK/warm.log"; exit 1; }
+grep -q BENCH-WARM-OK "$WORK/warm.log" || { tail -n 40 "$WORK/warm.log"; exit 1; }
+cat "$OUT/warm_render_passes.md"
+
 # 5. Errors against the truth, and image strips (method | truth | 4 x |error|).
 log "errors and image strips"
 for dir in "$WORK"/scenes/*/; do

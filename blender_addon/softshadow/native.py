@@ -86,6 +86,11 @@ class _RenderOptions(ctypes.Structure):
     ]
 
 
+class _CacheStats(ctypes.Structure):
+    _fields_ = [("frames", ctypes.c_int32), ("mesh_uploads", ctypes.c_int32),
+                ("camera_passes", ctypes.c_int32), ("shadow_maps", ctypes.c_int32)]
+
+
 _vp = ctypes.c_void_p
 _st = ctypes.c_int
 _SIGNATURES = {
@@ -106,6 +111,13 @@ _SIGNATURES = {
                                 ctypes.POINTER(ctypes.c_uint32), ctypes.c_uint32, ctypes.c_uint32,
                                 ctypes.POINTER(ctypes.c_int32)]),
     "ss_scene_add_light": (_st, [_vp, ctypes.POINTER(_LightDesc), ctypes.POINTER(ctypes.c_int32)]),
+    "ss_scene_update_mesh": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_float), ctypes.c_uint32,
+                                   ctypes.POINTER(ctypes.c_uint32), ctypes.c_uint32, ctypes.c_uint32]),
+    "ss_scene_set_mesh_transform": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_float)]),
+    "ss_scene_remove_mesh": (_st, [_vp, ctypes.c_int32]),
+    "ss_scene_update_light": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(_LightDesc)]),
+    "ss_scene_remove_light": (_st, [_vp, ctypes.c_int32]),
+    "ss_context_cache_stats": (_st, [_vp, ctypes.POINTER(_CacheStats)]),
     "ss_scene_set_camera": (_st, [_vp, ctypes.POINTER(_CameraDesc)]),
     "ss_scene_set_view_layer": (_st, [_vp, ctypes.c_char_p]),
     "ss_scene_light_count": (ctypes.c_int32, [_vp]),
@@ -258,6 +270,8 @@ def status():
         info["backend"] = str(details.get("backend", ""))
         info["renderer"] = str(details.get("renderer", ""))
         info["gl_version"] = str(details.get("gl_version", details.get("version", "")))
+        info["device"] = str(details.get("device", ""))
+        info["egl_devices"] = [str(d) for d in details.get("egl_devices", [])]
         info["details"] = details
     except (SoftShadowError, LibraryUnavailable) as exc:
         info["error"] = "GL context: %s" % exc
@@ -284,6 +298,26 @@ def reset_after_shutdown():
     with _lock:
         _shut_down = False
         _context_error = None
+
+
+def cache_stats():
+    """What the shared context's caches did so far: {frames, mesh_uploads, camera_passes,
+    shadow_maps} (tests count re-uploads with it)."""
+    stats = _CacheStats()
+    _check(lib().ss_context_cache_stats(context(), ctypes.byref(stats)))
+    return {name: getattr(stats, name) for name, _ in _CacheStats._fields_}
+
+
+def _light_desc(light):
+    """A light dict (scene_export.light_values) -> ss_light_desc (it keeps the name alive)."""
+    desc = _LightDesc()
+    desc.name = _text(light["name"])
+    desc.type = LIGHT_TYPES[light["type"]]
+    desc.light_to_world = _matrix16(light["light_to_world"])
+    for key in ("size", "size_y", "radius", "angle", "spot_size", "spot_blend"):
+        setattr(desc, key, float(light.get(key, 0.0)))
+    desc.cast_shadows = 1 if light.get("cast_shadows", True) else 0
+    return desc
 
 
 def _matrix16(values):
@@ -343,17 +377,31 @@ class Scene:
             ctypes.byref(index)))
         return index.value
 
+    def update_mesh(self, index, vertices, triangles, flags):
+        """New geometry for mesh `index`, in its object space (its transform is kept)."""
+        xyz = np.ascontiguousarray(vertices, dtype=np.float32).reshape(-1, 3)
+        tris = np.ascontiguousarray(triangles, dtype=np.uint32).reshape(-1, 3)
+        _check(lib().ss_scene_update_mesh(
+            self.handle, int(index), xyz.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), len(xyz),
+            tris.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32)), len(tris), int(flags)))
+
+    def set_mesh_transform(self, index, object_to_world):
+        """object_to_world: 16 column-major floats applied to the mesh's coordinates as given."""
+        _check(lib().ss_scene_set_mesh_transform(self.handle, int(index), _matrix16(object_to_world)))
+
+    def remove_mesh(self, index):
+        _check(lib().ss_scene_remove_mesh(self.handle, int(index)))
+
+    def update_light(self, index, light):
+        _check(lib().ss_scene_update_light(self.handle, int(index), ctypes.byref(_light_desc(light))))
+
+    def remove_light(self, index):
+        _check(lib().ss_scene_remove_light(self.handle, int(index)))
+
     def add_light(self, light):
         """light: a dict as made by scene_export.light_values. Returns the index."""
-        desc = _LightDesc()
-        desc.name = _text(light["name"])
-        desc.type = LIGHT_TYPES[light["type"]]
-        desc.light_to_world = _matrix16(light["light_to_world"])
-        for key in ("size", "size_y", "radius", "angle", "spot_size", "spot_blend"):
-            setattr(desc, key, float(light.get(key, 0.0)))
-        desc.cast_shadows = 1 if light.get("cast_shadows", True) else 0
         index = ctypes.c_int32(-1)
-        _check(lib().ss_scene_add_light(self.handle, ctypes.byref(desc), ctypes.byref(index)))
+        _check(lib().ss_scene_add_light(self.handle, ctypes.byref(_light_desc(light)), ctypes.byref(index)))
         return index.value
 
     def set_camera(self, camera):

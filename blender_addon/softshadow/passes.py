@@ -1,7 +1,10 @@
 # How one frame's soft-shadow passes are computed: export, per-light render, EXR, arrays.
 # SPDX-License-Identifier: GPL-3.0-or-later
 import os
+import threading
 from dataclasses import dataclass, field
+
+import numpy as np
 
 from . import native, scene_export
 
@@ -50,6 +53,157 @@ def build_native_scene(exported):
     return scene, indices
 
 
+class LiveScene:
+    """One native scene kept alive across renders and fed only what changed, so that the
+    library's caches (per mesh: GPU buffers; per light: shadow maps) survive from call to call.
+
+    with_transforms: meshes are sent in object space with their matrix, so a move sends 16 floats
+    (the preview); otherwise in world space as build_native_scene sends them (render_passes, whose
+    numbers must equal a freshly built scene's). A failed edit drops the scene: the next sync
+    rebuilds it."""
+
+    def __init__(self, with_transforms=False):
+        self.with_transforms = with_transforms
+        self.lock = threading.Lock()
+        self.scene = None
+        self.meshes = []      # mesh dicts as sent, in native index order
+        self.lights = []      # light dicts as sent, in native index order
+        self.camera = None
+        self.problems = []
+
+    def close(self):
+        if self.scene is not None:
+            self.scene.close()
+        self.scene, self.meshes, self.lights, self.camera = None, [], [], None
+
+    def light_indices(self):
+        return {light["name"]: i for i, light in enumerate(self.lights)}
+
+    def _coordinates(self, mesh):
+        return mesh["local"] if self.with_transforms else mesh["vertices"]
+
+    def _add_mesh(self, mesh):
+        index = self.scene.add_mesh(mesh["name"], self._coordinates(mesh), mesh["triangles"], mesh["flags"])
+        if self.with_transforms:
+            try:
+                self.scene.set_mesh_transform(index, mesh["matrix"])
+            except native.SoftShadowError:
+                self.scene.remove_mesh(index)  # keeps the native indices equal to self.meshes'
+                raise
+        self.meshes.append(mesh)
+
+    def _add_light(self, light):
+        problem = scene_export.light_problem(light)
+        if problem:
+            self.problems.append(problem)
+            return
+        self.scene.add_light(light)
+        self.lights.append(light)
+
+    def rebuild(self, exported):
+        self.close()
+        self.problems = []
+        self.scene = native.Scene()
+        self.scene.set_view_layer(exported.view_layer)
+        for mesh in exported.meshes:
+            try:
+                self._add_mesh(mesh)
+            except native.SoftShadowError as exc:
+                self.problems.append("object '%s' skipped: %s" % (mesh["name"], exc))
+        for light in exported.lights:
+            try:
+                self._add_light(light)
+            except native.SoftShadowError as exc:
+                self.problems.append("light '%s' gets no pass: %s" % (light["name"], exc))
+
+    def _replace_mesh(self, index, mesh):
+        old = self.meshes[index]
+        same_geometry = (old["flags"] == mesh["flags"] and np.array_equal(old["triangles"], mesh["triangles"])
+                         and np.array_equal(self._coordinates(old), self._coordinates(mesh)))
+        if not same_geometry:
+            self.scene.update_mesh(index, self._coordinates(mesh), mesh["triangles"], mesh["flags"])
+        if self.with_transforms and not np.array_equal(old["matrix"], mesh["matrix"]):
+            self.scene.set_mesh_transform(index, mesh["matrix"])
+        self.meshes[index] = mesh
+
+    @staticmethod
+    def _light_key(light):
+        return {k: (np.asarray(v).tolist() if k == "light_to_world" else v)
+                for k, v in light.items() if k != "options"}
+
+    def _replace_light(self, index, light):
+        if self._light_key(self.lights[index]) != self._light_key(light):
+            self.scene.update_light(index, light)
+        self.lights[index] = light
+
+    def sync(self, exported):
+        """Makes the scene equal `exported` (a full export): rebuilt when the set of meshes or
+        lights changed, else only the meshes and lights that differ are sent."""
+        with self.lock:
+            try:
+                if (self.scene is None or [m["name"] for m in self.meshes] != [m["name"] for m in exported.meshes]
+                        or [l["name"] for l in self.lights] != [l["name"] for l in exported.lights
+                                                                 if not scene_export.light_problem(l)]
+                        or self.scene_view_layer != exported.view_layer):
+                    self.rebuild(exported)
+                else:
+                    for index, mesh in enumerate(exported.meshes):
+                        self._replace_mesh(index, mesh)
+                    lights = [l for l in exported.lights if not scene_export.light_problem(l)]
+                    for index, light in enumerate(lights):
+                        self._replace_light(index, light)
+                self.scene_view_layer = exported.view_layer
+                self.set_camera(exported.camera)
+            except Exception:
+                self.close()
+                raise
+
+    scene_view_layer = None
+
+    def apply(self, partial, changed):
+        """Applies an export of the `changed` objects alone (scene_export.export(only=...)):
+        their meshes and lights are updated, added or (when absent from `partial`) removed."""
+        with self.lock:
+            try:
+                meshes = {m["name"]: m for m in partial.meshes}
+                lights = {l["name"]: l for l in partial.lights if not scene_export.light_problem(l)}
+                for name in changed:
+                    index = next((i for i, m in enumerate(self.meshes) if m["name"] == name), None)
+                    mesh = meshes.get(name)
+                    if mesh is not None and mesh["local"] is None and index is not None:
+                        mesh = dict(mesh, local=self.meshes[index]["local"], triangles=self.meshes[index]["triangles"])
+                    if index is not None and mesh is None:
+                        self.scene.remove_mesh(index)
+                        del self.meshes[index]
+                    elif index is not None:
+                        self._replace_mesh(index, mesh)
+                    elif mesh is not None and mesh["local"] is not None:
+                        self._add_mesh(mesh)
+                    index = next((i for i, l in enumerate(self.lights) if l["name"] == name), None)
+                    light = lights.get(name)
+                    if index is not None and light is None:
+                        self.scene.remove_light(index)
+                        del self.lights[index]
+                    elif index is not None:
+                        self._replace_light(index, light)
+                    elif light is not None:
+                        self._add_light(light)
+            except Exception:
+                self.close()
+                raise
+
+    def set_camera(self, camera):
+        """Sends the camera when it differs from the one the scene has (a resend would redraw
+        the camera pass)."""
+        if camera is None:
+            return
+        if self.camera is not None and all(np.array_equal(np.asarray(self.camera[k]), np.asarray(camera[k]))
+                                           for k in ("world_to_camera", "projection", "width", "height")):
+            return
+        self.scene.set_camera(camera)
+        self.camera = camera
+
+
 def _wanted(exported, lights, methods, only_enabled):
     """[(light dict, [method names])] in scene order."""
     if isinstance(lights, str):
@@ -83,18 +237,31 @@ def _settings_for(options, method, final):
     return text or None
 
 
+# render_passes' scene, kept between calls: the next frame of an animation sends only what moved.
+_render_scene = LiveScene()
+
+
+def release():
+    """Frees the scenes kept between calls (unregister)."""
+    _render_scene.close()
+
+
 def compute(exported, lights=None, methods=None, extra_layers=False, only_enabled=True,
-            keep_results=False, progress=None, final=False):
+            keep_results=False, progress=None, live=None, final=False):
     """Renders every wanted (light, method). Failures become problems; the rest is produced.
     `final`: a final render's passes (the lights' Refine Final Renders applies)."""
     out = FrameResult(problems=exported.problems, view_layer=exported.view_layer)
     if exported.camera is None:
         return out
-    scene, indices = build_native_scene(exported)
-    if exported.camera is None:
-        scene.close()
-        return out
+    live = _render_scene if live is None else live
     try:
+        live.sync(exported)
+    except native.SoftShadowError as exc:
+        exported.problems.append("camera: %s" % exc)
+        return out
+    exported.problems.extend(live.problems)
+    scene, indices = live.scene, live.light_indices()
+    with live.lock:
         jobs = [(l, m) for l, ms in _wanted(exported, lights, methods, only_enabled) for m in ms]
         for number, (light, method) in enumerate(jobs):
             if light["name"] not in indices:
@@ -129,8 +296,6 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
                 out.results.append(result)
             else:
                 result.close()
-    finally:
-        scene.close()
     return out
 
 

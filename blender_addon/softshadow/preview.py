@@ -1,9 +1,12 @@
 # How the 3D viewport shows a live soft-shadow preview: export on change, render off-thread, draw.
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The main thread exports the scene when the depsgraph changes and reads each viewport's view
-in its draw callback; a worker thread renders at reduced resolution through the library (which
-releases the GIL); a newer request cancels the running one through the progress callback. The
-finished image is drawn with the `gpu` module only (no bgl), as black with alpha 1 - V."""
+"""The main thread exports what changed (from depsgraph.updates: only the objects an edit
+touched, a moved object as its matrix alone) and reads each viewport's view in its draw
+callback; a worker thread applies those edits to one native scene kept alive for the preview
+(so the library keeps every unchanged mesh's GPU buffers and every unchanged light's shadow maps)
+and renders at reduced resolution through the library (which releases the GIL); a newer request
+cancels the running one through the progress callback. The finished image is drawn with the `gpu`
+module only (no bgl), as black with alpha 1 - V."""
 import threading
 
 import bpy
@@ -26,10 +29,14 @@ class _State:
         self.lock = threading.Lock()
         self.wake = threading.Condition(self.lock)
         self.generation = 0         # bumped by every new request; older work is stale
-        self.request = None         # (generation, key, exported, camera)
+        self.request = None         # (generation, key, camera)
         self.done = {}              # key -> (generation, rgba float32 (h, w, 4))
-        self.exported = None        # the scene without a camera, re-exported on depsgraph change
-        self.dirty = True
+        self.edits = []             # exports not yet applied to `live`, oldest first (under lock)
+        self.live = passes.LiveScene(with_transforms=True)  # the worker's scene
+        self.full = True            # the next edit is a full export (object set changed, start)
+        self.changed = set()        # objects an update touched since the last export
+        self.geometry = set()       # of those, the ones whose mesh data changed
+        self.object_names = frozenset()
         self.keys = {}              # region pointer -> key last asked for
         self.textures = {}          # region pointer -> (generation, GPUTexture)
         self.thread = None
@@ -42,14 +49,26 @@ _state = _State()
 _draw_handle = None
 
 
-def _render_job(exported, camera, cancelled):
+def apply_edits(live, edits):
+    """Brings the worker's scene up to date: ("full", exported) or ("objects", partial, names)."""
+    for edit in edits:
+        if edit[0] == "full":
+            with live.lock:
+                live.rebuild(edit[1])
+        else:
+            live.apply(edit[1], edit[2])
+
+
+def _render_job(live, edits, camera, cancelled):
     """Product of every previewed light's V, as an RGBA overlay. Runs on the worker."""
-    exported.camera = camera
-    exported.problems = []
-    scene, indices = passes.build_native_scene(exported)
-    try:
+    apply_edits(live, edits)
+    with live.lock:
+        if live.scene is None:
+            raise RuntimeError("the preview scene could not be built")
+        live.set_camera(camera)
+        scene, indices = live.scene, live.light_indices()
         shade = np.ones((camera["height"], camera["width"]), np.float32)
-        for light in exported.lights:
+        for light in live.lights:
             options = light.get("options", {})
             if light["name"] not in indices or not options.get("enabled", True) or not light["cast_shadows"]:
                 continue
@@ -62,8 +81,6 @@ def _render_job(exported, camera, cancelled):
                 result.close()
             if v is not None and v.shape == shade.shape:
                 shade *= np.clip(v, 0.0, 1.0)
-    finally:
-        scene.close()
     rgba = np.zeros(shade.shape + (4,), np.float32)
     rgba[..., 3] = PREVIEW_OPACITY * (1.0 - shade)
     return np.ascontiguousarray(np.flipud(rgba))  # textures start at the bottom row
@@ -77,20 +94,25 @@ def _worker():
                 state.wake.wait()
             if state.stop:
                 return
-            generation, key, exported, camera = state.request
+            generation, key, camera = state.request
             state.request = None
+            edits, state.edits = state.edits, []
 
         def cancelled(generation=generation):
             return state.stop or state.generation != generation
 
         try:
-            rgba = _render_job(exported, camera, cancelled)
+            rgba = _render_job(state.live, edits, camera, cancelled)
         except native.SoftShadowError as exc:
             if not exc.cancelled:
                 state.error = str(exc)
+            if state.live.scene is None:
+                state.full = True  # an edit failed and dropped the scene: export it whole
             continue
         except Exception as exc:  # the preview must never take Blender down
             state.error = "%s: %s" % (type(exc).__name__, exc)
+            state.live.close()
+            state.full = True
             continue
         with state.lock:
             if state.generation == generation:
@@ -115,24 +137,43 @@ def _view_camera(region, rv3d, scale):
     return camera, key
 
 
+def export_edit(depsgraph, scene):
+    """The edit the preview's scene needs for what changed since the last call, or None: a full
+    export when the object set changed, else the changed objects alone. Main thread."""
+    identity = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+    placeholder = scene_export.camera_values(identity, identity, 8, 8)
+    names = frozenset(obj.name for obj in scene.objects)  # an added, removed or renamed object
+    if _state.full or names != _state.object_names:
+        exported = scene_export.export(depsgraph, scene, mode="VIEWPORT", camera=placeholder)
+        edit = ("full", exported)
+    elif _state.changed:
+        changed, geometry = set(_state.changed), set(_state.geometry)
+        partial = scene_export.export(depsgraph, scene, mode="VIEWPORT", camera=placeholder,
+                                      only=changed, geometry=geometry)
+        edit = ("objects", partial, changed)
+    else:
+        return None
+    _state.full = False
+    _state.object_names = names
+    _state.changed.clear()
+    _state.geometry.clear()
+    return edit
+
+
 def _submit(context, region, rv3d):
     scene = context.scene
-    if _state.dirty or _state.exported is None:
-        depsgraph = context.evaluated_depsgraph_get()
-        identity = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
-        placeholder = scene_export.camera_values(identity, identity, 8, 8)
-        _state.exported = scene_export.export(depsgraph, scene, mode="VIEWPORT", camera=placeholder)
-        _state.dirty = False
+    edit = export_edit(context.evaluated_depsgraph_get(), scene)
+    if edit is not None:
+        with _state.lock:
+            _state.edits.append(edit)
         _state.done.clear()
         _state.keys.clear()
     camera, key = _view_camera(region, rv3d, scene.softshadow.preview_scale)
     if _state.keys.get(region.as_pointer()) == key:
         return key
-    exported = scene_export.ExportedScene(meshes=_state.exported.meshes, lights=_state.exported.lights,
-                                          view_layer=_state.exported.view_layer)
     with _state.lock:
         _state.generation += 1
-        _state.request = (_state.generation, key, exported, camera)
+        _state.request = (_state.generation, key, camera)
         _state.keys[region.as_pointer()] = key
         _state.wake.notify()
     _ensure_worker()
@@ -167,9 +208,32 @@ def _draw():
         _state.error = "%s: %s" % (type(exc).__name__, exc)
 
 
+def note_updates(scene, updates):
+    """Records which objects depsgraph.updates touched and how; what cannot be traced to
+    objects (collections, materials, instancers) asks for a full export."""
+    for update in updates:
+        block = getattr(update.id, "original", update.id)
+        if isinstance(block, bpy.types.Object):
+            if block.is_instancer or block.instance_type != "NONE":
+                _state.full = True
+                continue
+            _state.changed.add(block.name)
+            if update.is_updated_geometry or not update.is_updated_transform:
+                _state.geometry.add(block.name)
+        elif isinstance(block, bpy.types.Light):
+            for obj in scene.objects:
+                if obj.data == block:
+                    _state.changed.add(obj.name)
+        elif isinstance(block, (bpy.types.Collection, bpy.types.Material)):
+            _state.full = True
+
+
 @bpy.app.handlers.persistent
-def _on_depsgraph_update(scene, *_args):
-    _state.dirty = True
+def _on_depsgraph_update(scene, depsgraph=None, *_args):
+    if depsgraph is None:
+        _state.full = True
+        return
+    note_updates(scene, depsgraph.updates)
 
 
 def _poll_redraw():
@@ -209,5 +273,8 @@ def unregister():
     _state.textures.clear()
     _state.done.clear()
     _state.keys.clear()
-    _state.exported = None
-    _state.dirty = True
+    _state.edits = []
+    with _state.live.lock:  # a worker that outlived the join above still holds it while rendering
+        _state.live.close()
+    _state.full = True
+    passes.release()

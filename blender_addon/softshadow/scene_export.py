@@ -248,10 +248,15 @@ def _instances(depsgraph, view_layer, mode):
         yield None, evaluated, False, None, evaluated.matrix_world.copy()
 
 
-def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None):
+def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=None, geometry=None):
     """An evaluated depsgraph -> ExportedScene. mode: 'RENDER' (hide_render, collections'
     render switches) or 'VIEWPORT' (what the viewport shows). camera overrides the scene camera
-    (the viewport preview passes its own view)."""
+    (the viewport preview passes its own view).
+
+    only: names of the objects to export (the preview's changed objects; no instances); of
+    those, the ones not in `geometry` are exported without reading their mesh ("local",
+    "vertices" and "triangles" None: a moved object costs its matrix). Each mesh carries its
+    object-space "local" coordinates and column-major "matrix" beside the world "vertices"."""
     view_layer = view_layer or depsgraph.view_layer
     out = ExportedScene(view_layer=view_layer.name)
     render_collections = _render_visible_collections(view_layer) if mode == "RENDER" else set()
@@ -259,6 +264,8 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None):
     local_cache = {}
 
     for inst, obj, is_instance, parent, matrix in _instances(depsgraph, view_layer, mode):
+        if only is not None and (is_instance or obj.original.name not in only):
+            continue
         if is_instance:
             if parent is not None and not _object_visible(parent, mode, view_layer, render_collections):
                 continue
@@ -286,6 +293,12 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None):
         if obj.type not in GEOMETRY_TYPES:
             continue
 
+        if only is not None and obj.original.name not in (geometry or ()):
+            flags = _mesh_flags(obj)
+            if flags:
+                out.meshes.append({"name": base_name, "vertices": None, "triangles": None, "flags": flags,
+                                   "local": None, "matrix": column_major(matrix)})
+            continue
         key = (obj.type, obj.data.as_pointer() if obj.data is not None else obj.as_pointer())
         if key not in local_cache or not is_instance:
             try:
@@ -303,9 +316,10 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None):
         flags = _mesh_flags(obj)
         if flags == 0:
             continue
-        out.meshes.append({"name": name, "vertices": world, "triangles": triangles, "flags": flags})
+        out.meshes.append({"name": name, "vertices": world, "triangles": triangles, "flags": flags,
+                           "local": vertices, "matrix": column_major(matrix)})
 
-    if camera is None:
+    if camera is None and only is None:
         camera = scene_camera(scene, depsgraph)
         if camera is None:
             out.problems.append("scene '%s' has no camera: no soft-shadow passes" % scene.name)

@@ -20,6 +20,10 @@ def draw_status(layout):
         box.label(text="Library: softshadow %s" % info["version"], icon="CHECKMARK")
         box.label(text="GL backend: %s" % (info["backend"] or "unknown"))
         box.label(text="Renderer: %s" % (info["renderer"] or "unknown"))
+        if info.get("device"):
+            box.label(text="EGL device used: %s (SOFTSHADOW_EGL_DEVICE chooses)" % info["device"])
+        for device in info.get("egl_devices", []):
+            box.label(text="  EGL %s" % device)
         if info.get("path"):
             box.label(text="Loaded from: %s" % info["path"])
         return

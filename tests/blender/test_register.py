@@ -35,7 +35,12 @@ def test_status_with_library():
     sstest.check(info["error"] == "", "no error: %s" % info["error"])
     sstest.check(info["version"].count(".") == 2, "a version like 0.1.0: %r" % info["version"])
     sstest.check(info["backend"] != "" and info["renderer"] != "", "backend and renderer shown: %s" % info)
-    print("   library", info["version"], "backend", info["backend"], "renderer", info["renderer"])
+    if info["backend"] == "egl":
+        # Mesa lists its software device; with no GPU the surfaceless platform renders.
+        sstest.check(any("software" in d for d in info["egl_devices"]), "EGL devices listed: %s" % info)
+        sstest.check(info["device"] != "", "the EGL device used is named: %s" % info)
+    print("   library", info["version"], "backend", info["backend"], "renderer", info["renderer"],
+          "device", info.get("device"))
 
 
 def test_library_works_after_reregister():

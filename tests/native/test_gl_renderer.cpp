@@ -29,7 +29,7 @@ Scene twoLightScene() {
 
 using test::statusOf;
 
-TEST(GlRendererCache, SharedPassesAreDrawnOncePerSceneRevision) {
+TEST(GlRendererCache, SharedPassesAreDrawnOnceUntilTheirInputsChange) {
     Scene scene = twoLightScene();
     Renderer renderer(SS_BACKEND_AUTO);
     RenderSettings settings;
@@ -38,18 +38,22 @@ TEST(GlRendererCache, SharedPassesAreDrawnOncePerSceneRevision) {
     renderer.render(scene, 1, "shadow_map", settings, nullptr);
     Renderer::CacheStats s = renderer.cacheStats();
     EXPECT_EQ(s.frames, 1);
-    EXPECT_EQ(s.meshUploads, 1);
+    EXPECT_EQ(s.meshUploads, 2);  // each mesh once
     EXPECT_EQ(s.cameraPasses, 1);
     EXPECT_EQ(s.shadowMaps, 2);  // one per light
     EXPECT_EQ(first.find("V")->pixels, again.find("V")->pixels);
 
-    // Any change to the scene bumps its revision: a new frame, new passes.
+    // An edit keeps the frame and redraws only what it changed: a new light, a new map.
     scene.addLight(test::makeDiskLight({0.0f, -1.0f, 3.0f}, 0.5f, "C"));
     renderer.render(scene, 2, "shadow_map", settings, nullptr);
     s = renderer.cacheStats();
-    EXPECT_EQ(s.frames, 2);
-    EXPECT_EQ(s.cameraPasses, 2);
+    EXPECT_EQ(s.frames, 1);
+    EXPECT_EQ(s.cameraPasses, 1);
     EXPECT_EQ(s.shadowMaps, 3);
+    // A copy is another scene: a frame of its own.
+    Scene copy = scene;
+    renderer.render(copy, 0, "shadow_map", settings, nullptr);
+    EXPECT_EQ(renderer.cacheStats().frames, 2);
 }
 
 TEST(GlRendererCache, AutoNamesTheMethodItRan) {

@@ -123,6 +123,12 @@ SS_API ss_status ss_context_create(ss_backend backend, ss_context** out);
    itself. */
 SS_API void ss_context_destroy(ss_context* context);
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size);
+/* What the context's caches did over its life: frames made (one per scene), meshes uploaded to
+   the GPU, camera passes and light shadow maps drawn. For tests and the benchmark. */
+typedef struct ss_cache_stats {
+    int32_t frames, mesh_uploads, camera_passes, shadow_maps;
+} ss_cache_stats;
+SS_API ss_status ss_context_cache_stats(const ss_context* context, ss_cache_stats* out);
 /* Joins every render thread the library started. Call from the host before it exits. */
 SS_API void ss_shutdown(void);
 /* The methods this library has, by name ("auto" is not one): index 0 .. ss_method_count()-1;
@@ -139,6 +145,23 @@ SS_API ss_status ss_scene_add_mesh(ss_scene* scene, const char* name, const floa
                                    uint32_t vertex_count, const uint32_t* triangles,
                                    uint32_t triangle_count, uint32_t flags, int32_t* out_index);
 SS_API ss_status ss_scene_add_light(ss_scene* scene, const ss_light_desc* light, int32_t* out_index);
+/* Incremental edits of a scene kept alive across renders (the preview's): each changes one mesh
+   or light and leaves the others' cached GPU buffers and shadow maps in place (a mesh edit
+   redraws the camera pass and the shadow maps, which see every mesh; a light edit redraws only
+   that light's maps; a camera change only the camera pass). Indices out of range fail with
+   SS_ERROR_INVALID_ARGUMENT; a refused edit leaves the scene as it was.
+   update_mesh: new geometry and flags for mesh `index`; its name and transform are kept, and
+   `xyz` is in the mesh's object space (world space while no transform was set). */
+SS_API ss_status ss_scene_update_mesh(ss_scene* scene, int32_t index, const float* xyz,
+                                      uint32_t vertex_count, const uint32_t* triangles,
+                                      uint32_t triangle_count, uint32_t flags);
+/* Places mesh `index` at object_to_world (column-major) applied to its coordinates as given:
+   a move costs one matrix product per vertex, never a new adjacency. */
+SS_API ss_status ss_scene_set_mesh_transform(ss_scene* scene, int32_t index, const float object_to_world[16]);
+/* Removal moves every later mesh (light) down one index. */
+SS_API ss_status ss_scene_remove_mesh(ss_scene* scene, int32_t index);
+SS_API ss_status ss_scene_update_light(ss_scene* scene, int32_t index, const ss_light_desc* light);
+SS_API ss_status ss_scene_remove_light(ss_scene* scene, int32_t index);
 SS_API ss_status ss_scene_set_camera(ss_scene* scene, const ss_camera_desc* camera);
 /* The scene camera (SS_ERROR_INVALID_SCENE when it has none); e.g. to change the resolution. */
 SS_API ss_status ss_scene_get_camera(const ss_scene* scene, ss_camera_desc* out);

@@ -60,6 +60,20 @@ SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t
     });
 }
 
+SS_API ss_status ss_context_cache_stats(const ss_context* context, ss_cache_stats* out) {
+    return guarded([&] {
+        require(context, "ss_context_cache_stats", "context");
+        require(out, "ss_context_cache_stats", "out");
+        refuseInsideProgressCallback("ss_context_cache_stats");
+        ContextUse use(*const_cast<ss_context*>(context));
+        ss::Renderer::CacheStats s = context->renderer.cacheStats();
+        out->frames = s.frames;
+        out->mesh_uploads = s.meshUploads;
+        out->camera_passes = s.cameraPasses;
+        out->shadow_maps = s.shadowMaps;
+    });
+}
+
 SS_API void ss_shutdown(void) {
     guarded([] {
         refuseInsideProgressCallback("ss_shutdown");

@@ -57,57 +57,115 @@ SS_API ss_status ss_scene_save(const ss_scene* scene, const char* path) {
     });
 }
 
+}  // extern "C"
+
+namespace {
+
+ss::Mesh meshFrom(const char* function, const std::string& name, const float* xyz, uint32_t vertex_count,
+                  const uint32_t* triangles, uint32_t triangle_count, uint32_t flags) {
+    if (vertex_count > 0) require(xyz, function, "xyz");
+    if (triangle_count > 0) require(triangles, function, "triangles");
+    if (flags & ~uint32_t(SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN))
+        ss::fail(SS_ERROR_INVALID_ARGUMENT, std::string(function) + ": mesh '" + name +
+                                                "' has unknown flag bits " + std::to_string(flags));
+    ss::Mesh mesh;
+    mesh.name = name;
+    mesh.flags = flags;
+    mesh.positions.resize(vertex_count);
+    for (uint32_t i = 0; i < vertex_count; ++i)
+        mesh.positions[i] = glm::vec3(xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]);
+    mesh.triangles.resize(triangle_count);
+    for (uint32_t f = 0; f < triangle_count; ++f)
+        mesh.triangles[f] = glm::uvec3(triangles[3 * size_t(f)], triangles[3 * size_t(f) + 1],
+                                       triangles[3 * size_t(f) + 2]);
+    return mesh;
+}
+
+ss::Light lightFrom(const char* function, const ss_light_desc* light) {
+    require(light, function, "light");
+    require(light->name, function, "light->name");
+    ss::Light l;
+    l.name = light->name;
+    // The header's reserved values make every int32 a valid ss_light_type, so this check
+    // sees whatever a C caller passed.
+    const auto rawType = int32_t(light->type);
+    if (rawType < int32_t(SS_LIGHT_DISK) || rawType > int32_t(SS_LIGHT_SUN))
+        ss::fail(SS_ERROR_INVALID_ARGUMENT, std::string(function) + ": light '" + l.name +
+                                                "' has unknown type " + std::to_string(rawType));
+    l.type = ss::LightType(rawType);  // the enums share their order
+    l.lightToWorld = toMat4(light->light_to_world);
+    l.size = light->size;
+    l.sizeY = light->size_y;
+    l.radius = light->radius;
+    l.angle = light->angle;
+    l.spotSize = light->spot_size;
+    l.spotBlend = light->spot_blend;
+    l.castShadows = light->cast_shadows != 0;
+    return l;
+}
+
+}  // namespace
+
+extern "C" {
+
 SS_API ss_status ss_scene_add_mesh(ss_scene* scene, const char* name, const float* xyz,
                                    uint32_t vertex_count, const uint32_t* triangles,
                                    uint32_t triangle_count, uint32_t flags, int32_t* out_index) {
     return guarded([&] {
         require(scene, "ss_scene_add_mesh", "scene");
         require(name, "ss_scene_add_mesh", "name");
-        if (vertex_count > 0) require(xyz, "ss_scene_add_mesh", "xyz");
-        if (triangle_count > 0) require(triangles, "ss_scene_add_mesh", "triangles");
-        if (flags & ~uint32_t(SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN))
-            ss::fail(SS_ERROR_INVALID_ARGUMENT,
-                     "ss_scene_add_mesh: mesh '" + std::string(name) + "' has unknown flag bits " +
-                         std::to_string(flags));
-        ss::Mesh mesh;
-        mesh.name = name;
-        mesh.flags = flags;
-        mesh.positions.resize(vertex_count);
-        for (uint32_t i = 0; i < vertex_count; ++i)
-            mesh.positions[i] = glm::vec3(xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]);
-        mesh.triangles.resize(triangle_count);
-        for (uint32_t f = 0; f < triangle_count; ++f)
-            mesh.triangles[f] = glm::uvec3(triangles[3 * size_t(f)], triangles[3 * size_t(f) + 1],
-                                           triangles[3 * size_t(f) + 2]);
-        int index = scene->scene.addMesh(std::move(mesh));
+        int index = scene->scene.addMesh(
+            meshFrom("ss_scene_add_mesh", name, xyz, vertex_count, triangles, triangle_count, flags));
         if (out_index) *out_index = index;
+    });
+}
+
+SS_API ss_status ss_scene_update_mesh(ss_scene* scene, int32_t index, const float* xyz,
+                                      uint32_t vertex_count, const uint32_t* triangles,
+                                      uint32_t triangle_count, uint32_t flags) {
+    return guarded([&] {
+        require(scene, "ss_scene_update_mesh", "scene");
+        const auto& meshes = scene->scene.meshes();
+        std::string name = index >= 0 && size_t(index) < meshes.size() ? meshes[size_t(index)].name : "";
+        scene->scene.updateMesh(index, meshFrom("ss_scene_update_mesh", name, xyz, vertex_count, triangles,
+                                                triangle_count, flags));
+    });
+}
+
+SS_API ss_status ss_scene_set_mesh_transform(ss_scene* scene, int32_t index, const float object_to_world[16]) {
+    return guarded([&] {
+        require(scene, "ss_scene_set_mesh_transform", "scene");
+        require(object_to_world, "ss_scene_set_mesh_transform", "object_to_world");
+        scene->scene.setMeshTransform(index, toMat4(object_to_world));
+    });
+}
+
+SS_API ss_status ss_scene_remove_mesh(ss_scene* scene, int32_t index) {
+    return guarded([&] {
+        require(scene, "ss_scene_remove_mesh", "scene");
+        scene->scene.removeMesh(index);
     });
 }
 
 SS_API ss_status ss_scene_add_light(ss_scene* scene, const ss_light_desc* light, int32_t* out_index) {
     return guarded([&] {
         require(scene, "ss_scene_add_light", "scene");
-        require(light, "ss_scene_add_light", "light");
-        require(light->name, "ss_scene_add_light", "light->name");
-        ss::Light l;
-        l.name = light->name;
-        // The header's reserved values make every int32 a valid ss_light_type, so this check
-        // sees whatever a C caller passed.
-        const auto rawType = int32_t(light->type);
-        if (rawType < int32_t(SS_LIGHT_DISK) || rawType > int32_t(SS_LIGHT_SUN))
-            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_scene_add_light: light '" + l.name +
-                                                    "' has unknown type " + std::to_string(rawType));
-        l.type = ss::LightType(rawType);  // the enums share their order
-        l.lightToWorld = toMat4(light->light_to_world);
-        l.size = light->size;
-        l.sizeY = light->size_y;
-        l.radius = light->radius;
-        l.angle = light->angle;
-        l.spotSize = light->spot_size;
-        l.spotBlend = light->spot_blend;
-        l.castShadows = light->cast_shadows != 0;
-        int index = scene->scene.addLight(std::move(l));
+        int index = scene->scene.addLight(lightFrom("ss_scene_add_light", light));
         if (out_index) *out_index = index;
+    });
+}
+
+SS_API ss_status ss_scene_update_light(ss_scene* scene, int32_t index, const ss_light_desc* light) {
+    return guarded([&] {
+        require(scene, "ss_scene_update_light", "scene");
+        scene->scene.updateLight(index, lightFrom("ss_scene_update_light", light));
+    });
+}
+
+SS_API ss_status ss_scene_remove_light(ss_scene* scene, int32_t index) {
+    return guarded([&] {
+        require(scene, "ss_scene_remove_light", "scene");
+        scene->scene.removeLight(index);
     });
 }
 

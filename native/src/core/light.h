@@ -25,6 +25,9 @@ struct Light {
     float spotSize = 0.0f;         // spot full cone angle, radians
     float spotBlend = 0.0f;
     bool castShadows = true;
+    // Unique over the process for each content the light has had (set by the Scene): its
+    // shadow maps are cached by it, so editing one light keeps the others' maps.
+    uint64_t version = 0;
 
     bool isArea() const;
     glm::vec3 position() const;   // centre (for sun: unused)

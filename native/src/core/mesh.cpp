@@ -40,6 +40,43 @@ EdgeAdjacency buildEdgeAdjacency(const std::vector<glm::uvec3>& triangles) {
     return adj;
 }
 
+namespace {
+
+void computeFaceNormals(Mesh& mesh) {
+    mesh.faceNormals.resize(mesh.triangles.size());
+    mesh.report.degenerateFaces = 0;
+    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+        const glm::uvec3& t = mesh.triangles[f];
+        const auto& p = mesh.positions;
+        glm::vec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
+        float len = glm::length(n);
+        bool degenerate = t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(len > 0.0f) ||
+                          !std::isfinite(len);
+        mesh.faceNormals[f] = degenerate ? glm::vec3(0.0f) : n / len;
+        if (degenerate) ++mesh.report.degenerateFaces;
+    }
+}
+
+}  // namespace
+
+void Mesh::setTransform(const glm::mat4& transform) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(transform[c][r]))
+                fail(SS_ERROR_INVALID_ARGUMENT, "mesh '" + name + "': the transform is not finite");
+    if (objectPositions.empty()) objectPositions = positions;  // as given: identity so far
+    std::vector<glm::vec3> moved(objectPositions.size());
+    for (size_t i = 0; i < moved.size(); ++i) {
+        moved[i] = glm::vec3(transform * glm::vec4(objectPositions[i], 1.0f));
+        if (!std::isfinite(moved[i].x) || !std::isfinite(moved[i].y) || !std::isfinite(moved[i].z))
+            fail(SS_ERROR_INVALID_ARGUMENT, "mesh '" + name + "': the transform moves vertex " +
+                                                std::to_string(i) + " to a non-finite point");
+    }
+    positions = std::move(moved);
+    objectToWorld = transform;
+    computeFaceNormals(*this);
+}
+
 void Mesh::finalize() {
     for (size_t i = 0; i < positions.size(); ++i) {
         const glm::vec3& p = positions[i];
@@ -60,16 +97,7 @@ void Mesh::finalize() {
 
     adjacency = buildEdgeAdjacency(triangles);
     report = MeshReport{};
-    faceNormals.resize(triangles.size());
-    for (size_t f = 0; f < triangles.size(); ++f) {
-        const glm::uvec3& t = triangles[f];
-        glm::vec3 n = glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
-        float len = glm::length(n);
-        bool degenerate = t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(len > 0.0f) ||
-                          !std::isfinite(len);
-        faceNormals[f] = degenerate ? glm::vec3(0.0f) : n / len;
-        if (degenerate) ++report.degenerateFaces;
-    }
+    computeFaceNormals(*this);
     for (const Edge& e : adjacency.edges) {
         if (e.isOpen()) ++report.openEdges;
         else if (e.faces.size() > 2) ++report.nonManifoldEdges;

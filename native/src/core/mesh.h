@@ -45,6 +45,14 @@ struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec3> triangles;
     uint32_t flags = 0;  // SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN
+    // `positions` are objectToWorld applied to the coordinates as given; those are kept in
+    // objectPositions only once a transform other than the identity is set, so a move costs a
+    // matrix product per vertex and never rebuilds the adjacency.
+    glm::mat4 objectToWorld{1.0f};
+    std::vector<glm::vec3> objectPositions;
+    // Unique over the process for each content the mesh has had (set by the Scene): GPU
+    // buffers are cached by it, so an unchanged mesh is never uploaded again.
+    uint64_t version = 0;
 
     EdgeAdjacency adjacency;  // filled by finalize()
     MeshReport report;        // filled by finalize()
@@ -56,6 +64,9 @@ struct Mesh {
     // Validates (throws ss::Error on NaN/Inf coordinates or out-of-range indices) and builds
     // adjacency, face normals and the report.
     void finalize();
+    // Moves the mesh to objectToWorld = `transform` (validated finite): positions, face normals
+    // and the degenerate-face count are recomputed; the adjacency stays.
+    void setTransform(const glm::mat4& transform);
 };
 
 EdgeAdjacency buildEdgeAdjacency(const std::vector<glm::uvec3>& triangles);

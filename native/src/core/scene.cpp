@@ -14,12 +14,85 @@ uint64_t Scene::nextId() {
     return counter++;
 }
 
+uint64_t Scene::nextVersion() {
+    static std::atomic<uint64_t> counter{1};
+    return counter++;
+}
+
 int Scene::addMesh(Mesh mesh) {
     checkName("mesh", mesh.name);
     mesh.finalize();
+    mesh.version = nextVersion();
     meshes_.push_back(std::move(mesh));
+    geometryVersion_ = nextVersion();
     ++revision_;
     return int(meshes_.size()) - 1;
+}
+
+const Mesh& Scene::meshAt(int index, const char* what) const {
+    if (index < 0 || size_t(index) >= meshes_.size())
+        fail(SS_ERROR_INVALID_ARGUMENT, std::string(what) + ": mesh index " + std::to_string(index) +
+                                            " is out of range (the scene has " +
+                                            std::to_string(meshes_.size()) + " meshes)");
+    return meshes_[size_t(index)];
+}
+
+void Scene::updateMesh(int index, Mesh mesh) {
+    const Mesh& old = meshAt(index, "updating a mesh");
+    mesh.name = old.name;
+    const glm::mat4 transform = old.objectToWorld;
+    mesh.objectToWorld = glm::mat4(1.0f);
+    mesh.objectPositions.clear();
+    mesh.finalize();  // validates the coordinates as given and builds the adjacency
+    if (transform != glm::mat4(1.0f)) mesh.setTransform(transform);
+    mesh.version = nextVersion();
+    meshes_[size_t(index)] = std::move(mesh);
+    geometryVersion_ = nextVersion();
+    ++revision_;
+}
+
+void Scene::setMeshTransform(int index, const glm::mat4& objectToWorld) {
+    meshAt(index, "moving a mesh");
+    Mesh& mesh = meshes_[size_t(index)];
+    Mesh moved;  // built aside so a refused transform leaves the mesh as it was
+    moved.name = mesh.name;
+    moved.positions = mesh.positions;
+    moved.objectPositions = mesh.objectPositions;
+    moved.triangles = mesh.triangles;
+    moved.setTransform(objectToWorld);
+    mesh.positions = std::move(moved.positions);
+    mesh.objectPositions = std::move(moved.objectPositions);
+    mesh.faceNormals = std::move(moved.faceNormals);
+    mesh.report.degenerateFaces = moved.report.degenerateFaces;
+    mesh.objectToWorld = objectToWorld;
+    mesh.version = nextVersion();
+    geometryVersion_ = nextVersion();
+    ++revision_;
+}
+
+void Scene::removeMesh(int index) {
+    meshAt(index, "removing a mesh");
+    meshes_.erase(meshes_.begin() + index);
+    geometryVersion_ = nextVersion();
+    ++revision_;
+}
+
+void Scene::updateLight(int index, Light light) {
+    (void)this->light(index);  // throws for an index out of range
+    checkName("light", light.name);
+    int other = findLight(light.name);
+    if (other >= 0 && other != index)
+        fail(SS_ERROR_INVALID_SCENE, "two lights are named " + quoted(light.name));
+    light.validate();
+    light.version = nextVersion();
+    lights_[size_t(index)] = std::move(light);
+    ++revision_;
+}
+
+void Scene::removeLight(int index) {
+    (void)light(index);
+    lights_.erase(lights_.begin() + index);
+    ++revision_;
 }
 
 int Scene::addLight(Light light) {
@@ -27,6 +100,7 @@ int Scene::addLight(Light light) {
     if (findLight(light.name) >= 0)
         fail(SS_ERROR_INVALID_SCENE, "two lights are named " + quoted(light.name));
     light.validate();
+    light.version = nextVersion();
     lights_.push_back(std::move(light));
     ++revision_;
     return int(lights_.size()) - 1;
@@ -35,6 +109,7 @@ int Scene::addLight(Light light) {
 void Scene::setCamera(const Camera& camera) {
     camera.validate();
     camera_ = camera;
+    cameraVersion_ = nextVersion();
     ++revision_;
 }
 

@@ -28,6 +28,17 @@ public:
     void setCamera(const Camera& camera);
     void setViewLayer(const std::string& name);
 
+    // Incremental edits of a persistent scene (the preview's): each changes one thing, gives it
+    // a new version and leaves every other mesh's and light's version (and caches) alone.
+    // Indices out of range throw ss::Error(SS_ERROR_INVALID_ARGUMENT) naming them.
+    // New geometry for mesh `index` (its name and transform are kept; `mesh.positions` are in
+    // the mesh's object space when it has a transform).
+    void updateMesh(int index, Mesh mesh);
+    void setMeshTransform(int index, const glm::mat4& objectToWorld);
+    void removeMesh(int index);  // later meshes move down one index
+    void updateLight(int index, Light light);
+    void removeLight(int index);  // later lights move down one index
+
     const std::vector<Mesh>& meshes() const { return meshes_; }
     const std::vector<Light>& lights() const { return lights_; }
     // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) naming the index and the light count.
@@ -41,6 +52,12 @@ public:
     // scene (the two may diverge with equal revisions), so it gets an id of its own.
     uint64_t revision() const { return revision_; }
     uint64_t id() const { return id_.value; }
+    // Change with any mesh edit (what the camera pass and every shadow map depend on) and with
+    // any camera edit, respectively; unique over the process like the mesh and light versions.
+    uint64_t geometryVersion() const { return geometryVersion_; }
+    uint64_t cameraVersion() const { return cameraVersion_; }
+    // A fresh version stamp (process-wide counter).
+    static uint64_t nextVersion();
 
 private:
     std::vector<Mesh> meshes_;
@@ -48,7 +65,10 @@ private:
     std::optional<Camera> camera_;
     std::string viewLayer_ = "ViewLayer";
     uint64_t revision_ = 0;
+    uint64_t geometryVersion_ = nextVersion();
+    uint64_t cameraVersion_ = nextVersion();
     static uint64_t nextId();
+    const Mesh& meshAt(int index, const char* what) const;
     // Copying makes a new id; moving hands the id over and gives the emptied source a new one.
     struct Identity {
         uint64_t value = nextId();

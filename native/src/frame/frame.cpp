@@ -116,23 +116,46 @@ ShadowMap fitShadowMap(const Light& light, const Bounds& sceneBounds, int size) 
     return m;
 }
 
-Frame::Frame(const Scene& scene) : scene_(scene) {}
+Frame::Frame(const Scene& scene) : scene_(&scene) {}
 Frame::~Frame() = default;
 
-const Light& Frame::light(int index) const { return scene_.light(index); }
+const Light& Frame::light(int index) const { return scene_->light(index); }
 
 const gl::Functions& Frame::gl() const { return gl::api(); }
 
+void Frame::dropStalePasses() {
+    const uint64_t geometry = scene_->geometryVersion();
+    if (camera_ && (cameraPassCamera_ != scene_->cameraVersion() || cameraPassGeometry_ != geometry)) {
+        camera_.reset();
+        cameraImages_.reset();
+    }
+    if (shadowMapsGeometry_ != geometry) {
+        for (auto& entry : shadowMaps_) stats_.shadowMapBytes -= entry.second.bytes;
+        shadowMaps_.clear();
+        shadowMapsGeometry_ = geometry;
+    }
+}
+
 const std::vector<GpuMesh>& Frame::meshes() {
-    if (meshesUploaded_) return meshes_;
+    if (meshesGeometryVersion_ == scene_->geometryVersion()) return meshes_;
     const gl::Functions& g = gl();
-    const auto& src = scene_.meshes();
+    const auto& src = scene_->meshes();
+    std::map<uint64_t, GpuMesh> uploaded;
+    for (GpuMesh& gm : meshes_) uploaded.emplace(gm.version, std::move(gm));
     meshes_.clear();
     meshes_.reserve(src.size());
     for (size_t i = 0; i < src.size(); ++i) {
         const Mesh& mesh = src[i];
+        auto kept = uploaded.find(mesh.version);
+        if (kept != uploaded.end()) {
+            kept->second.meshIndex = int(i);
+            meshes_.push_back(std::move(kept->second));
+            uploaded.erase(kept);
+            continue;
+        }
         GpuMesh gm;
         gm.meshIndex = int(i);
+        gm.version = mesh.version;
         gm.flags = mesh.flags;
         gm.indexCount = GLsizei(mesh.triangles.size() * 3);
         gm.positions = gl::makeBuffer(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
@@ -150,10 +173,10 @@ const std::vector<GpuMesh>& Frame::meshes() {
         g.EnableVertexArrayAttrib(vao, 0);
         g.VertexArrayElementBuffer(vao, gm.indices.id());
         meshes_.push_back(std::move(gm));
+        ++stats_.meshUploads;
     }
     g.check("uploading the scene meshes");
-    meshesUploaded_ = true;
-    ++stats_.meshUploads;
+    meshesGeometryVersion_ = scene_->geometryVersion();
     return meshes_;
 }
 
@@ -182,6 +205,7 @@ void Frame::drawFullscreen() {
 }
 
 const CameraPass& Frame::cameraPass() {
+    dropStalePasses();
     if (camera_) return *camera_;
     const gl::Functions& g = gl();
     const Camera& cam = camera();
@@ -214,10 +238,13 @@ const CameraPass& Frame::cameraPass() {
     g.check("drawing the camera pass");
     ++stats_.cameraPasses;
     camera_ = std::move(pass);
+    cameraPassCamera_ = scene_->cameraVersion();
+    cameraPassGeometry_ = scene_->geometryVersion();
     return *camera_;
 }
 
 const CameraImages& Frame::cameraImages() {
+    dropStalePasses();
     if (cameraImages_) return *cameraImages_;
     const CameraPass& pass = cameraPass();
     auto img = std::make_unique<CameraImages>();
@@ -233,7 +260,8 @@ const CameraImages& Frame::cameraImages() {
 
 const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     if (size <= 0) size = kDefaultShadowMapSize;
-    auto key = std::make_pair(lightIndex, size);
+    dropStalePasses();
+    auto key = std::make_pair(light(lightIndex).version, size);
     auto it = shadowMaps_.find(key);
     if (it != shadowMaps_.end()) {
         it->second.lastUse = ++useClock_;
@@ -241,7 +269,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     }
     const Light& L = light(lightIndex);
     const gl::Functions& g = gl();
-    auto map = std::make_unique<ShadowMap>(fitShadowMap(L, scene_.bounds(), size));
+    auto map = std::make_unique<ShadowMap>(fitShadowMap(L, scene_->bounds(), size));
     map->distance = gl::Texture(size, size, GL_R32F, GL_NEAREST);
     map->depth = gl::Texture(size, size, GL_DEPTH_COMPONENT32F, GL_NEAREST);
     gl::Framebuffer fb(size, size, {});
@@ -266,6 +294,21 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     stats_.shadowMapBytes += entry.bytes;
     stats_.shadowMapBytesPeak = std::max(stats_.shadowMapBytesPeak, stats_.shadowMapBytes);
     return *shadowMaps_.emplace(key, std::move(entry)).first->second.map;
+}
+
+void Frame::dropStale() {
+    dropStalePasses();
+    // Maps of lights edited or removed since are never asked for again.
+    for (auto it = shadowMaps_.begin(); it != shadowMaps_.end();) {
+        bool current = false;
+        for (const Light& l : scene_->lights()) current = current || l.version == it->first.first;
+        if (current) {
+            ++it;
+        } else {
+            stats_.shadowMapBytes -= it->second.bytes;
+            it = shadowMaps_.erase(it);
+        }
+    }
 }
 
 void Frame::trimCache(size_t budgetBytes) {

@@ -1,5 +1,6 @@
-// What every method shares for one scene revision: the scene, GL meshes, the camera G-buffer and
-// one light-centre shadow map per light, each computed once and cached.
+// What every method shares for one scene: the scene, GL meshes, the camera G-buffer and one
+// light-centre shadow map per light, each computed once and kept while what it depends on is
+// unchanged (per-mesh, per-light, camera and geometry versions of the Scene).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
@@ -22,6 +23,7 @@ namespace ss {
 // One scene mesh on the GPU. Vertex attribute 0 = world position (vec3); indexed triangles.
 struct GpuMesh {
     int meshIndex = 0;  // into scene.meshes()
+    uint64_t version = 0;  // the Mesh::version these buffers hold
     uint32_t flags = 0;
     GLsizei indexCount = 0;
     gl::VertexArrayHandle vao;
@@ -94,6 +96,8 @@ struct ShadowMap {
 ShadowMap fitShadowMap(const Light& light, const Bounds& bounds, int size);
 
 struct FrameStats {
+    // meshUploads counts meshes uploaded (one per mesh content), shadowMaps and cameraPasses
+    // the passes drawn.
     int meshUploads = 0, cameraPasses = 0, shadowMaps = 0, cameraReadbacks = 0;
     int shadowMapsEvicted = 0;
     size_t shadowMapBytes = 0, shadowMapBytesPeak = 0;  // held now / the most ever held
@@ -111,8 +115,12 @@ public:
     Frame(const Frame&) = delete;
     Frame& operator=(const Frame&) = delete;
 
-    const Scene& scene() const { return scene_; }
-    const Camera& camera() const { return scene_.camera(); }
+    const Scene& scene() const { return *scene_; }
+    const Camera& camera() const { return scene_->camera(); }
+    // The same scene (same id) after edits: passes whose inputs changed are redrawn on their
+    // next use, the rest are kept (a mesh's buffers by its version, a shadow map by its light's
+    // version and the geometry version, the camera pass by the camera and geometry versions).
+    void setScene(const Scene& scene) { scene_ = &scene; }
     const Light& light(int index) const;  // throws ss::Error(SS_ERROR_INVALID_ARGUMENT)
     // The GL function table; throws ss::Error(SS_ERROR_GL) when called off the render thread
     // (CPU methods run on the caller's thread and have no GL).
@@ -126,8 +134,13 @@ public:
     // it. The reference stays valid until the next trimCache().
     const ShadowMap& shadowMap(int lightIndex, int size = 0);
     // Drops the least recently used shadow maps until the rest fit in `budgetBytes`. Called
-    // between renders (never during one, so the maps a render holds stay alive).
+    // between renders (never during one, so the maps a render holds stay alive). Reads no scene:
+    // the renderer trims frames of other scenes too.
     void trimCache(size_t budgetBytes);
+    // Drops the passes whose inputs changed and the maps of lights edited or removed since. Needs
+    // the scene: only after setScene() with the scene as it is now.
+    void dropStale();
+    size_t shadowMapBytes() const { return stats_.shadowMapBytes; }
 
     // ---- helpers ----
     // Draws every mesh whose flags contain all of `requiredFlags` with the bound program and
@@ -149,17 +162,21 @@ public:
 
 private:
     void bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const;
-    const Scene& scene_;
+    // Drops the camera pass and shadow maps whose inputs changed since they were drawn.
+    void dropStalePasses();
+    const Scene* scene_;
     std::vector<GpuMesh> meshes_;
-    bool meshesUploaded_ = false;
+    uint64_t meshesGeometryVersion_ = 0;  // 0: never uploaded
     std::unique_ptr<CameraPass> camera_;
     std::unique_ptr<CameraImages> cameraImages_;
+    uint64_t cameraPassCamera_ = 0, cameraPassGeometry_ = 0;  // versions the camera pass shows
+    uint64_t shadowMapsGeometry_ = 0;                         // the geometry the maps show
     struct CachedShadowMap {
         std::unique_ptr<ShadowMap> map;
         uint64_t lastUse = 0;
         size_t bytes = 0;
     };
-    std::map<std::pair<int, int>, CachedShadowMap> shadowMaps_;
+    std::map<std::pair<uint64_t, int>, CachedShadowMap> shadowMaps_;  // (Light::version, size)
     uint64_t useClock_ = 0;
     gl::VertexArrayHandle emptyVao_;
     FrameStats stats_;

@@ -1,6 +1,7 @@
 // How the context's limits are queried and float blending, float filtering and compute probed.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "gl/capabilities.h"
+#include "gl/context.h"
 
 #include <cmath>
 
@@ -96,9 +97,13 @@ Capabilities probeCapabilities() {
     return c;
 }
 
-std::string Capabilities::toJson(const std::string& backend) const {
+std::string Capabilities::toJson(const std::string& backend, const std::string& device) const {
     nlohmann::json j;
     j["backend"] = backend;
+    if (!device.empty()) j["device"] = device;
+    nlohmann::json devices = nlohmann::json::array();
+    for (const EglDevice& d : eglDevices()) devices.push_back(d.describe());
+    j["egl_devices"] = devices;
     j["renderer"] = renderer;
     j["vendor"] = vendor;
     j["version"] = version;

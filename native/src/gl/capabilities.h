@@ -12,7 +12,8 @@ struct Capabilities {
     bool floatBlending = false;   // RGBA32F additive blending is exact (rendered and read back)
     bool floatFiltering = false;  // linear filtering of an R32F texture interpolates
     bool compute = false;         // a compute shader ran and wrote its result
-    std::string toJson(const std::string& backend) const;
+    // With the device that renders (when the backend has a choice) and every EGL device.
+    std::string toJson(const std::string& backend, const std::string& device = "") const;
 };
 
 // Must run on the render thread. Probes draw into tiny private targets; GL state is left

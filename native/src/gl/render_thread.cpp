@@ -93,8 +93,8 @@ RenderThread::RenderThread(ss_backend backend) : state_(std::make_shared<State>(
     std::exception_ptr startError;
     bool started = false;
     auto s = state_;
-    std::string name;
-    s->thread = std::thread([s, backend, &startError, &started, &name] {
+    std::string name, device;
+    s->thread = std::thread([s, backend, &startError, &started, &name, &device] {
         std::unique_ptr<Context> ctx;
         Functions fn;
         {
@@ -104,6 +104,7 @@ RenderThread::RenderThread(ss_backend backend) : state_(std::make_shared<State>(
                 fn.load([&](const char* n) { return ctx->getProcAddress(n); });
                 setCurrent(&fn);
                 name = ctx->backendName();
+                device = ctx->device();
             } catch (...) {
                 startError = std::current_exception();
                 ctx.reset();
@@ -150,6 +151,7 @@ RenderThread::RenderThread(ss_backend backend) : state_(std::make_shared<State>(
         std::rethrow_exception(startError);
     }
     backendName_ = name;
+    device_ = device;
     std::lock_guard lock(registry().m);
     registry().threads.insert(this);
 }

@@ -32,11 +32,13 @@ public:
     bool running() const;
 
     const std::string& backendName() const { return backendName_; }
+    const std::string& device() const { return device_; }  // Context::device()
 
 private:
     struct State;
     std::shared_ptr<State> state_;
     std::string backendName_;
+    std::string device_;
 };
 
 }  // namespace ss::gl

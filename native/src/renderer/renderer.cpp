@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <mutex>
+#include <vector>
 
 #include "core/error.h"
 #include "core/visibility_classes.h"
@@ -24,15 +25,18 @@ struct Renderer::Impl {
     std::string infoJson;
     std::function<void()> cacheTakenHook;
 
-    // The shared passes and the method objects (with whatever they prepared) of the last
-    // scene revision rendered; a new (scene id, revision) replaces them.
+    // The shared passes of a scene (kept across its edits: the frame redraws only what an edit
+    // changed) and the method objects with whatever they prepared for its last revision.
     struct Cached {
         uint64_t sceneId = 0, revision = 0;
         std::unique_ptr<Frame> frame;
         std::map<std::string, std::unique_ptr<Method>> methods;
         TraceSceneCache refineTrace;  // the BVH of "refine=on", built at its first use
     };
-    std::unique_ptr<Cached> cache;
+    // The scenes rendered last, least recent first: two, so that the add-on's preview scene and
+    // its render_passes scene (one context) do not evict each other.
+    static constexpr size_t kKeptScenes = 2;
+    std::vector<std::unique_ptr<Cached>> caches;
     CacheStats finished;  // of frames already dropped
     size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
 
@@ -45,8 +49,8 @@ struct Renderer::Impl {
     }
 
     // ss_shutdown() stopped the thread: everything GL died with its context, so the frame
-    // cache goes too and the next GL use starts afresh. Called only before any cache reference
-    // is taken, since it may drop the cache.
+    // caches go too and the next GL use starts afresh. Called only before any cache reference
+    // is taken, since it may drop the caches.
     void forgetStoppedThread() {
         if (thread && !thread->running()) {
             dropCache();
@@ -65,28 +69,78 @@ struct Renderer::Impl {
 
     // GL objects are deleted on the thread that owns their context; off it (after shutdown)
     // their handles just forget them.
-    void dropCache() {
-        if (!cache) return;
-        count(*cache->frame, finished);
+    template <class Doomed>
+    void destroyOnGlThread(Doomed& doomed) {
         if (thread && thread->running()) {
             try {
-                thread->run([&] { cache.reset(); });
+                thread->run([&] { doomed = Doomed(); });
             } catch (const Error&) {
                 // Shut down in between: the context is gone and the handles just forget.
             }
         }
-        cache.reset();
+        doomed = Doomed();
+    }
+
+    void dropCache() {
+        for (auto& c : caches) count(*c->frame, finished);
+        destroyOnGlThread(caches);
+    }
+
+    void dropOldest() {
+        std::unique_ptr<Cached> oldest = std::move(caches.front());
+        caches.erase(caches.begin());
+        count(*oldest->frame, finished);
+        destroyOnGlThread(oldest);
+    }
+
+    // Method objects may hold GL objects: freed on the render thread, like the frame's.
+    void dropMethods(Cached& c) {
+        std::map<std::string, std::unique_ptr<Method>> stale;
+        stale.swap(c.methods);
+        destroyOnGlThread(stale);
     }
 
     Cached& cacheFor(const Scene& scene) {
-        if (cache && cache->sceneId == scene.id() && cache->revision == scene.revision()) return *cache;
-        dropCache();
-        cache = std::make_unique<Cached>();
-        cache->sceneId = scene.id();
-        cache->revision = scene.revision();
-        cache->frame = std::make_unique<Frame>(scene);
+        for (size_t i = 0; i < caches.size(); ++i) {
+            if (caches[i]->sceneId != scene.id()) continue;
+            std::unique_ptr<Cached> c = std::move(caches[i]);
+            caches.erase(caches.begin() + long(i));
+            caches.push_back(std::move(c));
+            Cached& cached = *caches.back();
+            cached.frame->setScene(scene);  // the same scene, perhaps moved in memory
+            if (cached.revision != scene.revision()) {
+                dropMethods(cached);
+                cached.revision = scene.revision();
+            }
+            return cached;
+        }
+        if (caches.size() >= kKeptScenes) dropOldest();
+        auto cached = std::make_unique<Cached>();
+        cached->sceneId = scene.id();
+        cached->revision = scene.revision();
+        cached->frame = std::make_unique<Frame>(scene);
         ++finished.frames;
-        return *cache;
+        caches.push_back(std::move(cached));
+        return *caches.back();
+    }
+
+    // Between renders, on the render thread: the current frame's stale passes go, the other
+    // scenes' shadow maps (least recent scene first) give way until every kept map fits in the
+    // budget beside the current frame's, which is then trimmed to the budget itself.
+    void trimCaches(Frame& current) {
+        current.dropStale();
+        size_t others = 0;
+        for (const auto& c : caches)
+            if (c->frame.get() != &current) others += c->frame->shadowMapBytes();
+        const size_t room = shadowMapBudget > current.shadowMapBytes() ? shadowMapBudget - current.shadowMapBytes() : 0;
+        for (const auto& c : caches) {
+            if (c->frame.get() == &current || others <= room) continue;
+            size_t held = c->frame->shadowMapBytes();
+            size_t excess = others - room;
+            c->frame->trimCache(held > excess ? held - excess : 0);
+            others -= held - c->frame->shadowMapBytes();
+        }
+        current.trimCache(shadowMapBudget);
     }
 };
 
@@ -111,7 +165,7 @@ std::string Renderer::info() {
         gl::RenderThread& t = impl_->glThread();
         gl::Capabilities caps;
         t.run([&] { caps = gl::probeCapabilities(); });
-        impl_->infoJson = caps.toJson(t.backendName());
+        impl_->infoJson = caps.toJson(t.backendName(), t.device());
     }
     return impl_->infoJson;
 }
@@ -129,7 +183,7 @@ void Renderer::setShadowMapBudget(size_t bytes) {
 Renderer::CacheStats Renderer::cacheStats() const {
     std::lock_guard lock(impl_->m);
     CacheStats s = impl_->finished;
-    if (impl_->cache) impl_->count(*impl_->cache->frame, s);
+    for (const auto& c : impl_->caches) impl_->count(*c->frame, s);
     return s;
 }
 
@@ -177,10 +231,8 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
         m.prepare(frame, lightIndex, settings);
         layers = m.render(frame, lightIndex, settings);
     } else {
-        const size_t budget = impl_->shadowMapBudget;
         impl_->glThread().run([&] {
-            // Between renders, on the thread that owns the textures.
-            frame.trimCache(budget);
+            impl_->trimCaches(frame);
             m.prepare(frame, lightIndex, settings);
             layers = m.render(frame, lightIndex, settings);
         });

@@ -13,8 +13,9 @@
 namespace ss {
 
 // Owns (lazily) the GL context on the library's own render thread and the per-scene cache of
-// shared passes (one camera pass per frame, one light-centre shadow map per light), so that a
-// series of render() calls on the same unchanged scene draws each shared pass once.
+// shared passes (mesh buffers, the camera pass, one light-centre shadow map per light), so that
+// a series of render() calls on the same scene draws each shared pass once and, after an edit,
+// redraws only what the edit changed (see Frame).
 // CPU-only methods (reference) never start GL.
 class Renderer {
 public:
@@ -31,8 +32,9 @@ public:
     Layers render(const Scene& scene, int lightIndex, const std::string& method,
                   const RenderSettings& settings, std::string* methodUsed);
 
-    // How many frames were made and how often their shared passes were drawn, over the
-    // renderer's life (tests of the frame cache; the benchmark's stage counts).
+    // How many frames were made (one per scene id) and how often their shared passes were
+    // drawn (meshUploads: meshes uploaded), over the renderer's life (tests of the frame cache;
+    // the benchmark's stage counts).
     struct CacheStats {
         int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0, shadowMapsEvicted = 0;
         size_t shadowMapBytesPeak = 0;  // the most the cached shadow maps of one frame held

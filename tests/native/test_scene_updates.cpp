@@ -1,0 +1,268 @@
+// Does an edited scene keep the caches of what the edit left alone, and render as a fresh one?
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/method_names.h"
+#include "methods/method.h"
+#include "renderer/renderer.h"
+#include "softshadow/softshadow.h"
+#include "test_scenes.h"
+
+namespace ss {
+namespace {
+
+constexpr uint32_t kBoth = SS_MESH_CAST | SS_MESH_RECEIVE;
+
+Mesh boxA() { return test::makeBox({-0.9f, -0.5f, 0.6f}, {-0.2f, 0.2f, 1.0f}, kBoth); }
+Mesh boxB() { return test::makeBox({0.3f, -0.2f, 0.4f}, {0.8f, 0.5f, 0.9f}, kBoth); }
+Mesh boxBEdited() { return test::makeBox({0.2f, -0.4f, 0.5f}, {0.9f, 0.3f, 1.1f}, kBoth); }
+
+Scene threeMeshTwoLights() {
+    Scene s;
+    s.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+    s.addMesh(boxA());
+    s.addMesh(boxB());
+    s.addLight(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f, "A"));
+    s.addLight(test::makeDiskLight({-1.0f, 0.5f, 3.0f}, 0.5f, "B"));
+    s.setCamera(test::makeTopCamera(64, 48));
+    return s;
+}
+
+std::vector<std::string> glMethods() {
+    std::vector<std::string> out;
+    for (const std::string& name : methodNames())
+        if (createMethod(name)->needsGl()) out.push_back(name);
+    return out;
+}
+
+// Every GL method's V of every light of `edited` (rendered by a renderer that saw the scene
+// before the edit) equals a fresh renderer's on a freshly built `fresh`.
+void expectSameAsFresh(Renderer& warm, const Scene& edited, const Scene& fresh) {
+    ASSERT_EQ(edited.lights().size(), fresh.lights().size());
+    Renderer cold(SS_BACKEND_AUTO);
+    for (const std::string& method : glMethods())
+        for (int light = 0; light < int(edited.lights().size()); ++light) {
+            Layers a = warm.render(edited, light, method, RenderSettings{}, nullptr);
+            Layers b = cold.render(fresh, light, method, RenderSettings{}, nullptr);
+            EXPECT_EQ(a.find("V")->pixels, b.find("V")->pixels) << method << ", light " << light;
+            EXPECT_EQ(a.find("mask")->pixels, b.find("mask")->pixels) << method << ", light " << light;
+        }
+}
+
+TEST(SceneUpdates, ALightEditRedrawsOnlyThatLightsShadowMap) {
+    Scene scene = threeMeshTwoLights();
+    Renderer renderer(SS_BACKEND_AUTO);
+    renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    renderer.render(scene, 1, "shadow_map", RenderSettings{}, nullptr);
+    Renderer::CacheStats before = renderer.cacheStats();
+    EXPECT_EQ(before.meshUploads, 3);
+    EXPECT_EQ(before.shadowMaps, 2);
+
+    Light moved = test::makeDiskLight({-0.6f, 0.9f, 3.2f}, 0.7f, "B");
+    scene.updateLight(1, moved);
+    renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    renderer.render(scene, 1, "shadow_map", RenderSettings{}, nullptr);
+    Renderer::CacheStats after = renderer.cacheStats();
+    EXPECT_EQ(after.frames, 1);
+    EXPECT_EQ(after.meshUploads, 3);       // no mesh sent again
+    EXPECT_EQ(after.cameraPasses, 1);      // the camera sees no change
+    EXPECT_EQ(after.shadowMaps, 3);        // light A's map reused, B's redrawn
+
+    Scene fresh;
+    fresh.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+    fresh.addMesh(boxA());
+    fresh.addMesh(boxB());
+    fresh.addLight(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f, "A"));
+    fresh.addLight(moved);
+    fresh.setCamera(test::makeTopCamera(64, 48));
+    expectSameAsFresh(renderer, scene, fresh);
+}
+
+TEST(SceneUpdates, AMeshEditUploadsOnlyThatMesh) {
+    Scene scene = threeMeshTwoLights();
+    Renderer renderer(SS_BACKEND_AUTO);
+    renderer.render(scene, 0, "pcss", RenderSettings{}, nullptr);
+    ASSERT_EQ(renderer.cacheStats().meshUploads, 3);
+
+    scene.updateMesh(2, boxBEdited());
+    Layers after = renderer.render(scene, 0, "pcss", RenderSettings{}, nullptr);
+    Renderer::CacheStats s = renderer.cacheStats();
+    EXPECT_EQ(s.frames, 1);
+    EXPECT_EQ(s.meshUploads, 4);   // the edited mesh alone
+    EXPECT_EQ(s.cameraPasses, 2);  // the camera sees every mesh
+    EXPECT_EQ(s.shadowMaps, 2);    // and so does the light
+
+    Scene fresh;
+    fresh.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+    fresh.addMesh(boxA());
+    fresh.addMesh(boxBEdited());
+    fresh.addLight(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f, "A"));
+    fresh.addLight(test::makeDiskLight({-1.0f, 0.5f, 3.0f}, 0.5f, "B"));
+    fresh.setCamera(test::makeTopCamera(64, 48));
+    expectSameAsFresh(renderer, scene, fresh);
+}
+
+TEST(SceneUpdates, AMovedMeshCostsAMatrixAndRendersAsTheMovedGeometry) {
+    Scene scene = threeMeshTwoLights();
+    Renderer renderer(SS_BACKEND_AUTO);
+    Layers before = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    const size_t edgesBefore = scene.meshes()[1].adjacency.edges.size();
+
+    glm::mat4 move = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.4f, 0.6f, 0.1f)), 0.3f,
+                                 glm::vec3(0, 0, 1));
+    scene.setMeshTransform(1, move);
+    Layers moved = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    EXPECT_EQ(renderer.cacheStats().meshUploads, 4);
+    EXPECT_EQ(scene.meshes()[1].adjacency.edges.size(), edgesBefore);
+    EXPECT_NE(before.find("V")->pixels, moved.find("V")->pixels);  // the shadow moved
+
+    Mesh a = boxA();
+    for (glm::vec3& p : a.positions) p = glm::vec3(move * glm::vec4(p, 1.0f));
+    Scene fresh;
+    fresh.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+    fresh.addMesh(a);
+    fresh.addMesh(boxB());
+    fresh.addLight(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f, "A"));
+    fresh.addLight(test::makeDiskLight({-1.0f, 0.5f, 3.0f}, 0.5f, "B"));
+    fresh.setCamera(test::makeTopCamera(64, 48));
+    expectSameAsFresh(renderer, scene, fresh);
+
+    // A second move starts from the coordinates as given, not from the last placement.
+    scene.setMeshTransform(1, glm::mat4(1.0f));
+    EXPECT_EQ(scene.meshes()[1].positions, boxA().positions);
+}
+
+TEST(SceneUpdates, ACameraChangeKeepsTheShadowMapsAndTheMeshes) {
+    Scene scene = threeMeshTwoLights();
+    Renderer renderer(SS_BACKEND_AUTO);
+    renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    Camera c = test::makeTopCamera(80, 60);
+    scene.setCamera(c);
+    renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    Renderer::CacheStats s = renderer.cacheStats();
+    EXPECT_EQ(s.meshUploads, 3);
+    EXPECT_EQ(s.cameraPasses, 2);
+    EXPECT_EQ(s.shadowMaps, 1);
+}
+
+TEST(SceneUpdates, RemovalRendersAsASceneBuiltWithoutIt) {
+    Scene scene = threeMeshTwoLights();
+    Renderer renderer(SS_BACKEND_AUTO);
+    renderer.render(scene, 1, "shadow_map", RenderSettings{}, nullptr);
+    scene.removeMesh(1);
+    scene.removeLight(0);
+    renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    EXPECT_EQ(renderer.cacheStats().meshUploads, 3);  // the two meshes left were kept
+
+    Scene fresh;
+    fresh.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+    fresh.addMesh(boxB());
+    fresh.addLight(test::makeDiskLight({-1.0f, 0.5f, 3.0f}, 0.5f, "B"));
+    fresh.setCamera(test::makeTopCamera(64, 48));
+    expectSameAsFresh(renderer, scene, fresh);
+}
+
+// The add-on's preview scene and its render_passes scene share one context.
+TEST(SceneUpdates, TwoScenesRenderedInTurnKeepTheirCaches) {
+    Scene preview = threeMeshTwoLights();
+    Scene render = threeMeshTwoLights();
+    Renderer renderer(SS_BACKEND_AUTO);
+    renderer.render(preview, 0, "shadow_map", RenderSettings{}, nullptr);
+    renderer.render(render, 0, "shadow_map", RenderSettings{}, nullptr);
+    Renderer::CacheStats first = renderer.cacheStats();
+    for (int i = 0; i < 3; ++i) {
+        renderer.render(preview, 0, "shadow_map", RenderSettings{}, nullptr);
+        renderer.render(render, 0, "shadow_map", RenderSettings{}, nullptr);
+    }
+    Renderer::CacheStats s = renderer.cacheStats();
+    EXPECT_EQ(s.frames, 2);
+    EXPECT_EQ(s.meshUploads, first.meshUploads);
+    EXPECT_EQ(s.shadowMaps, first.shadowMaps);
+    EXPECT_EQ(s.cameraPasses, first.cameraPasses);
+
+    // A third scene evicts the least recently rendered one.
+    Scene third = threeMeshTwoLights();
+    renderer.render(third, 0, "shadow_map", RenderSettings{}, nullptr);
+    renderer.render(render, 0, "shadow_map", RenderSettings{}, nullptr);
+    EXPECT_EQ(renderer.cacheStats().frames, 3);
+    renderer.render(preview, 0, "shadow_map", RenderSettings{}, nullptr);
+    EXPECT_EQ(renderer.cacheStats().frames, 4);
+}
+
+TEST(SceneUpdates, ARefusedEditLeavesTheSceneAsItWas) {
+    Scene scene = threeMeshTwoLights();
+    const uint64_t revision = scene.revision(), version = scene.meshes()[1].version;
+    const auto positions = scene.meshes()[1].positions;
+    glm::mat4 bad(1.0f);
+    bad[3][0] = NAN;
+    EXPECT_THROW(scene.setMeshTransform(1, bad), Error);
+    EXPECT_THROW(scene.setMeshTransform(3, glm::mat4(1.0f)), Error);
+    EXPECT_THROW(scene.updateMesh(-1, boxB()), Error);
+    EXPECT_THROW(scene.removeLight(2), Error);
+    Light dup = test::makeDiskLight({0, 0, 3}, 1.0f, "A");
+    EXPECT_THROW(scene.updateLight(1, dup), Error);  // two lights named A
+    EXPECT_EQ(scene.revision(), revision);
+    EXPECT_EQ(scene.meshes()[1].version, version);
+    EXPECT_EQ(scene.meshes()[1].positions, positions);
+    EXPECT_EQ(scene.lights()[1].name, "B");
+}
+
+// The same through the C API, counted by ss_context_cache_stats.
+TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
+    ss_scene* scene = nullptr;
+    ASSERT_EQ(ss_scene_create(&scene), SS_OK);
+    for (const Mesh& m : {test::makeGround(4.0f, 0.0f, kBoth), boxA(), boxB()}) {
+        std::vector<float> xyz;
+        for (const glm::vec3& p : m.positions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+        ASSERT_EQ(ss_scene_add_mesh(scene, m.name.c_str(), xyz.data(), uint32_t(m.positions.size()),
+                                    &m.triangles[0][0], uint32_t(m.triangles.size()), kBoth, nullptr),
+                  SS_OK);
+    }
+    ss_light_desc light{};
+    light.name = "A";
+    light.type = SS_LIGHT_DISK;
+    glm::mat4 at = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 4.0f));
+    for (int i = 0; i < 16; ++i) light.light_to_world[i] = (&at[0][0])[i];
+    light.size = light.size_y = 1.0f;
+    light.cast_shadows = 1;
+    ASSERT_EQ(ss_scene_add_light(scene, &light, nullptr), SS_OK);
+    Camera cam = test::makeTopCamera(64, 48);
+    ss_camera_desc camera{};
+    for (int i = 0; i < 16; ++i) {
+        camera.world_to_camera[i] = (&cam.worldToCamera[0][0])[i];
+        camera.projection[i] = (&cam.projection[0][0])[i];
+    }
+    camera.width = cam.width;
+    camera.height = cam.height;
+    camera.pixel_aspect = 1.0f;
+    ASSERT_EQ(ss_scene_set_camera(scene, &camera), SS_OK);
+
+    ss_context* context = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &context), SS_OK);
+    ss_result* result = nullptr;
+    ASSERT_EQ(ss_render(context, scene, 0, "shadow_map", nullptr, &result), SS_OK);
+    ss_result_destroy(result);
+    float move[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.3f, 0.1f, 0, 1};
+    ASSERT_EQ(ss_scene_set_mesh_transform(scene, 2, move), SS_OK);
+    ASSERT_EQ(ss_render(context, scene, 0, "shadow_map", nullptr, &result), SS_OK);
+    ss_result_destroy(result);
+    ss_cache_stats stats{};
+    ASSERT_EQ(ss_context_cache_stats(context, &stats), SS_OK);
+    EXPECT_EQ(stats.frames, 1);
+    EXPECT_EQ(stats.mesh_uploads, 4);
+    EXPECT_EQ(stats.shadow_maps, 2);
+    EXPECT_EQ(ss_scene_update_light(scene, 1, &light), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(ss_last_error()).find("light index 1"), std::string::npos);
+    EXPECT_EQ(ss_scene_remove_mesh(scene, 3), SS_ERROR_INVALID_ARGUMENT);
+    ss_context_destroy(context);
+    ss_scene_destroy(scene);
+}
+
+}  // namespace
+}  // namespace ss
