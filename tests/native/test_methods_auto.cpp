@@ -30,22 +30,22 @@ Scene withLightType(LightType type, bool openCaster = false) {
 }
 
 TEST(AutoMethod, PicksTheMethodWhosePaperModelsTheLightShape) {
-    EXPECT_EQ(chooseAutoMethod(withLightType(LightType::Disk), 0), "dbuffer");
-    EXPECT_EQ(chooseAutoMethod(withLightType(LightType::Ellipse), 0), "dbuffer");
-    EXPECT_EQ(chooseAutoMethod(withLightType(LightType::Point), 0), "dbuffer");
-    EXPECT_EQ(chooseAutoMethod(withLightType(LightType::Spot), 0), "dbuffer");
-    EXPECT_EQ(chooseAutoMethod(withLightType(LightType::Square), 0), "occlusion_textures");
-    EXPECT_EQ(chooseAutoMethod(withLightType(LightType::Rectangle), 0), "occlusion_textures");
-    EXPECT_EQ(chooseAutoMethod(withLightType(LightType::Sun), 0), "pcss");
+    EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Disk), 0), "dbuffer");
+    EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Ellipse), 0), "dbuffer");
+    EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Point), 0), "dbuffer");
+    EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Spot), 0), "dbuffer");
+    EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Square), 0), "occlusion_textures");
+    EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Rectangle), 0), "occlusion_textures");
+    EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Sun), 0), "pcss");
 }
 
 TEST(AutoMethod, OpenCastersFallBackToPcssForDiskLights) {
-    EXPECT_EQ(chooseAutoMethod(withLightType(LightType::Disk, true), 0), "pcss");
-    EXPECT_EQ(chooseAutoMethod(withLightType(LightType::Rectangle, true), 0), "occlusion_textures");
+    EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Disk, true), 0), "pcss");
+    EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Rectangle, true), 0), "occlusion_textures");
 }
 
 TEST(AutoMethod, BadLightIndexIsAnError) {
-    EXPECT_THROW(chooseAutoMethod(withLightType(LightType::Disk), 3), Error);
+    EXPECT_THROW(chooseAutoMethodByShape(withLightType(LightType::Disk), 3), Error);
 }
 
 TEST(MethodRegistry, EveryContractNameIsBuiltAndRendersSaneLayers) {
@@ -78,7 +78,7 @@ TEST(MethodRegistry, EveryContractNameIsBuiltAndRendersSaneLayers) {
     }
     std::string used;
     renderer.render(scene, 0, "auto", RenderSettings{}, &used);
-    EXPECT_EQ(used, "dbuffer");
+    EXPECT_TRUE(isMethodName(used) && used != "reference") << used;
     EXPECT_THROW(createMethod("no_such_method"), Error);
 }
 
