@@ -162,7 +162,7 @@ constexpr const char* kEstimateKey = "estimate_rmse";
 // `auto`'s own settings: how many pixels the sparse check traces (0: use the shape rule) and
 // with how many light samples each.
 const std::vector<std::string>& autoSettingKeys() {
-    static const std::vector<std::string> keys = {"check_pixels", "check_samples"};
+    static const std::vector<std::string> keys = {"check_pixels", "check_samples", kEstimateKey};
     return keys;
 }
 
