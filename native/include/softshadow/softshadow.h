@@ -161,8 +161,8 @@ SS_API void ss_result_destroy(ss_result* result);
 SS_API const char* ss_result_method(const ss_result* result);
 SS_API const char* ss_result_light(const ss_result* result);
 /* The result's expected RMSE of V against the reference (the `reference` method at its default
- * samples and the same seed), from a sparse exact check: the reference's ray tracer on about
- * 4096 pixels spread over the image, over the pixels both masks hold. Made for every "auto"
+ * samples and the same seed), from a sparse exact check: the reference's ray tracer on one
+ * pixel in 16 (4096 to 65536) spread over the image, over the pixels both masks hold. Made for every "auto"
  * render (it is how auto chooses) and for a GL method whose settings hold "estimate_rmse=1";
  * NaN when none was made. Written to the EXR header attribute "softshadow/estimated_rmse"
  * ("<pass>=<rmse>;..."). */

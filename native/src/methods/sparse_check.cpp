@@ -15,6 +15,11 @@ size_t SparseCheck::maskedPixels() const {
     return size_t(std::count_if(truth.begin(), truth.end(), [](const PixelVisibility& p) { return p.inMask; }));
 }
 
+int sparseCheckDefaultPixels(int width, int height) {
+    const long long pixels = (long long)std::max(width, 0) * (long long)std::max(height, 0);
+    return int(std::clamp(pixels / 16, 4096LL, 65536LL));
+}
+
 std::vector<std::pair<int, int>> sparseCheckPixels(int width, int height, int pixelCount, uint32_t seed) {
     std::vector<std::pair<int, int>> pixels;
     if (width <= 0 || height <= 0 || pixelCount <= 0) return pixels;

@@ -215,7 +215,7 @@ bool Renderer::sparseCheck(const Scene& scene, int lightIndex, int pixels, int s
 Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& method,
                         const RenderSettings& settings, std::string* methodUsed, double* estimateOut) {
     std::lock_guard lock(impl_->m);
-    (void)scene.camera();  // throws when the scene has no camera
+    const Camera& camera = scene.camera();  // throws when the scene has no camera
     (void)scene.light(lightIndex);  // throws for an index out of range, before any work
     impl_->forgetStoppedThread();
     double estimate = std::numeric_limits<double>::quiet_NaN();
@@ -223,7 +223,8 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
     Layers layers;
     if (method == "auto") {
         settings.requireKnownKeys("auto", autoSettingKeys());
-        const int pixels = settings.integer("check_pixels", kSparseCheckDefaultPixels, 0, 1 << 20);
+        const int pixels = settings.integer("check_pixels", sparseCheckDefaultPixels(camera.width, camera.height), 0,
+                                            1 << 24);
         const int samples = settings.integer("check_samples", 0, 0, 1 << 16);
         RenderSettings candidateSettings = settings;  // each candidate with its own defaults
         candidateSettings.options.clear();
@@ -260,7 +261,9 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
         own.options.erase(kEstimateKey);
         layers = renderMethod(scene, lightIndex, name, own);
         SparseCheck check;
-        if (wantEstimate && sparseCheck(scene, lightIndex, kSparseCheckDefaultPixels, 0, settings.seed, &check))
+        if (wantEstimate && impl_->cache->methods.at(name)->needsGl() &&
+            sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(camera.width, camera.height), 0, settings.seed,
+                        &check))
             estimate = estimatedRmse(check, layers);
     }
     if (settings.extraLayers) addClassLayers(layers);

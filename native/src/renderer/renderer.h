@@ -32,7 +32,7 @@ public:
     // `method` may be "auto"; *methodUsed receives the method that ran. *estimatedRmse (may be
     // null) receives the result's expected RMSE against the reference from the sparse exact
     // check (methods/sparse_check.h), or NaN where none was made: `auto` always makes one, any
-    // other GL method when the setting "estimate_rmse=1" asks for it. "auto" renders every
+    // other GL method when the setting "estimate_rmse=1" asks for it (a CPU method: never). "auto" renders every
     // candidate and keeps the one whose estimate is lowest (the cheaper on a tie).
     Layers render(const Scene& scene, int lightIndex, const std::string& method,
                   const RenderSettings& settings, std::string* methodUsed,
