@@ -61,15 +61,22 @@ def step():
         _shot(props, "light-panel.png")
         props.spaces.active.context = "OUTPUT"
     elif s == 3:
+        # Our panel comes after Blender's own output panels: scroll down to it.
+        region = next(r for r in props.regions if r.type == "WINDOW")
+        with bpy.context.temp_override(window=win, area=props, region=region):
+            for _ in range(40):
+                bpy.ops.view2d.scroll_down(deltay=100)
+        props.tag_redraw()
+    elif s == 4:
         _shot(props, "output-panel.png")
         if not softshadow.preview._state.done and time.time() - state["t"] < 60:
             view3d.tag_redraw()
             return 0.5
-    elif s == 4:
+    elif s == 5:
         _shot(view3d, "viewport-preview.png")
         view3d.type = "NODE_EDITOR"
         view3d.ui_type = "CompositorNodeTree"
-    elif s == 5:
+    elif s == 6:
         editor = view3d.spaces.active
         editor.show_region_ui = False  # the sidebar would hide the final output node
         if hasattr(editor, "show_region_asset_shelf"):
@@ -77,14 +84,14 @@ def step():
         region = next(r for r in view3d.regions if r.type == "WINDOW")
         with bpy.context.temp_override(window=win, area=view3d, region=region):
             bpy.ops.node.view_all()
-    elif s == 6:
+    elif s == 7:
         _shot(view3d, "compositor.png")
         if bpy.app.version < (4, 2, 0):
             bpy.ops.wm.quit_blender()
             return None
         view3d.type = "PREFERENCES"
         bpy.context.preferences.active_section = "EXTENSIONS"
-    elif s == 7:
+    elif s == 8:
         _shot(view3d, "extension-5x.png" if bpy.app.version >= (5, 0, 0) else "extension-4x.png")
         bpy.ops.wm.quit_blender()
         return None
