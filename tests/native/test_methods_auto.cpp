@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -42,6 +43,21 @@ TEST(AutoMethod, PicksTheMethodWhosePaperModelsTheLightShape) {
 TEST(AutoMethod, OpenCastersFallBackToPcssForDiskLights) {
     EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Disk, true), 0), "pcss");
     EXPECT_EQ(chooseAutoMethodByShape(withLightType(LightType::Rectangle, true), 0), "occlusion_textures");
+}
+
+TEST(AutoMethod, MeasuresForEveryLightTypeAndCarriesAnEstimate) {
+    Renderer renderer(SS_BACKEND_AUTO);
+    for (LightType type : {LightType::Disk, LightType::Ellipse, LightType::Point, LightType::Spot, LightType::Square,
+                           LightType::Rectangle, LightType::Sun}) {
+        Scene scene = withLightType(type);
+        std::string used;
+        double estimate = -1.0;
+        renderer.render(scene, 0, "auto", RenderSettings{}, &used, &estimate);
+        const auto candidates = autoCandidates(scene, 0);
+        EXPECT_NE(std::find(candidates.begin(), candidates.end(), used), candidates.end()) << used;
+        EXPECT_TRUE(std::isfinite(estimate) && estimate >= 0.0 && estimate < 0.5)
+            << int(type) << ": " << used << " " << estimate;
+    }
 }
 
 TEST(AutoMethod, BadLightIndexIsAnError) {
