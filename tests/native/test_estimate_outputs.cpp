@@ -69,6 +69,10 @@ TEST(ErrorEstimate, CliPrintsItAndTheExrHeaderKeepsIt) {
     char shown[32];
     std::snprintf(shown, sizeof shown, "%.4f", autoEstimate);
     EXPECT_NE(r.out.find(shown), std::string::npos) << r.out << " lacks " << shown;
+    // `compare` sets auto's pass beside another method's (the names pair by light).
+    CliRun c = cli("compare '" + out + "' --against shadow_map --json");
+    ASSERT_EQ(c.code, 0) << c.err;
+    EXPECT_NE(c.out.find("Area_auto"), std::string::npos) << c.out;
     fs::remove_all(dir);
 }
 
