@@ -252,3 +252,48 @@ TEST(SparseCheck, EstimatesHoldAt512OnTheDemoScene) {
 
 }  // namespace
 }  // namespace ss
+
+namespace ss {
+namespace {
+
+// Blender's Suzanne is open (its eyes are separate shells and its back has holes): every method
+// must take an open, curved caster, and auto must keep dbuffer away from it.
+TEST(AutoMeasures, OpenCurvedCasterEveryMethodRendersAndAutoStaysClose) {
+    test::SceneParams p;
+    p.width = 128, p.height = 96;
+    Scene box = test::sceneBox(p);
+    Mesh shell = test::makeUvSphere({0.0f, 0.0f, 1.2f}, 0.7f, 12, 24, SS_MESH_CAST | SS_MESH_RECEIVE);
+    std::vector<glm::uvec3> kept;  // the lower half's faces go: an open bowl, rim up
+    for (const glm::uvec3& t : shell.triangles)
+        if (!(shell.positions[t.x].z < 1.2f && shell.positions[t.y].z < 1.2f && shell.positions[t.z].z < 1.2f) &&
+            (shell.positions[t.x].z + shell.positions[t.y].z + shell.positions[t.z].z) / 3.0f > 1.25f)
+            kept.push_back(t);
+    shell.triangles = kept;
+    Scene scene;
+    scene.addMesh(box.meshes()[0]);  // the ground
+    scene.addMesh(shell);
+    scene.addLight(box.light(0));
+    scene.setCamera(box.camera());
+    ASSERT_FALSE(scene.meshes()[1].report.closedManifold());
+    Renderer renderer(SS_BACKEND_AUTO);
+    const Layers reference = renderer.render(scene, 0, "reference", RenderSettings{}, nullptr);
+    double best = 1e9;
+    for (const std::string& name : methodNames()) {
+        if (name == "reference") continue;
+        const Layers layers = renderer.render(scene, 0, name, RenderSettings{}, nullptr);
+        for (float v : layers.find("V")->pixels) ASSERT_TRUE(std::isfinite(v)) << name;
+        const double rmse = fullRmse(layers, reference);
+        std::cout << name << " " << rmse << "\n";
+        if (name != "dbuffer") best = std::min(best, rmse);
+    }
+    std::string used;
+    double estimate = 0.0;
+    const double autoRmse = fullRmse(renderer.render(scene, 0, "auto", RenderSettings{}, &used, &estimate), reference);
+    std::cout << "auto took " << used << " " << autoRmse << " (estimate " << estimate << ")\n";
+    EXPECT_NE(used, "dbuffer");
+    EXPECT_LE(autoRmse, 1.25 * best);
+    EXPECT_LE(std::abs(estimate - autoRmse), std::max(0.3 * autoRmse, 0.005));
+}
+
+}  // namespace
+}  // namespace ss
