@@ -124,6 +124,18 @@ def cli_seconds(path):
     return None
 
 
+def cli_auto(path):
+    """(seconds, method it took, estimated RMSE or None) from the CLI's render report of `auto`."""
+    try:
+        for line in open(path):
+            parts = line.split()
+            if len(parts) >= 5 and parts[1] == "auto":
+                return float(parts[3]), parts[2], None if parts[4] == "-" else float(parts[4])
+    except (OSError, ValueError):
+        pass
+    return None, None, None
+
+
 def collect(work, out):
     ours = {}
     for b in bench_rows(os.path.join(out, "scene_files.json")):
@@ -139,6 +151,10 @@ def collect(work, out):
             if scene == name:
                 rows.append({"key": method, "kind": "ours", "ms": b["real_time"],
                              "stages": {k: b.get(k) for k, _ in STAGES}, "err": error_of(work, name, method)})
+        sec, took, estimate = cli_auto(os.path.join(work, "ours", name, "auto.txt"))
+        if sec is not None:
+            rows.append({"key": "auto", "kind": "ours-auto", "ms": sec * 1000, "stages": None, "took": took,
+                         "estimate": estimate, "err": error_of(work, name, "auto")})
         s = cli_seconds(os.path.join(d, "reference.txt"))
         rows.append({"key": "reference", "kind": "ours-cpu", "ms": s * 1000 if s else None, "stages": None,
                      "err": error_of(work, name, "reference")})
@@ -161,6 +177,14 @@ def headline(scene):
     ee = next((r for r in rows if r["key"] == "eevee-64" and r["err"]), None)
     cyc = sorted([r for r in rows if r["kind"] == "cycles" and r["err"]], key=lambda r: int(r["key"].split("-")[1]))
     parts = []
+    auto = next((r for r in rows if r["kind"] == "ours-auto" and r["err"]), None)
+    if auto:
+        verdict = ""
+        if ee:
+            verdict = (", at or below EEVEE-64 (%.4f)" if auto["err"]["rmse"] <= ee["err"]["rmse"]
+                       else ", **above** EEVEE-64 (%.4f)") % ee["err"]["rmse"]
+        parts.append("**auto** took %s: RMSE %.4f (its estimate %s) in %.0f ms (CLI, whole process)%s"
+                     % (auto.get("took"), auto["err"]["rmse"], fmt(auto.get("estimate")), auto["ms"], verdict))
     if ee and gl:
         within = [r for r in gl if r["err"]["rmse"] <= ee["err"]["rmse"]]
         if within:
@@ -257,7 +281,7 @@ def reading_notes(work, scenes):
         opened = open_casters(os.path.join(work, "scenes", s["name"], "scene.json"))
         if opened:
             md.append("- **%s**: %s not closed, so `dbuffer` extrudes volumes from a mesh the paper assumes "
-                      "closed (the add-on's `auto` picks `pcss` for such scenes)." % (s["name"], ", ".join(opened)))
+                      "closed (`auto` never gives dbuffer such a caster)." % (s["name"], ", ".join(opened)))
     return md + [""]
 
 
@@ -362,7 +386,8 @@ def main():
     with open(os.path.join(out, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     summary = {"scenes": [{"name": s["name"], "triangles": s["triangles"],
-                           "rows": [{k: r[k] for k in ("key", "kind", "ms", "err", "stages")} for r in s["rows"]]}
+                           "rows": [{k: r.get(k) for k in ("key", "kind", "ms", "err", "stages", "took", "estimate")}
+                                    for r in s["rows"]]}
                           for s in scenes]}
     with open(os.path.join(out, "results.json"), "w") as f:
         json.dump(summary, f, indent=1)

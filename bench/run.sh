@@ -67,6 +67,16 @@ SS_BENCH_SCENES="$SCENE_LIST" SS_BENCH_OUT="$WORK/ours" "$BENCH" --benchmark_fil
   --benchmark_out="$OUT/scene_files.json" --benchmark_out_format=json > "$WORK/scene_files.txt" 2>&1 ||
   { tail -n 30 "$WORK/scene_files.txt"; exit 1; }
 
+# 4a. `auto` as users get it: the CLI on each scene file (it renders every candidate and keeps the
+#     one with the least error on its sparse check); its time, the method it took and its estimate.
+log "auto through the CLI"
+for dir in "$WORK"/scenes/*/; do
+  name=$(basename "$dir")
+  mkdir -p "$WORK/ours/$name"
+  "$CLI" render "$dir/scene.json" -m auto --no-extra -o "$WORK/ours/$name/auto.exr" > "$WORK/ours/$name/auto.txt" ||
+    echo "auto failed on $name"
+done
+
 # 4b. Memory against the light count (docs/reliability.md): shadow_map on a ring of N lights,
 #     the maximum resident set of the whole `softshadow render`.
 log "memory with many lights"

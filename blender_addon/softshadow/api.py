@@ -24,7 +24,9 @@ def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers
     methods: None (each light's own setting, 'auto' unless set), a method name or a list.
     Returns {(light name, method that ran): float32 array (height, width), row 0 = top}.
     Raises native.LibraryUnavailable or native.SoftShadowError for what cannot be done at all;
-    per-light failures are left out and listed in `render_passes.last_problems`.
+    per-light failures are left out and listed in `render_passes.last_problems`; each result's
+    expected RMSE (for 'auto', or a method whose settings ask "estimate_rmse=1") is in
+    `render_passes.last_estimates` and printed.
     """
     graph = _evaluated_depsgraph(scene, depsgraph)
     exported = scene_export.export(graph, scene, mode="RENDER")
@@ -32,13 +34,17 @@ def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers
                             only_enabled=lights is None)
     render_passes.last_problems = list(result.problems)
     render_passes.last_chosen = dict(result.chosen)
+    render_passes.last_estimates = dict(result.estimates)
     for problem in result.problems:
         print("softshadow:", problem)
+    for (light, method), rmse in sorted(result.estimates.items()):
+        print("softshadow: %s with %s: estimated RMSE %.4f" % (light, method, rmse))
     return result.arrays
 
 
 render_passes.last_problems = []
 render_passes.last_chosen = {}
+render_passes.last_estimates = {}  # (light name, method that ran) -> expected RMSE against the reference
 
 
 def rendering_view_layers(scene):

@@ -9,6 +9,7 @@ broken library never raises at import: `status()` says why and where we looked.
 import atexit
 import ctypes
 import json
+import math
 import os
 import threading
 
@@ -129,6 +130,7 @@ _SIGNATURES = {
     "ss_result_destroy": (None, [_vp]),
     "ss_result_method": (ctypes.c_char_p, [_vp]),
     "ss_result_light": (ctypes.c_char_p, [_vp]),
+    "ss_result_estimated_rmse": (ctypes.c_double, [_vp]),
     "ss_result_layer_count": (ctypes.c_int32, [_vp]),
     "ss_result_layer": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_char_p),
                               ctypes.POINTER(ctypes.POINTER(ctypes.c_float)),
@@ -489,6 +491,13 @@ class Result:
     @property
     def light(self):
         return lib().ss_result_light(self.handle).decode("utf-8", "replace")
+
+    @property
+    def estimated_rmse(self):
+        """Expected RMSE of V against the reference (the library's sparse exact check), or None
+        where none was made ('auto' always makes one)."""
+        value = lib().ss_result_estimated_rmse(self.handle)
+        return None if math.isnan(value) else value
 
     def layers(self):
         """{layer name: float32 (height, width) copy, row 0 = top}."""

@@ -14,6 +14,7 @@ class FrameResult:
     arrays: dict = field(default_factory=dict)    # (light name, method) -> (H, W) float32
     results: list = field(default_factory=list)   # native.Result, for ss_write_exr
     chosen: dict = field(default_factory=dict)    # light name -> the methods that ran, 'auto' resolved ("a, b")
+    estimates: dict = field(default_factory=dict)  # (light name, method that ran) -> expected RMSE
     problems: list = field(default_factory=list)
     failed_lights: list = field(default_factory=list)  # wanted lights that got no pass
     view_layer: str = "ViewLayer"
@@ -289,6 +290,8 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
             if (light["name"], ran) not in out.arrays:
                 ran_before = out.chosen.get(light["name"])
                 out.chosen[light["name"]] = ran if not ran_before else ran_before + ", " + ran
+                if result.estimated_rmse is not None:
+                    out.estimates[(light["name"], ran)] = result.estimated_rmse
                 layers = result.layers()
                 if "V" in layers:
                     out.arrays[(light["name"], ran)] = layers["V"]

@@ -74,7 +74,11 @@ def _render_job(live, edits, camera, cancelled):
                 continue
             method = options.get("method", "auto")
             method = method if method in fast_methods() else "auto"
-            result = scene.render(indices[light["name"]], method, progress=lambda f, s: cancelled())
+            # The viewport cannot wait for auto to render every candidate: it takes auto's rule by
+            # the light's shape (docs/methods/README.md).
+            settings = "check_pixels=0" if method == "auto" else None
+            result = scene.render(indices[light["name"]], method, settings=settings,
+                                  progress=lambda f, s: cancelled())
             try:
                 v = result.layers().get("V")
             finally:

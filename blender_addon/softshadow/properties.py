@@ -3,7 +3,7 @@
 import bpy
 
 METHOD_ITEMS = [
-    ("auto", "Auto", "Pick a method for this light's shape and the scene (the report says which)"),
+    ("auto", "Auto", "Render each fast method and keep the one with the least error on a sparse ray-traced check (the report says which)"),
     ("shadow_map", "Shadow Map", "Hard shadow from the light centre (fast baseline)"),
     ("pcss", "PCSS", "Percentage-closer soft shadows"),
     ("dbuffer", "D-Buffer", "Umbra/penumbra volumes with a D-buffer (disk lights)"),

@@ -168,6 +168,7 @@ int runRender(const std::vector<std::string>& argv) {
     struct Row {
         std::string light, asked, used, passes;
         double seconds = 0.0;
+        double estimate = 0.0;  // expected RMSE against the reference; NaN: none made
     };
     std::vector<Row> rows;
     std::vector<StagedFile> previews;
@@ -193,6 +194,7 @@ int runRender(const std::vector<std::string>& argv) {
             row.light = ss_scene_light_name(scene.get(), light);
             row.asked = method;
             row.used = ss_result_method(raw);
+            row.estimate = ss_result_estimated_rmse(raw);
             check(ss_exr_writer_add(writer.get(), raw));
             for (int32_t i = 0; i < ss_result_layer_count(raw); ++i) {
                 const char* name;
@@ -226,10 +228,14 @@ int runRender(const std::vector<std::string>& argv) {
     auto bytes = fs::file_size(out, ec);
     std::printf("wrote %s: %dx%d, %d passes, %.1f MB, view layer '%s'\n", out.c_str(), width, height, passCount,
                 ec ? 0.0 : double(bytes) / 1e6, ss_scene_view_layer(scene.get()));
-    std::printf("  %-24s %-14s %-14s %9s  %s\n", "light", "asked", "method used", "seconds", "passes");
-    for (const Row& r : rows)
-        std::printf("  %-24s %-14s %-14s %9.3f  %s\n", r.light.c_str(), r.asked.c_str(), r.used.c_str(), r.seconds,
-                    r.passes.c_str());
+    std::printf("  %-24s %-14s %-14s %9s %9s  %s\n", "light", "asked", "method used", "seconds", "est.rmse",
+                "passes");
+    for (const Row& r : rows) {
+        char estimate[32] = "        -";
+        if (std::isfinite(r.estimate)) std::snprintf(estimate, sizeof estimate, "%9.4f", r.estimate);
+        std::printf("  %-24s %-14s %-14s %9.3f %s  %s\n", r.light.c_str(), r.asked.c_str(), r.used.c_str(), r.seconds,
+                    estimate, r.passes.c_str());
+    }
     if (!pngs.empty()) std::printf("  %zu PNG previews in %s\n", pngs.size(), args.value("--png-dir").c_str());
     std::printf("  total %.3f s\n", total);
     return 0;

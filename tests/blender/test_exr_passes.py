@@ -86,6 +86,13 @@ def _header_methods(path):
     return dict(item.split("=") for item in raw.decode().split(";"))
 
 
+def _header_estimates(path):
+    import exr_reader
+    kind, raw = exr_reader.attributes(path).get("softshadow/estimated_rmse", (None, b""))
+    sstest.check(kind == "string", "softshadow/estimated_rmse in the header of %s: %s" % (path, kind))
+    return {k: float(v) for k, v in (item.split("=") for item in raw.decode().split(";"))}
+
+
 def test_auto_keeps_its_pass_name_and_the_header_says_what_ran():
     folder = sstest.tempdir("exr-auto")
     scene = sstest.standard_scene(48, 32)
@@ -104,6 +111,9 @@ def test_auto_keeps_its_pass_name_and_the_header_says_what_ran():
         header = _header_methods(path)
         sstest.check(header == {"Key_auto": chosen["Key"]}, "%s: header %s, report %s" % (shape, header, chosen))
         sstest.check(chosen["Key"] in ss.native.method_names(), "a real method ran: %s" % chosen)
+        estimates = _header_estimates(path)
+        sstest.check(list(estimates) == ["Key_auto"] and 0.0 <= estimates["Key_auto"] < 0.2,
+                     "%s: the header keeps auto's estimated RMSE: %s" % (shape, estimates))
         ran.append(chosen["Key"])
     print("   auto ran", ran)
 

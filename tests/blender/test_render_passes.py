@@ -66,6 +66,11 @@ def test_default_every_light_with_its_method():
     sstest.check(("Rim.Light 2", "shadow_map") in result, "own method setting used: %s" % list(result))
     auto = [k for k in result if k[0] == "Key"][0][1]
     sstest.check(auto in ss.native.method_names(), "auto resolved to a real method: %r" % auto)
+    estimates = ss.render_passes.last_estimates
+    key_estimate = estimates.get(("Key", auto))
+    sstest.check(key_estimate is not None and 0.0 <= key_estimate < 0.2,
+                 "auto's result carries its estimated RMSE: %s" % estimates)
+    sstest.check(("Rim.Light 2", "shadow_map") not in estimates, "no estimate unless asked: %s" % estimates)
     only = ss.render_passes(scene, lights="Rim.Light 2", methods="shadow_map")
     sstest.check(list(only) == [("Rim.Light 2", "shadow_map")], "lights= filter: %s" % list(only))
 

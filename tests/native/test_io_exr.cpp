@@ -56,6 +56,13 @@ TEST(IoPassNames, SplitFindsTheMethod) {
     ASSERT_TRUE(splitPassName("my_reference_light_reference_umbra", &p));
     EXPECT_EQ(p.light, "my_reference_light");
     EXPECT_EQ(p.layer, "umbra");
+    ASSERT_TRUE(splitPassName("Key_auto_mask", &p));  // a light rendered with auto keeps this name
+    EXPECT_EQ(p.light, "Key");
+    EXPECT_EQ(p.method, "auto");
+    EXPECT_EQ(p.layer, "mask");
+    ASSERT_TRUE(splitPassName("Key_auto_pcss", &p));  // a light named "Key auto" with pcss
+    EXPECT_EQ(p.light, "Key_auto");
+    EXPECT_EQ(p.method, "pcss");
     EXPECT_FALSE(splitPassName("Combined", &p));
 }
 

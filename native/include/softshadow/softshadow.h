@@ -183,6 +183,13 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
 SS_API void ss_result_destroy(ss_result* result);
 SS_API const char* ss_result_method(const ss_result* result);
 SS_API const char* ss_result_light(const ss_result* result);
+/* The result's expected RMSE of V against the reference (the `reference` method at its default
+ * samples and the same seed), from a sparse exact check: the reference's ray tracer on one
+ * pixel in 16 (4096 to 65536) spread over the image, over the pixels both masks hold. Made for every "auto"
+ * render (it is how auto chooses) and for a GL method whose settings hold "estimate_rmse=1";
+ * NaN when none was made. Written to the EXR header attribute "softshadow/estimated_rmse"
+ * ("<pass>=<rmse>;..."). */
+SS_API double ss_result_estimated_rmse(const ss_result* result);
 SS_API int32_t ss_result_layer_count(const ss_result* result);
 /* Layer names: "V" (visibility), "mask", "umbra", "penumbra", and method debug layers. */
 SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const char** name,
@@ -191,7 +198,8 @@ SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const c
 /* Writes results as one multilayer EXR (atomically): channel
  * "<view_layer>.<light>_<method>[_<layer>].V" per layer, <method> as asked of ss_render (a light
  * rendered with "auto" keeps the pass name "<light>_auto" whatever ran); the header attribute
- * "softshadow/methods" lists "<pass>=<method that ran>;..." for the main passes. */
+ * "softshadow/methods" lists "<pass>=<method that ran>;..." for the main passes, and
+ * "softshadow/estimated_rmse" "<pass>=<rmse>;..." for those that carry an estimate. */
 SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
                               const ss_result* const* results, int32_t result_count);
 

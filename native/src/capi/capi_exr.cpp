@@ -9,6 +9,8 @@
 #include "io/pass_names.h"
 #include "io/png_preview.h"
 
+#include <cmath>
+
 using namespace ss::capi;
 
 struct ss_exr_writer {
@@ -30,7 +32,8 @@ SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
         std::string layer = view_layer ? view_layer : "ViewLayer";
         ss::checkViewLayerName(layer);
         std::vector<ss::ExrPassRef> passes;
-        std::string methods;  // "<pass>=<method that ran>;..."
+        std::string methods;    // "<pass>=<method that ran>;..."
+        std::string estimates;  // "<pass>=<estimated rmse>;..."
         for (int32_t i = 0; i < result_count; ++i) {
             const ss_result* r = results[i];
             if (!r)
@@ -38,8 +41,11 @@ SS_API ss_status ss_write_exr(const char* path, const char* view_layer,
             for (const auto& [name, image] : r->layers.items)
                 passes.push_back({ss::passName(r->light, r->requested, name), &image});
             methods += (methods.empty() ? "" : ";") + ss::passName(r->light, r->requested, "V") + "=" + r->method;
+            if (std::isfinite(r->estimatedRmse))
+                estimates += (estimates.empty() ? "" : ";") + ss::passName(r->light, r->requested, "V") + "=" +
+                             ss::formatEstimate(r->estimatedRmse);
         }
-        ss::writeMultilayerExr(path, layer, passes, methods);
+        ss::writeMultilayerExr(path, layer, passes, methods, estimates);
     });
 }
 
@@ -60,6 +66,8 @@ SS_API ss_status ss_exr_writer_add(ss_exr_writer* writer, const ss_result* resul
         for (const auto& [name, image] : result->layers.items)
             writer->spool.add(ss::passName(result->light, result->requested, name), image);
         writer->spool.noteMethod(ss::passName(result->light, result->requested, "V"), result->method);
+        if (std::isfinite(result->estimatedRmse))
+            writer->spool.noteEstimate(ss::passName(result->light, result->requested, "V"), result->estimatedRmse);
     });
 }
 

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <new>
 #include <string>
@@ -35,6 +36,7 @@ struct ss_result {
     std::string method;     // the method that ran ("auto" resolved)
     std::string requested;  // the method asked for: it names the EXR pass, so `auto` stays stable
     std::string light;   // the light's real name
+    double estimatedRmse = std::numeric_limits<double>::quiet_NaN();  // from the sparse exact check; NaN where none was made
 };
 
 namespace ss::capi {

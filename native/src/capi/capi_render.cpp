@@ -3,6 +3,8 @@
 #include "capi/capi_internal.h"
 #include "methods/method.h"
 
+#include <limits>
+
 using namespace ss::capi;
 
 namespace {
@@ -53,7 +55,8 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         auto result = std::make_unique<ss_result>();
         result->light = lights[size_t(light_index)].name;
         result->requested = method;
-        result->layers = context->renderer.render(scene->scene, light_index, method, settings, &result->method);
+        result->layers = context->renderer.render(scene->scene, light_index, method, settings, &result->method,
+                                                      &result->estimatedRmse);
         if (result->method.empty()) result->method = method;
         *out = result.release();
     });
@@ -65,6 +68,10 @@ SS_API void ss_result_destroy(ss_result* result) {
 
 SS_API const char* ss_result_method(const ss_result* result) {
     return result ? result->method.c_str() : nullptr;
+}
+
+SS_API double ss_result_estimated_rmse(const ss_result* result) {
+    return result ? result->estimatedRmse : std::numeric_limits<double>::quiet_NaN();
 }
 
 SS_API const char* ss_result_light(const ss_result* result) {

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/exr_file.h"
 
+#include <cstdio>
 #include <algorithm>
 #include <exception>
 #include <set>
@@ -48,7 +49,8 @@ void checkPasses(const std::string& path, const std::string& viewLayer,
 constexpr uint64_t kBandBytes = 64ull << 20;
 
 void writeExrBands(const std::string& file, const std::string& shownPath, const std::string& viewLayer, int w,
-                   int h, const std::vector<ExrPassRows>& passes, const std::string& methods) {
+                   int h, const std::vector<ExrPassRows>& passes, const std::string& methods,
+                   const std::string& estimates) {
     const size_t n = passes.size();
     const uint64_t rowBytes = uint64_t(w) * sizeof(float) * n;
     Imf::Header header(w, h);
@@ -57,6 +59,7 @@ void writeExrBands(const std::string& file, const std::string& shownPath, const 
     header.compression() = rowBytes * 16 > kBandBytes ? Imf::ZIPS_COMPRESSION : Imf::ZIP_COMPRESSION;
     header.insert("Software", Imf::StringAttribute("softshadow " SS_VERSION));
     if (!methods.empty()) header.insert(kExrMethodsAttribute, Imf::StringAttribute(methods));
+    if (!estimates.empty()) header.insert(kExrEstimatesAttribute, Imf::StringAttribute(estimates));
     for (const ExrPassRows& p : passes) header.channels().insert(channelName(viewLayer, p.pass), Imf::Channel(Imf::FLOAT));
     const int band = int(std::clamp<uint64_t>(kBandBytes / std::max<uint64_t>(rowBytes, 1), 1, uint64_t(h)));
     const size_t passFloats = size_t(band) * size_t(w);
@@ -105,8 +108,15 @@ void splitChannelName(const std::string& full, ExrPass& p) {
 
 }  // namespace
 
+std::string formatEstimate(double rmse) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", rmse);
+    return text;
+}
+
 void writeMultilayerExr(const std::string& path, const std::string& viewLayer,
-                        const std::vector<ExrPassRef>& passes, const std::string& methods) {
+                        const std::vector<ExrPassRef>& passes, const std::string& methods,
+                        const std::string& estimates) {
     checkPasses(path, viewLayer, passes);
     const int w = passes.front().image->width, h = passes.front().image->height;
     checkExrShape(path, passes.size(), w);
@@ -117,7 +127,7 @@ void writeMultilayerExr(const std::string& path, const std::string& viewLayer,
                             std::copy_n(image->pixels.data() + size_t(y0) * w, size_t(count) * w, out);
                         }});
     }
-    writeMultilayerExrRows(path, viewLayer, w, h, rows, methods);
+    writeMultilayerExrRows(path, viewLayer, w, h, rows, methods, estimates);
 }
 
 void checkPassName(const std::string& path, const std::string& viewLayer, const std::string& pass) {
@@ -144,9 +154,11 @@ void checkExrShape(const std::string& path, size_t passes, int width) {
 }
 
 void writeMultilayerExrRows(const std::string& path, const std::string& viewLayer, int width, int height,
-                            const std::vector<ExrPassRows>& passes, const std::string& methods) {
+                            const std::vector<ExrPassRows>& passes, const std::string& methods,
+                            const std::string& estimates) {
     checkExrShape(path, passes.size(), width);
-    writeAtomically(path, [&](const std::string& temp) { writeExrBands(temp, path, viewLayer, width, height, passes, methods); });
+    writeAtomically(path, [&](const std::string& temp) { writeExrBands(temp, path, viewLayer, width, height, passes, methods, estimates);
+    });
 }
 
 const ExrPass* ExrContents::find(const std::string& pass) const {

@@ -20,14 +20,22 @@ struct ExrPassRef {
 
 // The header attribute that records which method made each pass ("<pass>=<method>;...").
 inline constexpr const char* kExrMethodsAttribute = "softshadow/methods";
+// The header attribute that records each main pass's estimated RMSE against the reference (the
+// sparse exact check, methods/sparse_check.h): "<pass>=<rmse>;...", only passes that have one.
+inline constexpr const char* kExrEstimatesAttribute = "softshadow/estimated_rmse";
+
+// How an estimate is written in kExrEstimatesAttribute: "%.6g".
+std::string formatEstimate(double rmse);
 
 // Writes every pass as channel "<viewLayer>.<pass>.V" (all the same size) to a temporary file
 // in the destination folder, then renames it over `path`, so a reader never sees a half-written
 // file. Throws ss::Error(SS_ERROR_IO) naming the path when it cannot be written (and leaves no
 // file behind), SS_ERROR_INVALID_ARGUMENT for empty/duplicate/misshapen passes.
-// `methods`, when not empty, goes in the header as kExrMethodsAttribute.
+// `methods`, when not empty, goes in the header as kExrMethodsAttribute, `estimates` as
+// kExrEstimatesAttribute.
 void writeMultilayerExr(const std::string& path, const std::string& viewLayer,
-                        const std::vector<ExrPassRef>& passes, const std::string& methods = {});
+                        const std::vector<ExrPassRef>& passes, const std::string& methods = {},
+                        const std::string& estimates = {});
 
 // A pass whose rows are read on demand (from memory, or from a spool file, io/exr_spool.h):
 // read(y0, rows, out) fills rows x width floats, row y0 first (row 0 = top).
@@ -44,7 +52,8 @@ inline constexpr uint64_t kMaxExrRowBytes = 256ull << 20;
 // As writeMultilayerExr, fetching the pixels band by band, so memory stays within a band of
 // rows (about 64 MiB) however many passes there are. The caller has checked the pass names.
 void writeMultilayerExrRows(const std::string& path, const std::string& viewLayer, int width, int height,
-                            const std::vector<ExrPassRows>& passes, const std::string& methods = {});
+                            const std::vector<ExrPassRows>& passes, const std::string& methods = {},
+                            const std::string& estimates = {});
 
 // OpenEXR cuts longer channel names, and cut names collide.
 inline constexpr size_t kMaxExrChannelBytes = 255;

@@ -101,7 +101,11 @@ void ExrSpool::write() {
                                     offset + rowBytes * uint64_t(y0), path_);
                         }});
     }
-    writeMultilayerExrRows(path_, viewLayer_, width_, height_, rows, methods_);
+    writeMultilayerExrRows(path_, viewLayer_, width_, height_, rows, methods_, estimates_);
+}
+
+void ExrSpool::noteEstimate(const std::string& pass, double rmse) {
+    estimates_ += (estimates_.empty() ? "" : ";") + pass + "=" + formatEstimate(rmse);
 }
 
 void ExrSpool::noteMethod(const std::string& pass, const std::string& method) {

@@ -27,6 +27,8 @@ public:
     size_t passCount() const { return passes_.size(); }
     // Records which method made a pass, for the header's kExrMethodsAttribute (io/exr_file.h).
     void noteMethod(const std::string& pass, const std::string& method);
+    // Records a pass's estimated RMSE, for the header's kExrEstimatesAttribute.
+    void noteEstimate(const std::string& pass, double rmse);
     // Writes the EXR atomically (io/exr_file.h). Throws SS_ERROR_INVALID_ARGUMENT with no pass.
     void write();
 
@@ -41,7 +43,8 @@ private:
     uint64_t end_ = 0;
     std::vector<Spooled> passes_;
     std::set<std::string> names_;
-    std::string methods_;  // "<pass>=<method>;..."
+    std::string methods_;    // "<pass>=<method>;..."
+    std::string estimates_;  // "<pass>=<rmse>;..."
 };
 
 }  // namespace ss

@@ -31,7 +31,11 @@ std::string channelName(const std::string& viewLayer, const std::string& pass) {
 bool splitPassName(const std::string& pass, PassParts* out) {
     size_t bestPos = std::string::npos;
     std::string bestMethod;
-    for (const std::string& m : methodNames()) {
+    // "auto" names the passes of a light rendered with auto whatever ran (ss_write_exr), so
+    // `compare` can set them beside the reference.
+    std::vector<std::string> methods = methodNames();
+    methods.push_back("auto");
+    for (const std::string& m : methods) {
         std::string token(1, '_');
         token += m;  // (not "_" + m: GCC 12 warns falsely on it, -Wrestrict)
         // Right-most occurrence that ends the name or is followed by "_<layer>".

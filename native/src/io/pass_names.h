@@ -16,8 +16,9 @@ std::string passName(const std::string& light, const std::string& method, const 
 // pass, and everything before that as the layer.
 std::string channelName(const std::string& viewLayer, const std::string& pass);
 
-// A pass name split at the right-most "_<known method>" that ends the name or is followed by
-// "_": light (sanitized), method, layer ("V" for the main pass). False when no method matches.
+// A pass name split at the right-most "_<known method>" (or "_auto") that ends the name or is
+// followed by "_": light (sanitized), method, layer ("V" for the main pass). False when no method
+// matches.
 struct PassParts {
     std::string light, method, layer;
 };

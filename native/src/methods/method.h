@@ -36,7 +36,11 @@ public:
 
 // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) for an unknown name; "auto" is not accepted here.
 std::unique_ptr<Method> createMethod(const std::string& name);
-// The documented rule behind "auto" (docs/methods/README.md).
-std::string chooseAutoMethod(const Scene& scene, int lightIndex);
+// The methods `auto` renders and scores against the sparse check (methods/sparse_check.h), in
+// the order of their cost (cheapest first): the GL methods whose assumptions the scene keeps.
+std::vector<std::string> autoCandidates(const Scene& scene, int lightIndex);
+// `auto`'s fallback where the sparse check cannot run: a method by the light's shape
+// (docs/methods/README.md).
+std::string chooseAutoMethodByShape(const Scene& scene, int lightIndex);
 
 }  // namespace ss

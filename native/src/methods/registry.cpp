@@ -1,4 +1,4 @@
-// Which methods exist (the contract names) and how "auto" picks one.
+// Which methods exist (the contract names), which of them `auto` may try and its fallback rule.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <functional>
 
@@ -47,16 +47,35 @@ std::unique_ptr<Method> createMethod(const std::string& name) {
     fail(SS_ERROR_INVALID_ARGUMENT, "unknown method '" + name + "' (known: " + known + ", auto)");
 }
 
-std::string chooseAutoMethod(const Scene& scene, int lightIndex) {
-    // The rule (docs/methods/README.md): each light gets the method whose paper models its
-    // shape, unless the scene breaks that method's assumptions.
-    const Light& light = scene.light(lightIndex);
-    // A flat open caster (a floor, a wall: Blender lets every object cast by default) is not a
-    // problem for the volumes: it has no silhouette inside itself and its border's volumes
-    // point away from the light, behind it. Any other open or non-manifold caster is.
-    bool castersClosed = true;
+namespace {
+// A flat open caster (a floor, a wall: Blender lets every object cast by default) is not a
+// problem for the volumes: it has no silhouette inside itself and its border's volumes point
+// away from the light, behind it. Any other open or non-manifold caster is.
+bool castersClosedForVolumes(const Scene& scene) {
     for (const Mesh& m : scene.meshes())
-        if (m.casts() && !m.report.closedManifold() && !isPlanarMesh(m)) castersClosed = false;
+        if (m.casts() && !m.report.closedManifold() && !isPlanarMesh(m)) return false;
+    return true;
+}
+}  // namespace
+
+std::vector<std::string> autoCandidates(const Scene& scene, int lightIndex) {
+    (void)scene.light(lightIndex);
+    const bool closed = castersClosedForVolumes(scene);
+    std::vector<std::string> out;
+    for (const std::string& name : methodNames()) {
+        if (name == "reference") continue;  // the truth itself: not an interactive method
+        // dbuffer's volumes assume closed 2-manifold casters (docs/methods/dbuffer.md).
+        if (name == "dbuffer" && !closed) continue;
+        out.push_back(name);
+    }
+    return out;
+}
+
+std::string chooseAutoMethodByShape(const Scene& scene, int lightIndex) {
+    // Used only where the sparse check cannot run (docs/methods/README.md): each light gets the
+    // method whose paper models its shape, unless the scene breaks that method's assumptions.
+    const Light& light = scene.light(lightIndex);
+    const bool castersClosed = castersClosedForVolumes(scene);
     switch (light.type) {
         case LightType::Square:
         case LightType::Rectangle:

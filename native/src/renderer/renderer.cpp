@@ -3,6 +3,8 @@
 #include "renderer/renderer.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "gl/context.h"
 #include "gl/render_thread.h"
 #include "frame/frame.h"
+#include "methods/sparse_check.h"
 #include "reference/trace_scene_cache.h"
 #include "renderer/refinement.h"
 
@@ -38,6 +41,7 @@ struct Renderer::Impl {
     static constexpr size_t kKeptScenes = 2;
     std::vector<std::unique_ptr<Cached>> caches;
     CacheStats finished;  // of frames already dropped
+    TraceSceneCache traceCache;  // the Embree scene of the sparse checks
     size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
 
     void count(const Frame& f, CacheStats& into) const {
@@ -207,13 +211,25 @@ void checkLayers(const Layers& layers, const Camera& camera, const std::string& 
 
 }  // namespace
 
-Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& method,
-                        const RenderSettings& settings, std::string* methodUsed) {
-    std::lock_guard lock(impl_->m);
-    const Camera& camera = scene.camera();  // throws when the scene has no camera
-    (void)scene.light(lightIndex);  // throws for an index out of range, before any work
-    std::string name = method == "auto" ? chooseAutoMethod(scene, lightIndex) : method;
-    impl_->forgetStoppedThread();
+namespace {
+
+// Settings every GL method takes besides its own, read by the renderer.
+constexpr const char* kEstimateKey = "estimate_rmse";
+// `auto`'s own settings: how many pixels the sparse check traces (0: use the shape rule) and
+// with how many light samples each.
+const std::vector<std::string>& autoSettingKeys() {
+    static const std::vector<std::string> keys = {"check_pixels", "check_samples", kEstimateKey};
+    return keys;
+}
+
+// Two estimates this close are a tie, and the cheaper candidate wins: the check's own sampling
+// error is about this large at a few thousand pixels.
+bool clearlyBetter(double a, double b) { return a < b * 0.97 - 0.0005; }
+
+}  // namespace
+
+Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::string& name,
+                              const RenderSettings& settings) {
     auto& cached = impl_->cacheFor(scene);
     auto it = cached.methods.find(name);
     if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
@@ -237,13 +253,90 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
             layers = m.render(frame, lightIndex, settings);
         });
     }
-    checkLayers(layers, camera, name);
+    checkLayers(layers, scene.camera(), name);
     // Refinement traces on the caller's thread (progress may call Python); the reference is
     // exact already, so it has nothing to refine.
-    if (refine && m.needsGl())
-        refineUncertainPixels(scene, lightIndex, settings, cached.refineTrace, layers);
+    if (refine && m.needsGl()) refineUncertainPixels(scene, lightIndex, settings, cached.refineTrace, layers);
+    return layers;
+}
+
+bool Renderer::sparseCheck(const Scene& scene, int lightIndex, int pixels, int samples, uint32_t seed,
+                           SparseCheck* out) {
+    if (pixels <= 0) return false;
+    try {
+        std::shared_ptr<const TraceScene> trace = impl_->traceCache.get(scene);
+        *out = runSparseCheck(*trace, scene, lightIndex, pixels, samples, seed);
+    } catch (const Error& e) {
+        if (e.status() == SS_ERROR_CANCELLED) throw;
+        return false;  // no ray tracer for this scene: the caller falls back
+    }
+    return out->maskedPixels() > 0;
+}
+
+Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& method,
+                        const RenderSettings& settings, std::string* methodUsed, double* estimateOut) {
+    std::lock_guard lock(impl_->m);
+    const Camera& camera = scene.camera();  // throws when the scene has no camera
+    (void)scene.light(lightIndex);  // throws for an index out of range, before any work
+    impl_->forgetStoppedThread();
+    double estimate = std::numeric_limits<double>::quiet_NaN();
+    std::string name = method;
+    Layers layers;
+    if (method == "auto") {
+        std::vector<std::string> keys = autoSettingKeys();
+        for (const std::string& k : refinementKeys()) keys.push_back(k);
+        settings.requireKnownKeys("auto", keys);
+        const bool refine = refinementRequested(settings);  // refines the chosen method's result
+        const int pixels = settings.integer("check_pixels", sparseCheckDefaultPixels(camera.width, camera.height), 0,
+                                            1 << 24);
+        const int samples = settings.integer("check_samples", 0, 0, 1 << 16);
+        RenderSettings candidateSettings = settings;  // each candidate with its own defaults
+        candidateSettings.options.clear();
+        SparseCheck check;
+        settings.report(0.0f, "auto: tracing the sparse check");
+        if (!sparseCheck(scene, lightIndex, pixels, samples, settings.seed, &check)) {
+            name = chooseAutoMethodByShape(scene, lightIndex);
+            layers = renderMethod(scene, lightIndex, name, candidateSettings);
+        } else {
+            name.clear();
+            for (const std::string& candidate : autoCandidates(scene, lightIndex)) {
+                settings.report(0.0f, ("auto: trying " + candidate).c_str());
+                Layers tried;
+                try {
+                    tried = renderMethod(scene, lightIndex, candidate, candidateSettings);
+                } catch (const Error& e) {
+                    // A method that cannot take this scene (sweep without a planar receiver,
+                    // penumbra_map with the light on the receiver) is not a candidate here.
+                    if (e.status() == SS_ERROR_UNSUPPORTED) continue;
+                    throw;
+                }
+                const double e = estimatedRmse(check, tried);
+                if (!std::isfinite(e)) continue;
+                if (name.empty() || clearlyBetter(e, estimate)) {
+                    name = candidate, estimate = e, layers = std::move(tried);
+                }
+            }
+            if (name.empty()) fail(SS_ERROR_UNSUPPORTED, "auto: no method can render light '" +
+                                                             scene.light(lightIndex).name + "' in this scene");
+        }
+        if (refine && impl_->cache->methods.at(name)->needsGl()) {
+            refineUncertainPixels(scene, lightIndex, settings, impl_->cacheFor(scene).refineTrace, layers);
+            if (std::isfinite(estimate)) estimate = estimatedRmse(check, layers);
+        }
+    } else {
+        RenderSettings own = settings;
+        const bool wantEstimate = own.flag(kEstimateKey, false);
+        own.options.erase(kEstimateKey);
+        layers = renderMethod(scene, lightIndex, name, own);
+        SparseCheck check;
+        if (wantEstimate && impl_->cache->methods.at(name)->needsGl() &&
+            sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(camera.width, camera.height), 0, settings.seed,
+                        &check))
+            estimate = estimatedRmse(check, layers);
+    }
     if (settings.extraLayers) addClassLayers(layers);
     if (methodUsed) *methodUsed = name;
+    if (estimateOut) *estimateOut = estimate;
     return layers;
 }
 

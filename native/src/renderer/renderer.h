@@ -17,6 +17,8 @@ namespace ss {
 // a series of render() calls on the same scene draws each shared pass once and, after an edit,
 // redraws only what the edit changed (see Frame).
 // CPU-only methods (reference) never start GL.
+struct SparseCheck;  // methods/sparse_check.h
+
 class Renderer {
 public:
     explicit Renderer(ss_backend backend);
@@ -28,9 +30,14 @@ public:
     // JSON: {"backend", "renderer", "vendor", "version", "limits": {...}}.
     std::string info();
 
-    // `method` may be "auto"; *methodUsed receives the method that ran.
+    // `method` may be "auto"; *methodUsed receives the method that ran. *estimatedRmse (may be
+    // null) receives the result's expected RMSE against the reference from the sparse exact
+    // check (methods/sparse_check.h), or NaN where none was made: `auto` always makes one, any
+    // other GL method when the setting "estimate_rmse=1" asks for it (a CPU method: never). "auto" renders every
+    // candidate and keeps the one whose estimate is lowest (the cheaper on a tie).
     Layers render(const Scene& scene, int lightIndex, const std::string& method,
-                  const RenderSettings& settings, std::string* methodUsed);
+                  const RenderSettings& settings, std::string* methodUsed,
+                  double* estimatedRmse = nullptr);
 
     // How many frames were made (one per scene id) and how often their shared passes were
     // drawn (meshUploads: meshes uploaded), over the renderer's life (tests of the frame cache;
@@ -49,6 +56,13 @@ public:
     void setShadowMapBudget(size_t bytes);
 
 private:
+    // One method as it is (settings keys checked), with the shared frame and GL thread.
+    Layers renderMethod(const Scene& scene, int lightIndex, const std::string& name,
+                        const RenderSettings& settings);
+    // The sparse exact check of the light; false where it cannot be made (no pixel, no ray
+    // tracer, no checked pixel the light reaches).
+    bool sparseCheck(const Scene& scene, int lightIndex, int pixels, int samples, uint32_t seed,
+                     SparseCheck* out);
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -1,0 +1,79 @@
+// Checks that a result's error estimate reaches the user: the C API, the CLI's render report and
+// the EXR header.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "cli_run.h"
+#include "io/exr_file.h"
+#include "softshadow/softshadow.h"
+
+namespace {
+
+// "<pass>=<number>;..." -> the number of `pass`, NaN when absent.
+double estimateOf(const std::string& attribute, const std::string& pass) {
+    size_t at = attribute.find(pass + "=");
+    if (at == std::string::npos) return std::nan("");
+    return std::strtod(attribute.c_str() + at + pass.size() + 1, nullptr);
+}
+
+TEST(ErrorEstimate, CApiGivesItForAutoAndOnRequestForAMethod) {
+    ss_scene* scene = nullptr;
+    ASSERT_EQ(ss_scene_load(SS_SOURCE_DIR "/examples/scenes/demo.json", &scene), SS_OK) << ss_last_error();
+    ss_camera_desc cam;
+    ASSERT_EQ(ss_scene_get_camera(scene, &cam), SS_OK);
+    cam.width = 96, cam.height = 72;
+    ASSERT_EQ(ss_scene_set_camera(scene, &cam), SS_OK);
+    ss_context* context = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &context), SS_OK);
+    ss_render_options options;
+    ss_render_options_default(&options);
+    auto estimate = [&](const char* method, const char* settings) {
+        options.settings = settings;
+        ss_result* result = nullptr;
+        EXPECT_EQ(ss_render(context, scene, 0, method, &options, &result), SS_OK) << ss_last_error();
+        double e = ss_result_estimated_rmse(result);
+        ss_result_destroy(result);
+        return e;
+    };
+    const double autoEstimate = estimate("auto", nullptr);
+    EXPECT_TRUE(std::isfinite(autoEstimate) && autoEstimate >= 0.0 && autoEstimate < 0.2) << autoEstimate;
+    EXPECT_TRUE(std::isnan(estimate("pcss", nullptr)));
+    const double pcss = estimate("pcss", "estimate_rmse=1");
+    EXPECT_TRUE(std::isfinite(pcss) && pcss >= autoEstimate) << pcss << " vs auto " << autoEstimate;
+    EXPECT_TRUE(std::isnan(ss_result_estimated_rmse(nullptr)));
+    ss_context_destroy(context);
+    ss_scene_destroy(scene);
+}
+
+TEST(ErrorEstimate, CliPrintsItAndTheExrHeaderKeepsIt) {
+    fs::path dir = tempDir("estimate");
+    std::string out = (dir / "out.exr").string();
+    CliRun r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' --width 96 --height 72 -m auto -m shadow_map -o '" +
+                   out + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("est.rmse"), std::string::npos) << r.out;
+    auto in = OIIO::ImageInput::open(out);
+    ASSERT_TRUE(in);
+    const std::string estimates = in->spec().get_string_attribute(ss::kExrEstimatesAttribute);
+    in->close();
+    const double autoEstimate = estimateOf(estimates, "Area_auto");
+    ASSERT_TRUE(std::isfinite(autoEstimate)) << estimates;
+    EXPECT_TRUE(std::isnan(estimateOf(estimates, "Area_shadow_map"))) << estimates;  // none was asked for
+    // The report's row for auto shows the same number the header keeps.
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%.4f", autoEstimate);
+    EXPECT_NE(r.out.find(shown), std::string::npos) << r.out << " lacks " << shown;
+    // `compare` sets auto's pass beside another method's (the names pair by light).
+    CliRun c = cli("compare '" + out + "' --against shadow_map --json");
+    ASSERT_EQ(c.code, 0) << c.err;
+    EXPECT_NE(c.out.find("Area_auto"), std::string::npos) << c.out;
+    fs::remove_all(dir);
+}
+
+}  // namespace
