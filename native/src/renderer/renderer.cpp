@@ -319,7 +319,7 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
             if (name.empty()) fail(SS_ERROR_UNSUPPORTED, "auto: no method can render light '" +
                                                              scene.light(lightIndex).name + "' in this scene");
         }
-        if (refine && impl_->cache->methods.at(name)->needsGl()) {
+        if (refine && impl_->cacheFor(scene).methods.at(name)->needsGl()) {
             refineUncertainPixels(scene, lightIndex, settings, impl_->cacheFor(scene).refineTrace, layers);
             if (std::isfinite(estimate)) estimate = estimatedRmse(check, layers);
         }
@@ -329,7 +329,7 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
         own.options.erase(kEstimateKey);
         layers = renderMethod(scene, lightIndex, name, own);
         SparseCheck check;
-        if (wantEstimate && impl_->cache->methods.at(name)->needsGl() &&
+        if (wantEstimate && impl_->cacheFor(scene).methods.at(name)->needsGl() &&
             sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(camera.width, camera.height), 0, settings.seed,
                         &check))
             estimate = estimatedRmse(check, layers);
