@@ -99,14 +99,4 @@ def step():
     return 1.5
 
 
-def guarded_step():
-    try:
-        return step()
-    except Exception:
-        import traceback
-        traceback.print_exc()
-        bpy.ops.wm.quit_blender()
-        return None
-
-
-bpy.app.timers.register(guarded_step, first_interval=2.0)
+sstest.run_windowed_steps(step)

@@ -82,6 +82,19 @@ def child_blender(folder):
     return ["--addons", "softshadow"], dict(os.environ, BLENDER_USER_SCRIPTS=scripts)
 
 
+def run_windowed_steps(step, first_interval=2.0):
+    """Drives a windowed Blender by a timer calling `step` (it returns the seconds to the next
+    call, or None at the end). A failing step ends Blender, or the test would wait for its timeout."""
+    def guarded():
+        try:
+            return step()
+        except Exception:
+            traceback.print_exc()
+            bpy.ops.wm.quit_blender()
+            return None
+    bpy.app.timers.register(guarded, first_interval=first_interval)
+
+
 def our_tracebacks(log):
     """The Python tracebacks in a Blender log that pass through the add-on. Blender's own add-ons
     may fail on a distribution's packaging (Debian sid's 5.2 lacks cattrs for bl_pkg): not ours."""

@@ -73,15 +73,4 @@ def step():
     return 1.0
 
 
-def guarded_step():
-    # A failing step must end the windowed Blender, or the test would wait for its timeout.
-    try:
-        return step()
-    except Exception:
-        import traceback
-        traceback.print_exc()
-        bpy.ops.wm.quit_blender()
-        return None
-
-
-bpy.app.timers.register(guarded_step, first_interval=2.0)
+sstest.run_windowed_steps(step)
