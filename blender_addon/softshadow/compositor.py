@@ -63,24 +63,34 @@ def image_node(scene, image=None):
     return node
 
 
+def existing_group(name):
+    """The compositor node group of that name, when there is one."""
+    group = bpy.data.node_groups.get(name)
+    return group if group is not None and group.bl_idname == "CompositorNodeTree" else None
+
+
+def new_group(name, colour_inputs, unit_inputs):
+    """A compositor node group with colour inputs, float inputs in [0, 1] (default 1) and an
+    Image output: (group, its Group Input node, its Group Output node)."""
+    group = bpy.data.node_groups.new(name, "CompositorNodeTree")
+    for socket_name in colour_inputs:
+        compat.add_group_socket(group, "INPUT", "NodeSocketColor", socket_name)
+    for socket_name in unit_inputs:
+        socket = compat.add_group_socket(group, "INPUT", "NodeSocketFloat", socket_name)
+        socket.default_value = 1.0
+        socket.min_value, socket.max_value = 0.0, 1.0
+    compat.add_group_socket(group, "OUTPUT", "NodeSocketColor", "Image")
+    return group, group.nodes.new("NodeGroupInput"), group.nodes.new("NodeGroupOutput")
+
+
 def darken_group():
     """Image x mix(1, visibility, strength): the pass darkens a render layer."""
-    group = bpy.data.node_groups.get(GROUP_NAME)
-    if group is not None and group.bl_idname == "CompositorNodeTree":
+    group = existing_group(GROUP_NAME)
+    if group is not None:
         return group
-    group = bpy.data.node_groups.new(GROUP_NAME, "CompositorNodeTree")
-    compat.add_group_socket(group, "INPUT", "NodeSocketColor", "Image")
-    visibility = compat.add_group_socket(group, "INPUT", "NodeSocketFloat", "Visibility")
-    strength = compat.add_group_socket(group, "INPUT", "NodeSocketFloat", "Strength")
-    compat.add_group_socket(group, "OUTPUT", "NodeSocketColor", "Image")
-    for socket, value in ((visibility, 1.0), (strength, 1.0)):
-        socket.default_value = value
-        socket.min_value, socket.max_value = 0.0, 1.0
+    group, inputs, outputs = new_group(GROUP_NAME, ["Image"], ["Visibility", "Strength"])
     nodes, links = group.nodes, group.links
-    inputs = nodes.new("NodeGroupInput")
-    inputs.location = (-400, 0)
-    outputs = nodes.new("NodeGroupOutput")
-    outputs.location = (400, 0)
+    inputs.location, outputs.location = (-400, 0), (400, 0)
     factor, strength_in, lit_in, visibility_in, factor_out = compat.new_color_mix(nodes, bpy.types, "MIX")
     factor.name = "Shadow Factor"
     lit_in.default_value = (1.0, 1.0, 1.0, 1.0)

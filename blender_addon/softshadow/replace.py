@@ -33,21 +33,11 @@ def _mix(nodes, blend_type, factor=1.0):
 
 def replace_group():
     """Image + Light × (mix(1, Visibility, Strength) − 1)."""
-    group = bpy.data.node_groups.get(GROUP_NAME)
-    if group is not None and group.bl_idname == "CompositorNodeTree":
+    group = compositor.existing_group(GROUP_NAME)
+    if group is not None:
         return group
-    group = bpy.data.node_groups.new(GROUP_NAME, "CompositorNodeTree")
-    compat.add_group_socket(group, "INPUT", "NodeSocketColor", "Image")
-    compat.add_group_socket(group, "INPUT", "NodeSocketColor", "Light")
-    visibility = compat.add_group_socket(group, "INPUT", "NodeSocketFloat", "Visibility")
-    strength = compat.add_group_socket(group, "INPUT", "NodeSocketFloat", "Strength")
-    compat.add_group_socket(group, "OUTPUT", "NodeSocketColor", "Image")
-    for socket in (visibility, strength):
-        socket.default_value = 1.0
-        socket.min_value, socket.max_value = 0.0, 1.0
+    group, inputs, outputs = compositor.new_group(GROUP_NAME, ["Image", "Light"], ["Visibility", "Strength"])
     nodes, links = group.nodes, group.links
-    inputs = nodes.new("NodeGroupInput")
-    outputs = nodes.new("NodeGroupOutput")
     inputs.location, outputs.location = (-500, 0), (500, 0)
     factor, f_fac, f_a, f_b, f_out = _mix(nodes, "MIX")
     f_a.default_value = (1.0, 1.0, 1.0, 1.0)
