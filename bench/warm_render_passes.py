@@ -92,7 +92,7 @@ for method in ("shadow_map", "pcss", "occlusion_textures"):
     depsgraph = bpy.context.evaluated_depsgraph_get()
     camera = scene_export.scene_camera(scene, depsgraph, 960, 540)
     preview._state.full = True
-    live = passes.LiveScene(with_transforms=True)
+    live = passes.LiveScene()
     preview._render_job(live, [preview.export_edit(depsgraph, scene)], camera, lambda: False)
     main, worker, cold = [], [], []
     for _ in range(frames + 2):
@@ -106,7 +106,7 @@ for method in ("shadow_map", "pcss", "occlusion_textures"):
         main.append(exported_at - start)
         worker.append(done - exported_at)
         start = time.perf_counter()
-        fresh = passes.LiveScene(with_transforms=True)
+        fresh = passes.LiveScene()
         full = scene_export.export(depsgraph, scene, mode="VIEWPORT", camera=camera)
         preview._render_job(fresh, [("full", full)], camera, lambda: False)
         fresh.close()

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "gl/render_state.h"
 
 namespace ss {
@@ -136,33 +137,65 @@ void Frame::dropStalePasses() {
     }
 }
 
+namespace {
+
+// Unit face normals of the mesh's coordinates as given (the world normals when it has no
+// transform), zero for degenerate faces, as vec4 for the SSBO.
+std::vector<glm::vec4> objectFaceNormals(const Mesh& mesh) {
+    std::vector<glm::vec4> normals(mesh.triangles.size(), glm::vec4(0.0f));
+    if (mesh.objectPositions.empty()) {
+        for (size_t f = 0; f < mesh.faceNormals.size() && f < normals.size(); ++f)
+            normals[f] = glm::vec4(mesh.faceNormals[f], 0.0f);
+        return normals;
+    }
+    const auto& p = mesh.objectPositions;
+    for (size_t f = 0; f < normals.size(); ++f) {
+        const glm::uvec3& t = mesh.triangles[f];
+        glm::vec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
+        float len = glm::length(n);
+        if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2] && len > 0.0f && std::isfinite(len))
+            normals[f] = glm::vec4(n / len, 0.0f);
+    }
+    return normals;
+}
+
+void place(GpuMesh& gm, const Mesh& mesh) {
+    gm.objectToWorld = mesh.objectToWorld;
+    gm.transformed = !mesh.objectPositions.empty() && mesh.objectToWorld != glm::mat4(1.0f);
+    gm.normalToWorld = glm::mat4(glm::transpose(glm::inverse(glm::mat3(mesh.objectToWorld))));
+}
+
+}  // namespace
+
 const std::vector<GpuMesh>& Frame::meshes() {
     if (meshesGeometryVersion_ == scene_->geometryVersion()) return meshes_;
+    const auto start = Clock::now();
     const gl::Functions& g = gl();
     const auto& src = scene_->meshes();
     std::map<uint64_t, GpuMesh> uploaded;
-    for (GpuMesh& gm : meshes_) uploaded.emplace(gm.version, std::move(gm));
+    for (GpuMesh& gm : meshes_) uploaded.emplace(gm.shapeVersion, std::move(gm));
     meshes_.clear();
     meshes_.reserve(src.size());
     for (size_t i = 0; i < src.size(); ++i) {
         const Mesh& mesh = src[i];
-        auto kept = uploaded.find(mesh.version);
+        auto kept = uploaded.find(mesh.shapeVersion);
         if (kept != uploaded.end()) {
             kept->second.meshIndex = int(i);
+            place(kept->second, mesh);
             meshes_.push_back(std::move(kept->second));
             uploaded.erase(kept);
             continue;
         }
+        const std::vector<glm::vec3>& positions = mesh.objectPositions.empty() ? mesh.positions : mesh.objectPositions;
         GpuMesh gm;
         gm.meshIndex = int(i);
-        gm.version = mesh.version;
+        gm.shapeVersion = mesh.shapeVersion;
         gm.flags = mesh.flags;
         gm.indexCount = GLsizei(mesh.triangles.size() * 3);
-        gm.positions = gl::makeBuffer(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
+        place(gm, mesh);
+        gm.positions = gl::makeBuffer(positions.data(), positions.size() * sizeof(glm::vec3));
         gm.indices = gl::makeBuffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
-        std::vector<glm::vec4> normals(mesh.triangles.size(), glm::vec4(0.0f));
-        for (size_t f = 0; f < mesh.faceNormals.size() && f < normals.size(); ++f)
-            normals[f] = glm::vec4(mesh.faceNormals[f], 0.0f);
+        std::vector<glm::vec4> normals = objectFaceNormals(mesh);
         gm.faceNormals = gl::makeBuffer(normals.data(), normals.size() * sizeof(glm::vec4));
         GLuint vao = 0;
         g.CreateVertexArrays(1, &vao);
@@ -176,14 +209,20 @@ const std::vector<GpuMesh>& Frame::meshes() {
         ++stats_.meshUploads;
     }
     g.check("uploading the scene meshes");
+    g.Finish();
+    stats_.uploadMs += msSince(start);
     meshesGeometryVersion_ = scene_->geometryVersion();
     return meshes_;
 }
 
-void Frame::drawMeshes(uint32_t requiredFlags, const std::function<void(const GpuMesh&)>& before) {
+void Frame::drawMeshes(const gl::Program& program, uint32_t requiredFlags,
+                       const std::function<void(const GpuMesh&)>& before) {
     const gl::Functions& g = gl();
     for (const GpuMesh& m : meshes()) {
         if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0) continue;
+        program.set("uTransformed", m.transformed ? 1 : 0);
+        program.set("uObjectToWorld", m.objectToWorld);
+        program.set("uNormalToWorld", m.normalToWorld);
         if (before) before(m);
         g.BindVertexArray(m.vao.id());
         g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.faceNormals.id());
@@ -207,6 +246,8 @@ void Frame::drawFullscreen() {
 const CameraPass& Frame::cameraPass() {
     dropStalePasses();
     if (camera_) return *camera_;
+    meshes();  // uploads timed apart
+    const auto start = Clock::now();
     const gl::Functions& g = gl();
     const Camera& cam = camera();
     auto pass = std::make_unique<CameraPass>();
@@ -230,12 +271,14 @@ const CameraPass& Frame::cameraPass() {
     prog.set("uCameraPosition", glm::vec3(cameraToWorld[3]));
     prog.set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
     prog.set("uOrthographic", cam.isOrthographic() ? 1 : 0);
-    drawMeshes(0, [&](const GpuMesh& m) {
+    drawMeshes(prog, 0, [&](const GpuMesh& m) {
         prog.set("uMeshIndex", m.meshIndex);
         prog.set("uReceives", m.receives() ? 1.0f : 0.0f);
     });
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing the camera pass");
+    g.Finish();
+    stats_.cameraPassMs += msSince(start);
     ++stats_.cameraPasses;
     camera_ = std::move(pass);
     cameraPassCamera_ = scene_->cameraVersion();
@@ -268,6 +311,8 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
         return *it->second.map;
     }
     const Light& L = light(lightIndex);
+    meshes();  // uploads timed apart
+    const auto start = Clock::now();
     const gl::Functions& g = gl();
     auto map = std::make_unique<ShadowMap>(fitShadowMap(L, scene_->bounds(), size));
     map->distance = gl::Texture(size, size, GL_R32F, GL_NEAREST);
@@ -283,9 +328,11 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     prog.use();
     prog.set("uWorldToClip", map->worldToClip());
     bindShadowMapUniforms(prog, *map);
-    drawMeshes(SS_MESH_CAST);
+    drawMeshes(prog, SS_MESH_CAST);
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing a shadow map");
+    g.Finish();
+    stats_.shadowMapMs += msSince(start);
     ++stats_.shadowMaps;
     CachedShadowMap entry;
     entry.map = std::move(map);

@@ -20,16 +20,23 @@
 
 namespace ss {
 
-// One scene mesh on the GPU. Vertex attribute 0 = world position (vec3); indexed triangles.
+// One scene mesh on the GPU, in its object space (the coordinates as given) with its matrix: a
+// moved mesh keeps its buffers. Vertex attribute 0 = object position (vec3); indexed triangles.
+// Vertex shaders take world = uObjectToWorld * position where uTransformed is 1 and the position
+// itself where it is 0 (so meshes without a transform draw exactly their world coordinates);
+// face normals go to world space with mat3(uNormalToWorld) (see "common/mesh.vert.glsl").
 struct GpuMesh {
     int meshIndex = 0;  // into scene.meshes()
-    uint64_t version = 0;  // the Mesh::version these buffers hold
+    uint64_t shapeVersion = 0;  // the Mesh::shapeVersion these buffers hold
     uint32_t flags = 0;
     GLsizei indexCount = 0;
+    bool transformed = false;           // objectToWorld is not the identity
+    glm::mat4 objectToWorld{1.0f};      // the mesh's current placement
+    glm::mat4 normalToWorld{1.0f};      // inverse transpose of its 3x3 part
     gl::VertexArrayHandle vao;
-    gl::BufferHandle positions;    // vec3 per vertex
+    gl::BufferHandle positions;    // vec3 per vertex, object space
     gl::BufferHandle indices;      // uint32 x3 per triangle
-    gl::BufferHandle faceNormals;  // SSBO, vec4 per triangle (xyz unit, 0 for degenerate)
+    gl::BufferHandle faceNormals;  // SSBO, vec4 per triangle (xyz unit in object space, 0 for degenerate)
     bool casts() const;
     bool receives() const;
 };
@@ -96,11 +103,14 @@ struct ShadowMap {
 ShadowMap fitShadowMap(const Light& light, const Bounds& bounds, int size);
 
 struct FrameStats {
-    // meshUploads counts meshes uploaded (one per mesh content), shadowMaps and cameraPasses
-    // the passes drawn.
+    // meshUploads counts meshes uploaded (one per mesh shape: a move uploads nothing),
+    // shadowMaps and cameraPasses the passes drawn.
     int meshUploads = 0, cameraPasses = 0, shadowMaps = 0, cameraReadbacks = 0;
     int shadowMapsEvicted = 0;
     size_t shadowMapBytes = 0, shadowMapBytesPeak = 0;  // held now / the most ever held
+    // Milliseconds spent in each shared pass, until the GL finished it (the benchmark's
+    // per-stage picture; the passes end with glFinish so their work is not billed to the next).
+    double uploadMs = 0.0, cameraPassMs = 0.0, shadowMapMs = 0.0;
 };
 
 class Frame {
@@ -143,10 +153,12 @@ public:
     size_t shadowMapBytes() const { return stats_.shadowMapBytes; }
 
     // ---- helpers ----
-    // Draws every mesh whose flags contain all of `requiredFlags` with the bound program and
-    // framebuffer; `before` runs for each mesh first (e.g. to set a per-mesh uniform). Binds
-    // each mesh's face normals to SSBO binding 0.
-    void drawMeshes(uint32_t requiredFlags, const std::function<void(const GpuMesh&)>& before = {});
+    // Draws every mesh whose flags contain all of `requiredFlags` with `program` (in use) and the
+    // bound framebuffer, setting its uObjectToWorld, uNormalToWorld and uTransformed; `before`
+    // runs for each mesh first (e.g. to set a per-mesh uniform). Binds each mesh's face normals
+    // to SSBO binding 0.
+    void drawMeshes(const gl::Program& program, uint32_t requiredFlags,
+                    const std::function<void(const GpuMesh&)>& before = {});
     // Draws one triangle covering the viewport (vertex shader "common/fullscreen.vert.glsl").
     void drawFullscreen();
     // Binds the camera pass textures to units firstUnit.. and sets the samplers of
