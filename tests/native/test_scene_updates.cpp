@@ -114,13 +114,16 @@ TEST(SceneUpdates, AMovedMeshCostsAMatrixAndRendersAsTheMovedGeometry) {
     Layers before = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
     const size_t edgesBefore = scene.meshes()[1].adjacency.edges.size();
 
-    glm::mat4 move = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.4f, 0.6f, 0.1f)), 0.3f,
+    glm::mat4 move = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.4f, 0.6f, 0.0f)), 0.3f,
                                  glm::vec3(0, 0, 1));
     scene.setMeshTransform(1, move);
     Layers moved = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
     EXPECT_EQ(renderer.cacheStats().meshUploads, 3);  // the moved mesh is drawn with its matrix
     EXPECT_EQ(renderer.cacheStats().cameraPasses, 2);
     EXPECT_EQ(renderer.cacheStats().shadowMaps, 2);
+    // Redrawn only where the box was and is (the scene bounds, so the map's fit, are the ground's).
+    EXPECT_EQ(renderer.cacheStats().cameraPassesPatched, 1);
+    EXPECT_EQ(renderer.cacheStats().shadowMapsPatched, 1);
     EXPECT_EQ(scene.meshes()[1].adjacency.edges.size(), edgesBefore);
     EXPECT_NE(before.find("V")->pixels, moved.find("V")->pixels);  // the shadow moved
 
@@ -138,6 +141,26 @@ TEST(SceneUpdates, AMovedMeshCostsAMatrixAndRendersAsTheMovedGeometry) {
     // A second move starts from the coordinates as given, not from the last placement.
     scene.setMeshTransform(1, glm::mat4(1.0f));
     EXPECT_EQ(scene.meshes()[1].positions, boxA().positions);
+
+    // A move that raises the scene's top changes every map's fit: the maps are redrawn whole,
+    // the camera pass is still patched, and the result is still a fresh scene's.
+    const Renderer::CacheStats settled = renderer.cacheStats();
+    const glm::mat4 raise = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 0.5f));
+    scene.setMeshTransform(1, raise);
+    renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    EXPECT_EQ(renderer.cacheStats().shadowMapsPatched, settled.shadowMapsPatched);
+    EXPECT_EQ(renderer.cacheStats().shadowMaps, settled.shadowMaps + 1);
+    EXPECT_EQ(renderer.cacheStats().cameraPassesPatched, settled.cameraPassesPatched + 1);
+    Mesh raised = boxA();
+    for (glm::vec3& p : raised.positions) p = glm::vec3(raise * glm::vec4(p, 1.0f));
+    Scene fresh2;
+    fresh2.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+    fresh2.addMesh(raised);
+    fresh2.addMesh(boxB());
+    fresh2.addLight(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f, "A"));
+    fresh2.addLight(test::makeDiskLight({-1.0f, 0.5f, 3.0f}, 0.5f, "B"));
+    fresh2.setCamera(test::makeTopCamera(64, 48));
+    expectSameAsFresh(renderer, scene, fresh2);
 }
 
 // Where the shadow of a point on the ground plane z = 0 falls in the image: V at that pixel.
@@ -169,6 +192,7 @@ TEST(SceneUpdates, EveryGlMethodDrawsAMovedMeshWithItsMatrixAndTheShadowFollows)
         Renderer::CacheStats s = renderer.cacheStats();
         EXPECT_EQ(s.meshUploads, 2) << method << ": a move uploads nothing";
         EXPECT_EQ(s.cameraPasses, 2) << method;
+        EXPECT_EQ(s.cameraPassesPatched, 1) << method << ": redrawn only where the box was and is";
         EXPECT_LT(vAtShadowOf(before, scene, light, centre), 0.1f) << method;
         EXPECT_GT(vAtShadowOf(before, scene, light, centre + shift), 0.9f) << method;
         EXPECT_GT(vAtShadowOf(after, scene, light, centre), 0.9f) << method << ": the old shadow is gone";

@@ -111,7 +111,33 @@ struct FrameStats {
     // Milliseconds spent in each shared pass, until the GL finished it (the benchmark's
     // per-stage picture; the passes end with glFinish so their work is not billed to the next).
     double uploadMs = 0.0, cameraPassMs = 0.0, shadowMapMs = 0.0;
+    // Of cameraPasses and shadowMaps: those redrawn only inside the screen rectangle that moved
+    // meshes touched (the rest of the pass kept).
+    int cameraPassesPatched = 0, shadowMapsPatched = 0;
 };
+
+// Where each mesh was when a pass was drawn: a pass drawn with `drawn` needs redrawing only
+// where the moved meshes were and are, as long as no mesh changed shape, came or went.
+struct MeshPlacement {
+    uint64_t shapeVersion = 0;
+    glm::mat4 objectToWorld{1.0f};
+    Bounds bounds;  // world
+};
+
+// A window rectangle of a pass (GL orientation: y up), half-open.
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+};
+
+// The world boxes the moves from `drawn` to `now` touched (old and new place of each moved
+// mesh), or nothing when more than moves happened (a mesh added, removed or reshaped).
+std::optional<std::vector<Bounds>> movedBoxes(const std::vector<MeshPlacement>& drawn,
+                                              const std::vector<MeshPlacement>& now);
+// The pixels of a width x height pass drawn with `worldToClip` that the boxes may cover, grown
+// by a margin for rasterisation; nothing when a box reaches behind the eye (redraw it all).
+std::optional<PixelRect> boxesOnScreen(const std::vector<Bounds>& boxes, const glm::mat4& worldToClip, int width,
+                                       int height);
 
 class Frame {
 public:
@@ -174,19 +200,34 @@ public:
 
 private:
     void bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const;
-    // Drops the camera pass and shadow maps whose inputs changed since they were drawn.
+    // Drops the camera pass and shadow maps whose inputs changed since they were drawn; after
+    // moves alone the passes are kept and patched where the moved meshes were and are.
     void dropStalePasses();
+    std::vector<MeshPlacement> placements() const;  // of the scene's meshes now
+    // Draws the camera pass (or the shadow map) into its own targets, inside `rect` only when
+    // one is given.
+    // With a rectangle, meshes whose bounds in `now` fall outside it are not drawn.
+    void drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect,
+                        const std::vector<MeshPlacement>& now);
+    void drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect, const std::vector<MeshPlacement>& now);
+    void drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
+                         const std::function<bool(const GpuMesh&)>& include,
+                         const std::function<void(const GpuMesh&)>& before);
     const Scene* scene_;
     std::vector<GpuMesh> meshes_;
     uint64_t meshesGeometryVersion_ = 0;  // 0: never uploaded
     std::unique_ptr<CameraPass> camera_;
     std::unique_ptr<CameraImages> cameraImages_;
     uint64_t cameraPassCamera_ = 0, cameraPassGeometry_ = 0;  // versions the camera pass shows
+    std::vector<MeshPlacement> cameraPlacements_;            // what the camera pass shows
     uint64_t shadowMapsGeometry_ = 0;                         // the geometry the maps show
+    std::vector<MeshPlacement> shadowMapPlacements_;          // (with their pending boxes)
+    Bounds shadowMapBounds_;                                  // the scene bounds the maps are fit to
     struct CachedShadowMap {
         std::unique_ptr<ShadowMap> map;
         uint64_t lastUse = 0;
         size_t bytes = 0;
+        std::vector<Bounds> pending;  // world boxes moved meshes touched since it was drawn
     };
     std::map<std::pair<uint64_t, int>, CachedShadowMap> shadowMaps_;  // (Light::version, size)
     uint64_t useClock_ = 0;

@@ -51,6 +51,8 @@ struct Renderer::Impl {
         into.shadowMaps += f.stats().shadowMaps;
         into.shadowMapsEvicted += f.stats().shadowMapsEvicted;
         into.shadowMapBytesPeak = std::max(into.shadowMapBytesPeak, f.stats().shadowMapBytesPeak);
+        into.cameraPassesPatched += f.stats().cameraPassesPatched;
+        into.shadowMapsPatched += f.stats().shadowMapsPatched;
         into.uploadMs += f.stats().uploadMs;
         into.cameraPassMs += f.stats().cameraPassMs;
         into.shadowMapMs += f.stats().shadowMapMs;
