@@ -196,7 +196,7 @@ TEST(DbufferVertexClosure, NoLeakInTheShadowAtMultiEdgeVertices) {
         float diameter;
     };
     std::vector<Shadow> scenes;
-    scenes.push_back({"star pyramid", pyramid(star(5, 1.2f, 0.45f), 0.3f, {0, 0, 1.4f}), {0.85f, -1.02f, 4.0f}, 0.6f});
+    scenes.push_back({"star pyramid", pyramid(star(5, 2.0f, 0.8f), 0.3f, {0, 0, 1.4f}), {0.85f, -1.02f, 4.0f}, 0.6f});
     scenes.push_back({"two octahedra", twoOctahedra(), {-3.0f, 0.0f, 2.2f}, 1.5f});
     for (Shadow& sc : scenes) {
         Scene scene;
