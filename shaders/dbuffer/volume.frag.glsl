@@ -28,8 +28,9 @@ const int KIND_QUAD = 0;
 const int KIND_FAN = 1;
 const int KIND_SILHOUETTE_FACE = 2;
 
-// Eq. 2 for the silhouette point e: the ray's point at e's depth below the light plane (this
-// code's form), or the printed ratio the other way up (formula=paper).
+// Eq. 2 for the silhouette point e: the distance of the ray's point at e's depth below the
+// light plane (this code's form: the printed ratio of cosines the other way up), or the printed
+// form (formula=paper), which has no guard: e in the light plane gives an infinity.
 float silhouetteDistance(vec3 e, float cosRay, float dist) {
     vec3 toE = e - uCentre;
     float depthE = dot(toE, uNormal);
