@@ -23,7 +23,7 @@ layout(location = 2) out vec4 oRaw;
 // eq. 3 has (b - a) where this has (d - a), its first-order form at the volume surface.
 float sectionShare(float d, float b, float a) {
     float den = 2.0 * b * (d - a);
-    return den > 0.0 ? a * (d - b) / den : 0.5;
+    return den > 0.0 || isnan(den) ? a * (d - b) / den : 0.5;  // a NaN passes on to oRaw
 }
 
 // Eq. 3's fraction exactly as printed: |cx_s| (|cx| - |cx_v|) / (2 |cx_v| (|cx_v| - |cx_s|)).
@@ -31,6 +31,13 @@ float printedShare(float d, float b, float a) { return a * (d - b) / (2.0 * b * 
 
 // clamp() of a NaN is undefined in GLSL; comparisons with NaN are false, so this keeps it.
 float clampKeepNaN(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
+
+// The distance layers users get stay finite (0 = "no such surface"); oRaw keeps the truth.
+vec4 finiteOrZero(vec4 v) {
+    bvec4 bad = bvec4(isnan(v.x) || isinf(v.x), isnan(v.y) || isinf(v.y), isnan(v.z) || isinf(v.z),
+                      isnan(v.w) || isinf(v.w));
+    return vec4(bad.x ? 0.0 : v.x, bad.y ? 0.0 : v.y, bad.z ? 0.0 : v.z, bad.w ? 0.0 : v.w);
+}
 
 void main() {
     Surface s = loadSurface(ivec2(gl_FragCoord.xy));
@@ -109,6 +116,7 @@ void main() {
         V = (theta - sin(theta)) / (2.0 * 3.14159265358979);
     }
     oRaw = vec4(rawT, V, a, b);
+    oDistances = finiteOrZero(oDistances);
     // The contract's V is finite and in [0, 1]; oRaw above is where a non-finite value shows.
     oResult.x = isnan(V) ? 1.0 : clamp(V, 0.0, 1.0);
 }

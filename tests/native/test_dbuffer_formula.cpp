@@ -54,6 +54,32 @@ TEST(DbufferRaw, RawLayersAreFiniteOnTheSharedScenes) {
     EXPECT_EQ(renderWith(sceneBox(), "dbuffer").find("raw_t"), nullptr);
 }
 
+// The raw layer sees what the shaders compute: a pillar whose top lies in the light's plane
+// puts silhouette edges at depth 0, where the printed eq. 2 divides by zero (dir(c, e)·n = 0).
+// With formula=paper raw_t is not finite there (measured 100 pixels) while every layer users get
+// stays finite; the default form has no such division.
+TEST(DbufferRaw, AnInfinityFromTheShadersShowsInTheRawLayerOnly) {
+    Scene scene;
+    scene.addMesh(makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    scene.addMesh(makeBox({1.0f, -0.5f, 0.5f}, {1.6f, 0.5f, 4.0f}, SS_MESH_CAST | SS_MESH_RECEIVE));
+    scene.addLight(makeDiskLight({0.0f, 0.0f, 4.0f}, 1.5f));
+    scene.setCamera(makeTopCamera());
+    Layers paper = renderWith(scene, "dbuffer", {{"formula", "paper"}, {"raw_layers", "true"}});
+    Layers exact = renderWith(scene, "dbuffer", {{"raw_layers", "true"}});
+    RawCounts p = rawCounts(paper), e = rawCounts(exact);
+    std::printf("[dbuffer] pillar to the light's plane: raw not finite: paper %zu, exact %zu\n", p.nonFinite,
+                e.nonFinite);
+    EXPECT_GT(p.nonFinite, 20u);
+    EXPECT_EQ(e.nonFinite, 0u);
+    for (const Layers* l : {&paper, &exact})
+        for (auto& [name, img] : l->items) {
+            if (name == "raw_t" || name == "raw_V") continue;
+            size_t bad = 0;
+            for (float v : img.pixels) bad += !std::isfinite(v);
+            EXPECT_EQ(bad, 0u) << name;
+        }
+}
+
 // formula=paper on the shared scenes against the default and the reference: the printed branch
 // condition sends a point the centre sees (|cx| < |cx_o|) to the umbra volume's form, which the
 // ray to a lit point never crosses (t = 1), and a point in the centre's hard shadow to the
