@@ -105,7 +105,8 @@ TEST(PaperPropertiesPenumbraMap, NoLitSliverBesideASteepEdge) {
         litSliver += r < 0.8f && v.pixels[i] > 0.99f;
     }
     Metrics all = compareToReference(pm, ref);
-    std::printf("[penumbra_map] steep plate: %zu px in the reference's penumbra outside the hard shadow, mean |V - ref| %.3f there, "
+    std::printf("[penumbra_map] steep plate: %zu px in the reference's penumbra outside the hard shadow, "
+                "mean |V - ref| %.3f there, "
                 "%zu fully lit where the reference is below 0.8; image %s\n",
                 penumbra, penumbra ? sumError / double(penumbra) : 0.0, litSliver, all.toString().c_str());
     ASSERT_GT(penumbra, 500u);
