@@ -68,9 +68,9 @@ TEST(PaperPropertiesPenumbraMap, DarkestWinsWhereTwoPenumbraeOverlap) {
 // 3 m disk at 4): its long silhouette edges run from a small cone to one over twenty times wider,
 // their lines passing 2.1 m from the light's centre. The sheets lie in the plane through the
 // edge tangent to the light (cones_sheets.cpp); beside those edges, in the outer penumbra, the
-// error against the reference is 0.124 (measured; the earlier sheets, each end pushed out by its
-// own cone radius, measured 0.140 here: their plane cuts through the light, so points between it
-// and the tangent plane, which still see the light partly blocked, read fully lit).
+// error against the reference is 0.124 (measured; sheets with each end pushed out by its own
+// cone radius measure 0.140 here: their plane cuts through the light, so points between it and
+// the tangent plane, which still see the light partly blocked, read fully lit).
 Scene steepPlate() {
     Scene s;
     s.addMesh(makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));

@@ -190,9 +190,9 @@ struct FarTriangle {
 // No sliver between a sheet and its cones: an edge whose ends lie at depths 1 and 4 under a
 // wide light (far-plane cone radii 9 and 1.5). The penumbra's footprint on the outer side of
 // the edge, as the light centre sees it, is the outer half of the convex hull of the two base
-// circles; every sampled point of it must lie under a cone or the sheet. The old construction
-// (each end pushed out by its own radius, perpendicular to the edge's image) left a wedge of
-// that region uncovered here; the test also counts the samples that fall in that wedge.
+// circles; every sampled point of it must lie under a cone or the sheet. A sheet with each end
+// pushed out by its own radius, perpendicular to the edge's image, leaves a wedge of that region
+// uncovered here (378 samples); the test also counts the samples in that wedge, so it can tell.
 TEST(PenumbraMapGeometry, NoSliverBetweenASheetAndItsConesWhenTheRadiiDiffer) {
     // One triangle, its long edge steep in depth: the silhouette is its three edges.
     Mesh m;
@@ -229,7 +229,7 @@ TEST(PenumbraMapGeometry, NoSliverBetweenASheetAndItsConesWhenTheRadiiDiffer) {
     // The outer common tangent's normal n: n . (B - A) = rA - rB, on the outer side.
     const float cosT = (A.radius - B.radius) / D;
     const glm::vec2 n = cosT * axis + std::sqrt(1.0f - cosT * cosT) * out;
-    size_t samples = 0, uncovered = 0, inOldWedge = 0;
+    size_t samples = 0, uncovered = 0, inOffsetWedge = 0;
     for (int i = 0; i <= 200; ++i)
         for (int j = 0; j <= 100; ++j) {
             // Points over a box around the hull's outer half, kept when inside it: on the outer
@@ -251,16 +251,16 @@ TEST(PenumbraMapGeometry, NoSliverBetweenASheetAndItsConesWhenTheRadiiDiffer) {
             bool covered = false;
             for (const FarTriangle& t : tris) covered = covered || t.contains(p);
             uncovered += !covered;
-            // The old sheet: A + rA out to B + rB out; the wedge beyond it, outside both circles.
+            // The radius-offset sheet: A + rA out to B + rB out; the wedge beyond it, outside both circles.
             glm::vec2 oa = A.centre + A.radius * out, ob = B.centre + B.radius * out;
             glm::vec2 od = glm::normalize(ob - oa);
-            bool beyondOld = (od.x * (p - oa).y - od.y * (p - oa).x) > 0.0f;
-            inOldWedge += !inA && !inB && beyondOld;
+            bool beyondOffset = (od.x * (p - oa).y - od.y * (p - oa).x) > 0.0f;
+            inOffsetWedge += !inA && !inB && beyondOffset;
         }
     std::printf("[penumbra_map] sliver check: %zu samples of the hull's outer half, %zu uncovered, "
-                "%zu in the wedge the radius offset left open\n", samples, uncovered, inOldWedge);
+                "%zu in the wedge a radius-offset sheet leaves open\n", samples, uncovered, inOffsetWedge);
     EXPECT_GT(samples, 5000u);
-    EXPECT_GT(inOldWedge, 100u) << "the sampled region must include the old construction's sliver";
+    EXPECT_GT(inOffsetWedge, 100u) << "the sampled region must include the radius-offset sheet's sliver";
     EXPECT_EQ(uncovered, 0u);
 }
 
