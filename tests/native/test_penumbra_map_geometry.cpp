@@ -264,6 +264,39 @@ TEST(PenumbraMapGeometry, NoSliverBetweenASheetAndItsConesWhenTheRadiiDiffer) {
     EXPECT_EQ(uncovered, 0u);
 }
 
+// An edge whose line passes through the light's disk has no tangent plane: its sheet passes
+// through the disk's rim point nearest where the line meets the light's plane. Still one finite
+// quad whose far corners lie on their cones' base circles.
+TEST(PenumbraMapGeometry, EdgeAimedThroughTheLightStillGetsAFiniteSheet) {
+    Mesh m;
+    m.name = "aimed";
+    // Edge (0, 1) lies on a line through (0.2, 0, 2), inside the light's 0.5 disk.
+    m.positions = {{0.3f, 0.0f, 1.0f}, {0.5f, 0.0f, -1.0f}, {1.0f, 0.8f, 0.0f}};
+    m.triangles = {{0, 1, 2}};
+    m.flags = SS_MESH_CAST;
+    m.finalize();
+    PenumbraLight l = overhead(0.5f);
+    PointSilhouette sil = pointSilhouette(m, l.centre);
+    ConesSheets g = buildConesSheets(m, sil, l);
+    size_t checked = 0;
+    for (size_t i = 0; i < sil.edges.size(); ++i) {
+        const SilhouetteEdge& e = sil.edges[i];
+        if (!((e.a == 0 && e.b == 1) || (e.a == 1 && e.b == 0))) continue;
+        int s = g.sheetOfEdge[i];
+        ASSERT_GE(s, 0);
+        uint32_t first = g.triangles[g.sheetFirstTriangle[s]][0];
+        for (int end = 0; end < 2; ++end) {
+            const ConeSheetVertex& q = g.vertices[first + 2 * end + 1];
+            ASSERT_TRUE(std::isfinite(q.position.x) && std::isfinite(q.position.y) && std::isfinite(q.position.z));
+            FarCircle c = farCircle(l, g.vertices[first + 2 * end].position);
+            EXPECT_NEAR(q.position.z, l.centre.z - l.farDepth, 1e-4f);
+            EXPECT_NEAR(glm::length(glm::vec2(q.position) - c.centre), c.radius, 1e-3f * (1.0f + c.radius));
+        }
+        ++checked;
+    }
+    EXPECT_EQ(checked, 1u);
+}
+
 TEST(PenumbraMapGeometry, SheetsLieOutsideTheOccludersImage) {
     Mesh m = box({-1, -0.5f, -0.3f}, {0.7f, 1, 0.2f});
     PenumbraLight l = overhead(0.3f);
