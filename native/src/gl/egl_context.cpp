@@ -60,6 +60,7 @@ const EglApi& eglApi() {
 #define SS_EGL_LOOKUP(type, member, name) get(a.member, #name);
         SS_EGL_REQUIRED_FUNCTIONS(SS_EGL_LOOKUP)
 #undef SS_EGL_LOOKUP
+#undef SS_EGL_REQUIRED_FUNCTIONS
         const char* client = a.queryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
         std::string clientExtensions = client ? client : "";
         if (clientExtensions.find("EGL_EXT_device_enumeration") != std::string::npos ||
