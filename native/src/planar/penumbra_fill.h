@@ -11,8 +11,9 @@
 
 namespace ss::planar {
 
-// smooth: Gouraud between ring intensities (the paper); steps: count / n, flat per region.
-enum class FillMode { Smooth, Steps };
+// smooth: the merged sweep's trapezoids, Gouraud between ring intensities; steps: count / n,
+// flat per region; rings: the paper's strips walked between neighbouring rings (ring_fill.h).
+enum class FillMode { Smooth, Steps, Rings };
 
 struct ShadowVertex {
     double x = 0, y = 0;      // grid coordinates

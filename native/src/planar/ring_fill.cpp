@@ -1,0 +1,460 @@
+// How the ring fill labels each strip's boundary points with their rings, bridges holes and
+// walks the strip into triangles.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "planar/ring_fill.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <queue>
+#include <tuple>
+
+#include "planar/outline.h"
+
+namespace ss::planar {
+
+namespace {
+
+constexpr uint8_t kLower = 1;  // ring k, the strip's outer side
+constexpr uint8_t kUpper = 2;  // ring k+1
+
+bool lessPoint(const IPoint& a, const IPoint& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; }
+using RingMask = std::map<IPoint, uint8_t, decltype(&lessPoint)>;
+
+int64_t cross(const IPoint& a, const IPoint& b, const IPoint& c) {
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+// The merged field's winding at a point off the grid lines (px not an integer).
+int windingAt(std::span<const SweepSegment> segs, double px, double py) {
+    int w = 0;
+    for (const SweepSegment& s : segs) {
+        if (!(double(s.seg.lo.x) < px && px < double(s.seg.hi.x))) continue;
+        double y = double(s.seg.lo.y) + (px - double(s.seg.lo.x)) * double(s.seg.dy()) / double(s.seg.dx());
+        if (y < py) w += s.delta;
+    }
+    return w;
+}
+
+bool onInterior(const DirectedEdge& e, const IPoint& p) {
+    if (p == e.a || p == e.b || cross(e.a, e.b, p) != 0) return false;
+    return std::min(e.a.x, e.b.x) <= p.x && p.x <= std::max(e.a.x, e.b.x) && std::min(e.a.y, e.b.y) <= p.y &&
+           p.y <= std::max(e.a.y, e.b.y);
+}
+
+// The strip {count == k}'s boundary edges, each with the ring it lies on.
+struct LabelledBoundary {
+    std::vector<DirectedEdge> edges;  // as regionBoundary gives them (no vertical pieces)
+    std::vector<DirectedEdge> all;    // with the vertical pieces linkChains adds
+    std::vector<uint8_t> ring;        // per edge of `all`
+};
+
+LabelledBoundary labelledBoundary(std::span<const SweepSegment> segs, int k, bool umbra) {
+    LabelledBoundary b;
+    std::vector<int> outside;
+    b.edges = regionBoundary(segs, [k, umbra](int w) { return umbra ? w >= k : w == k; }, &outside);
+    b.all = b.edges;
+    for (int o : outside) b.ring.push_back(o < k ? kLower : kUpper);
+    addVerticalConnectors(&b.all);
+    // A vertical piece is in no slab: read the winding just outside it (the region is on the
+    // right, so outside is east of a piece going down, west of one going up).
+    for (size_t i = b.edges.size(); i < b.all.size(); ++i) {
+        const DirectedEdge& e = b.all[i];
+        bool down = (e.b.y < e.a.y) == (e.weight > 0);
+        double px = double(e.a.x) + (down ? 0.5 : -0.5);
+        int w = windingAt(segs, px, 0.5 * double(e.a.y + e.b.y));
+        b.ring.push_back(w < k ? kLower : w > k ? kUpper : uint8_t(kLower | kUpper));
+    }
+    return b;
+}
+
+// Links the strip's boundary into closed chains with the region on the LEFT (outer chains
+// counter-clockwise, holes clockwise), every point kept. Where a chain meets itself or another
+// (rings touching at a crossing point), each incoming edge continues along the first outgoing
+// edge clockwise from where it came from, so the chains touch there without crossing and
+// each visit's wedge is a wedge of the region.
+std::vector<Chain> linkForWalk(std::span<const DirectedEdge> all) {
+    std::vector<std::pair<IPoint, IPoint>> edges;
+    for (const DirectedEdge& e : all)
+        for (int k = 0; k < std::abs(e.weight); ++k)
+            edges.push_back(e.weight > 0 ? std::make_pair(e.b, e.a) : std::make_pair(e.a, e.b));
+    std::map<IPoint, std::vector<int>, decltype(&lessPoint)> outgoing(&lessPoint);
+    for (size_t i = 0; i < edges.size(); ++i) outgoing[edges[i].first].push_back(int(i));
+    std::vector<bool> used(edges.size(), false);
+    std::vector<Chain> chains;
+    for (size_t start = 0; start < edges.size(); ++start) {
+        if (used[start]) continue;
+        Chain chain;
+        size_t e = start;
+        for (;;) {
+            used[e] = true;
+            chain.push_back(edges[e].first);
+            const IPoint from = edges[e].first, at = edges[e].second;
+            if (at == edges[start].first) break;
+            const double back = std::atan2(double(from.y - at.y), double(from.x - at.x));
+            int best = -1;
+            double bestTurn = 0;
+            for (int o : outgoing[at]) {
+                if (used[size_t(o)]) continue;
+                const IPoint& to = edges[size_t(o)].second;
+                double turn = std::fmod(back - std::atan2(double(to.y - at.y), double(to.x - at.x)) + 4.0 * M_PI, 2.0 * M_PI);
+                if (turn == 0.0) turn = 2.0 * M_PI;
+                if (best < 0 || turn < bestTurn) {
+                    best = o;
+                    bestTurn = turn;
+                }
+            }
+            if (best < 0) break;  // cannot happen when every balance is zero
+            e = size_t(best);
+        }
+        if (chain.size() >= 3) chains.push_back(std::move(chain));
+    }
+    return chains;
+}
+
+struct Node {
+    IPoint p;
+    uint8_t rings = 0;
+    int prev = -1, next = -1;
+    int version = 0;  // bumped when a neighbour changes, so queued candidates go stale
+    bool removed = false;
+};
+
+// One piece of a strip: an outer chain with its holes bridged in, walked into triangles.
+class EarWalk {
+public:
+    explicit EarWalk(std::vector<Node>* nodes) : n_(*nodes) {}
+
+    // Links `chain` (counter-clockwise for an outer boundary, clockwise for a hole) as a cycle;
+    // returns one of its nodes.
+    int link(const std::vector<IPoint>& chain, const RingMask& mask) {
+        int first = int(n_.size());
+        for (size_t i = 0; i < chain.size(); ++i) {
+            Node nd;
+            nd.p = chain[i];
+            auto it = mask.find(chain[i]);
+            nd.rings = it == mask.end() ? 0 : it->second;
+            nd.prev = first + int((i + chain.size() - 1) % chain.size());
+            nd.next = first + int((i + 1) % chain.size());
+            n_.push_back(nd);
+        }
+        return first;
+    }
+
+    // Joins a hole (starting at its leftmost node) to the polygon through `outer`.
+    bool bridge(int outer, int hole) {
+        int m = findBridge(outer, hole);
+        if (m < 0) return false;
+        int a2 = int(n_.size()), b2 = a2 + 1;
+        const Node nm = n_[m], nh = n_[hole];
+        n_.push_back(nm);
+        n_.push_back(nh);
+        int an = n_[m].next, bp = n_[hole].prev;
+        n_[m].next = hole;
+        n_[hole].prev = m;
+        n_[a2].next = an;
+        n_[an].prev = a2;
+        n_[b2].next = a2;
+        n_[a2].prev = b2;
+        n_[bp].next = b2;
+        n_[b2].prev = bp;
+        return true;
+    }
+
+    // Cuts the polygon through `start` into triangles; false when it gets stuck.
+    bool walk(int start, std::vector<std::array<int, 3>>* tris) {
+        using Key = std::tuple<int, double, int, int>;  // (bay?, diagonal², node, version)
+        std::priority_queue<Key, std::vector<Key>, std::greater<Key>> queue;
+        auto push = [&](int b) {
+            const Node& nb = n_[b];
+            const Node &na = n_[nb.prev], &nc = n_[nb.next];
+            double dx = double(nc.p.x - na.p.x), dy = double(nc.p.y - na.p.y);
+            int bay = (na.rings & nb.rings & nc.rings) != 0 ? 1 : 0;
+            // A spike (a, b, c on a line, b not between a and c) encloses nothing: dropped first.
+            if (cross(na.p, nb.p, nc.p) == 0 &&
+                (nb.p.x - na.p.x) * (nc.p.x - nb.p.x) + (nb.p.y - na.p.y) * (nc.p.y - nb.p.y) <= 0)
+                bay = -1;
+            queue.push(Key{bay, dx * dx + dy * dy, b, nb.version});
+        };
+        int left = 0;
+        for (int i = start;;) {
+            ++left;
+            i = n_[i].next;
+            if (i == start) break;
+        }
+        while (left > 3) {
+            // Candidates refused earlier may have been blocked by points since cut away.
+            int alive = start;
+            while (n_[alive].removed) alive = n_[alive].next;
+            for (int i = alive;;) {
+                push(i);
+                i = n_[i].next;
+                if (i == alive) break;
+            }
+            bool progress = false;
+            while (!queue.empty() && left > 3) {
+                auto [bay, d2, b, version] = queue.top();
+                queue.pop();
+                if (n_[b].removed || n_[b].version != version) continue;
+                int a = n_[b].prev, c = n_[b].next;
+                if (bay >= 0 && !isEar(a, b, c)) continue;
+                if (bay >= 0) tris->push_back({a, b, c});
+                n_[b].removed = true;
+                n_[a].next = c;
+                n_[c].prev = a;
+                ++n_[a].version;
+                ++n_[c].version;
+                start = a;
+                --left;
+                progress = true;
+                push(a);
+                push(c);
+            }
+            if (left <= 3) break;
+            if (!progress) return false;
+        }
+        int a = start, b = n_[a].next, c = n_[b].next;
+        if (left == 3 && cross(n_[a].p, n_[b].p, n_[c].p) > 0) tris->push_back({a, b, c});
+        return true;
+    }
+
+    const Node& node(int i) const { return n_[i]; }
+
+private:
+    // Inside the wedge at node p (interior on the left of prev -> p -> next)?
+    bool inWedge(int p, double x, double y) const {
+        const IPoint &a = n_[n_[p].prev].p, &b = n_[p].p, &c = n_[n_[p].next].p;
+        auto side = [](const IPoint& u, const IPoint& v, double x, double y) {
+            return double(v.x - u.x) * (y - double(u.y)) - double(v.y - u.y) * (x - double(u.x));
+        };
+        bool l1 = side(a, b, x, y) > 0, l2 = side(b, c, x, y) > 0;
+        return cross(a, b, c) > 0 ? (l1 && l2) : (l1 || l2);
+    }
+
+    // No other point of the polygon in the triangle or on its sides, and no other wedge at one
+    // of its corners reaching into it: then cutting it leaves the rest a polygon and overlaps
+    // nothing.
+    bool isEar(int a, int b, int c) const {
+        const IPoint &pa = n_[a].p, &pb = n_[b].p, &pc = n_[c].p;
+        if (cross(pa, pb, pc) <= 0) return false;
+        double cx = double(pa.x + pb.x + pc.x) / 3.0, cy = double(pa.y + pb.y + pc.y) / 3.0;
+        for (int p = n_[c].next; p != a; p = n_[p].next) {
+            const IPoint& q = n_[p].p;
+            if (q == pa || q == pb || q == pc) {
+                if (inWedge(p, cx, cy)) return false;
+                continue;
+            }
+            if (cross(pa, pb, q) >= 0 && cross(pb, pc, q) >= 0 && cross(pc, pa, q) >= 0) return false;
+        }
+        return true;
+    }
+
+    // The outer node the hole's leftmost node can see: the nearest polygon edge to its left
+    // along its row, then the point of smallest angle inside the triangle that leaves.
+    int findBridge(int outer, int hole) const {
+        const IPoint h = n_[hole].p;
+        double qx = -INFINITY;
+        int m = -1;
+        int p = outer;
+        do {
+            const IPoint &u = n_[p].p, &v = n_[n_[p].next].p;
+            if (h.y <= u.y && h.y >= v.y && v.y != u.y) {
+                double x = double(u.x) + double(h.y - u.y) * double(v.x - u.x) / double(v.y - u.y);
+                if (x <= double(h.x) && x > qx) {
+                    qx = x;
+                    m = u.x < v.x ? p : n_[p].next;
+                    if (x == double(h.x)) return m;
+                }
+            }
+            p = n_[p].next;
+        } while (p != outer);
+        if (m < 0) return -1;
+        const int stop = m;
+        const IPoint mp = n_[m].p;
+        double tanMin = INFINITY;
+        p = m;
+        do {
+            const IPoint& q = n_[p].p;
+            if (h.x >= q.x && q.x >= mp.x && h.x != q.x && inTriangle(h.y < mp.y ? double(h.x) : qx, double(h.y), mp,
+                                                                      h.y < mp.y ? qx : double(h.x), q)) {
+                double tan = std::abs(double(h.y - q.y)) / double(h.x - q.x);
+                if (inWedge(p, double(h.x), double(h.y)) && (tan < tanMin || (tan == tanMin && q.x > n_[m].p.x))) {
+                    m = p;
+                    tanMin = tan;
+                }
+            }
+            p = n_[p].next;
+        } while (p != stop);
+        return m;
+    }
+
+    static bool inTriangle(double ax, double ay, const IPoint& b, double cx, const IPoint& q) {
+        double cy = ay;
+        double px = double(q.x), py = double(q.y);
+        return (cx - px) * (ay - py) >= (ax - px) * (cy - py) &&
+               (ax - px) * (double(b.y) - py) >= (double(b.x) - px) * (ay - py) &&
+               (double(b.x) - px) * (cy - py) >= (cx - px) * (double(b.y) - py);
+    }
+
+    std::vector<Node>& n_;
+};
+
+bool pointInChain(const Chain& chain, const IPoint& p) {
+    bool in = false;
+    for (size_t i = 0, j = chain.size() - 1; i < chain.size(); j = i++) {
+        const IPoint &a = chain[i], &b = chain[j];
+        if ((a.y > p.y) != (b.y > p.y)) {
+            // p.x < x of the edge at p.y, exactly: sign of the cross product against the edge.
+            i128 lhs = i128(p.x - a.x) * (b.y - a.y), rhs = i128(b.x - a.x) * (p.y - a.y);
+            if ((b.y > a.y) ? lhs < rhs : lhs > rhs) in = !in;
+        }
+    }
+    return in;
+}
+
+void emitFlatTrapezoids(std::span<const SweepSegment> segs, const RegionFn& inside, int n, ShadowMesh* mesh,
+                        const std::function<float(const Trapezoid&, int corner)>& value) {
+    for (const Trapezoid& t : trapezoids(segs, inside)) {
+        bool umbra = t.winding >= n;
+        mesh->shadowArea += t.area();
+        if (umbra) mesh->umbraArea += t.area();
+        int tris[2][3];
+        int nt = triangulateCorners(t, tris);
+        for (int i = 0; i < nt; ++i) {
+            for (int k : tris[i]) {
+                mesh->indices.push_back(uint32_t(mesh->vertices.size()));
+                mesh->vertices.push_back(ShadowVertex{cornerX(t, k), cornerY(t, k), value(t, k)});
+            }
+            (umbra ? mesh->umbraTriangles : mesh->penumbraTriangles)++;
+        }
+    }
+}
+
+// Strip k (or with `umbra` the umbra, count >= k = n, flat 1) walked into triangles appended to
+// `mesh`; false (mesh untouched) when a piece could not be walked. The umbra is walked on the
+// same rounded chains as the strips around it, so the two meet without slivers.
+bool walkStrip(std::span<const SweepSegment> segs, int k, int n, bool umbra, ShadowMesh* mesh, RingFillStats* stats) {
+    LabelledBoundary lb = labelledBoundary(segs, k, umbra);
+    if (lb.edges.empty()) return true;
+    RingMask mask(&lessPoint);
+    for (size_t i = 0; i < lb.all.size(); ++i) {
+        mask[lb.all[i].a] |= lb.ring[i];
+        mask[lb.all[i].b] |= lb.ring[i];
+    }
+    // A point of one ring touching the other inside one of its edges is on both.
+    for (auto& [p, bits] : mask)
+        for (size_t i = 0; i < lb.all.size(); ++i)
+            if ((bits | lb.ring[i]) != bits && onInterior(lb.all[i], p)) bits |= lb.ring[i];
+
+    std::vector<Chain> chains = linkForWalk(lb.all);
+
+    std::vector<Chain> outers, holes;
+    for (Chain& c : chains) (twiceSignedArea(c) > 0 ? outers : holes).push_back(std::move(c));
+    std::vector<std::vector<size_t>> holesOf(outers.size());
+    for (size_t h = 0; h < holes.size(); ++h) {
+        size_t best = outers.size();
+        double bestArea = INFINITY;
+        for (size_t o = 0; o < outers.size(); ++o) {
+            // A hole point not on the outer chain decides; touching points say nothing.
+            bool inside = false;
+            for (const IPoint& p : holes[h]) {
+                if (std::find(outers[o].begin(), outers[o].end(), p) != outers[o].end()) continue;
+                inside = pointInChain(outers[o], p);
+                break;
+            }
+            double area = double(twiceSignedArea(outers[o]));
+            if (inside && area < bestArea) {
+                best = o;
+                bestArea = area;
+            }
+        }
+        if (best == outers.size()) return false;
+        holesOf[best].push_back(h);
+    }
+
+    const float lo = umbra ? 1.0f : ringIntensity(k, n), hi = umbra ? 1.0f : std::min(1.0f, ringIntensity(k + 1, n));
+    ShadowMesh out;
+    RingFillStats s;
+    for (size_t o = 0; o < outers.size(); ++o) {
+        std::vector<Node> nodes;
+        EarWalk walk(&nodes);
+        int start = walk.link(outers[o], mask);
+        // Holes bridged left to right, each from its leftmost point.
+        std::vector<std::pair<IPoint, int>> starts;
+        for (size_t h : holesOf[o]) {
+            int first = walk.link(holes[h], mask);
+            int left = first;
+            for (int i = first; i < first + int(holes[h].size()); ++i)
+                if (lessPoint(nodes[i].p, nodes[left].p)) left = i;
+            starts.push_back({nodes[left].p, left});
+        }
+        std::sort(starts.begin(), starts.end(), [](auto& a, auto& b) { return lessPoint(a.first, b.first); });
+        for (auto& [p, left] : starts)
+            if (!walk.bridge(start, left)) return false;
+        std::vector<std::array<int, 3>> tris;
+        if (!walk.walk(start, &tris)) return false;
+        i128 twice = twiceSignedArea(outers[o]), covered = 0;
+        for (size_t h : holesOf[o]) twice += twiceSignedArea(holes[h]);
+        for (const auto& t : tris) covered += cross(walk.node(t[0]).p, walk.node(t[1]).p, walk.node(t[2]).p);
+        if (covered != twice) return false;  // a strip not tiled exactly is not shown  // a strip not tiled exactly is not shown
+        for (const auto& t : tris) {
+            uint8_t r0 = walk.node(t[0]).rings, r1 = walk.node(t[1]).rings, r2 = walk.node(t[2]).rings;
+            // A bay: every corner on the same one ring, so flat. A leak triangle: corners on one
+            // ring and crossing points, interpolating from the crossing's mean to that ring.
+            bool bay = r0 == r1 && r1 == r2 && (r0 == kLower || r0 == kUpper);
+            bool strip = ((r0 | r1 | r2) & kLower) && ((r0 | r1 | r2) & kUpper) && !((r0 & r1 & r2) & kLower) &&
+                         !((r0 & r1 & r2) & kUpper);
+            if (!umbra) (bay ? s.bayTriangles : strip ? s.stripTriangles : s.leakTriangles)++;
+            for (int i : t) {
+                const Node& v = walk.node(i);
+                float value = v.rings == kUpper ? hi : v.rings == (kLower | kUpper) ? 0.5f * (lo + hi) : lo;
+                out.indices.push_back(uint32_t(out.vertices.size()));
+                out.vertices.push_back(ShadowVertex{double(v.p.x), double(v.p.y), value});
+            }
+            (umbra ? out.umbraTriangles : out.penumbraTriangles)++;
+        }
+        out.shadowArea += double(twice) / 2.0;
+        if (umbra) out.umbraArea += double(twice) / 2.0;
+    }
+    if (!umbra)
+        for (const auto& [p, bits] : mask) s.crossingVertices += bits == (kLower | kUpper);
+    const uint32_t base = uint32_t(mesh->vertices.size());
+    mesh->vertices.insert(mesh->vertices.end(), out.vertices.begin(), out.vertices.end());
+    for (uint32_t i : out.indices) mesh->indices.push_back(base + i);
+    mesh->penumbraTriangles += out.penumbraTriangles;
+    mesh->umbraTriangles += out.umbraTriangles;
+    mesh->shadowArea += out.shadowArea;
+    mesh->umbraArea += out.umbraArea;
+    if (stats) {
+        stats->stripTriangles += s.stripTriangles;
+        stats->bayTriangles += s.bayTriangles;
+        stats->leakTriangles += s.leakTriangles;
+        stats->crossingVertices += s.crossingVertices;
+    }
+    return true;
+}
+
+}  // namespace
+
+ShadowMesh fillRings(std::span<const DirectedEdge> mergedEdges, int samples, RingFillStats* stats) {
+    ShadowMesh mesh;
+    std::vector<SweepSegment> segs = toSweepSegments(mergedEdges);
+    const int n = std::max(samples, 1);
+    for (int k = 1; k <= n; ++k) {
+        const bool umbra = k == n;
+        if (walkStrip(segs, k, n, umbra, &mesh, stats)) continue;
+        // Fallback: the region's trapezoids, each side at the intensity of the ring it lies on.
+        if (stats) stats->fallbackStrips++;
+        const float lo = umbra ? 1.0f : ringIntensity(k, n), hi = umbra ? 1.0f : std::min(1.0f, ringIntensity(k + 1, n));
+        emitFlatTrapezoids(segs, [k, umbra](int w) { return umbra ? w >= k : w == k; }, n, &mesh,
+                           [&](const Trapezoid& t, int corner) {
+                               int across = corner < 2 ? t.windingBelow : t.windingAbove;
+                               return across < k ? lo : hi;
+                           });
+    }
+    return mesh;
+}
+
+}  // namespace ss::planar
