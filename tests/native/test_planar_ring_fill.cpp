@@ -107,8 +107,11 @@ TEST(PlanarRingFill, NestedSquaresStripIsWalkedBetweenTheRings) {
         Hit h = sampleAt(m, x, y);
         ASSERT_EQ(h.triangles, 1) << x << "," << y;
         bool umbra = x > 30 && x < 70 && y > 30 && y < 70;
-        if (umbra) EXPECT_NEAR(h.value, 1.0, 1e-12);
-        else EXPECT_TRUE(h.value >= 0.0 && h.value <= 1.0);
+        if (umbra) {
+            EXPECT_NEAR(h.value, 1.0, 1e-12);
+        } else {
+            EXPECT_TRUE(h.value >= 0.0 && h.value <= 1.0);
+        }
     }
 }
 
@@ -132,8 +135,8 @@ TEST(PlanarRingFill, CrossingPointTakesTheMeanOfItsTwoRings) {
         bool umbra = c[0]->intensity == 1.0f && c[1]->intensity == 1.0f && c[2]->intensity == 1.0f;
         for (const ShadowVertex* v : c) {
             bool crossing = (v->x == 100 && v->y == 50) || (v->x == 50 && v->y == 100);
-            bool inner = (v->x == 50 || v->x == 100) && v->y >= 50 && v->y <= 100 ||
-                         (v->y == 50 || v->y == 100) && v->x >= 50 && v->x <= 100;
+            bool inner = ((v->x == 50 || v->x == 100) && v->y >= 50 && v->y <= 100) ||
+                         ((v->y == 50 || v->y == 100) && v->x >= 50 && v->x <= 100);
             if (umbra) continue;
             if (crossing) {
                 EXPECT_EQ(v->intensity, 0.5f);
@@ -152,7 +155,9 @@ TEST(PlanarRingFill, CrossingPointTakesTheMeanOfItsTwoRings) {
         int count = countAt(rects, x, y);
         Hit h = sampleAt(m, x, y);
         ASSERT_EQ(h.triangles, count > 0 ? 1 : 0) << x << "," << y;
-        if (count == 2) EXPECT_NEAR(h.value, 1.0, 1e-12);
+        if (count == 2) {
+            EXPECT_NEAR(h.value, 1.0, 1e-12);
+        }
     }
 }
 
@@ -181,6 +186,10 @@ TEST(PlanarRingFill, CrossingPointMeanDependsOnTheStrip) {
     for (float v : crossingValues[2]) EXPECT_EQ(v, 0.75f);
     EXPECT_EQ(m.shadowArea, 350.0 * 350.0);
     EXPECT_EQ(m.umbraArea, 2500.0);
+    // The same areas as the level-set rings (planar::buildRings, the rings' definition).
+    std::vector<Ring> levels = buildRings(merged, 3);
+    EXPECT_EQ(m.shadowArea, regionArea(levels[0].chains));
+    EXPECT_EQ(m.umbraArea, regionArea(levels[2].chains));
 }
 
 // Random occluders (triangle soups shifted per sample, as in PlanarRings): the ring fill covers

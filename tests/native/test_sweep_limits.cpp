@@ -181,8 +181,12 @@ TEST(SweepLimits, PenumbraWidthGrowsWithSampleCount) {
         double ratio = penumbraWidth(p, 1e-6) / kTrueWidth;
         std::printf("n=%d: penumbra width %.3f of the true %.3f (%.3f)\n", n, ratio * kTrueWidth, kTrueWidth, ratio);
         EXPECT_LE(ratio, 1.0 + 0.005) << "n=" << n;  // never wider than the light allows
-        if (n <= 4) EXPECT_LT(ratio, 0.85) << "n=" << n;
-        if (n >= 64) EXPECT_GT(ratio, 0.95) << "n=" << n;
+        if (n <= 4) {
+            EXPECT_LT(ratio, 0.85) << "n=" << n;
+        }
+        if (n >= 64) {
+            EXPECT_GT(ratio, 0.95) << "n=" << n;
+        }
         EXPECT_GE(ratio, previous - 0.03) << "n=" << n;
         previous = ratio;
     }

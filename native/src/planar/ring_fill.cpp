@@ -47,7 +47,7 @@ bool onInterior(const DirectedEdge& e, const IPoint& p) {
 // The strip {count == k}'s boundary edges, each with the ring it lies on.
 struct LabelledBoundary {
     std::vector<DirectedEdge> edges;  // as regionBoundary gives them (no vertical pieces)
-    std::vector<DirectedEdge> all;    // with the vertical pieces linkChains adds
+    std::vector<DirectedEdge> all;    // with the vertical pieces (addVerticalConnectors)
     std::vector<uint8_t> ring;        // per edge of `all`
 };
 
@@ -68,50 +68,6 @@ LabelledBoundary labelledBoundary(std::span<const SweepSegment> segs, int k, boo
         b.ring.push_back(w < k ? kLower : w > k ? kUpper : uint8_t(kLower | kUpper));
     }
     return b;
-}
-
-// Links the strip's boundary into closed chains with the region on the LEFT (outer chains
-// counter-clockwise, holes clockwise), every point kept. Where a chain meets itself or another
-// (rings touching at a crossing point), each incoming edge continues along the first outgoing
-// edge clockwise from where it came from, so the chains touch there without crossing and
-// each visit's wedge is a wedge of the region.
-std::vector<Chain> linkForWalk(std::span<const DirectedEdge> all) {
-    std::vector<std::pair<IPoint, IPoint>> edges;
-    for (const DirectedEdge& e : all)
-        for (int k = 0; k < std::abs(e.weight); ++k)
-            edges.push_back(e.weight > 0 ? std::make_pair(e.b, e.a) : std::make_pair(e.a, e.b));
-    std::map<IPoint, std::vector<int>, decltype(&lessPoint)> outgoing(&lessPoint);
-    for (size_t i = 0; i < edges.size(); ++i) outgoing[edges[i].first].push_back(int(i));
-    std::vector<bool> used(edges.size(), false);
-    std::vector<Chain> chains;
-    for (size_t start = 0; start < edges.size(); ++start) {
-        if (used[start]) continue;
-        Chain chain;
-        size_t e = start;
-        for (;;) {
-            used[e] = true;
-            chain.push_back(edges[e].first);
-            const IPoint from = edges[e].first, at = edges[e].second;
-            if (at == edges[start].first) break;
-            const double back = std::atan2(double(from.y - at.y), double(from.x - at.x));
-            int best = -1;
-            double bestTurn = 0;
-            for (int o : outgoing[at]) {
-                if (used[size_t(o)]) continue;
-                const IPoint& to = edges[size_t(o)].second;
-                double turn = std::fmod(back - std::atan2(double(to.y - at.y), double(to.x - at.x)) + 4.0 * M_PI, 2.0 * M_PI);
-                if (turn == 0.0) turn = 2.0 * M_PI;
-                if (best < 0 || turn < bestTurn) {
-                    best = o;
-                    bestTurn = turn;
-                }
-            }
-            if (best < 0) break;  // cannot happen when every balance is zero
-            e = size_t(best);
-        }
-        if (chain.size() >= 3) chains.push_back(std::move(chain));
-    }
-    return chains;
 }
 
 struct Node {
@@ -348,10 +304,14 @@ bool walkStrip(std::span<const SweepSegment> segs, int k, int n, bool umbra, Sha
         for (size_t i = 0; i < lb.all.size(); ++i)
             if ((bits | lb.ring[i]) != bits && onInterior(lb.all[i], p)) bits |= lb.ring[i];
 
-    std::vector<Chain> chains = linkForWalk(lb.all);
-
+    // The strip's boundary as closed chains, every point kept, turned to have the region on
+    // the left: outer chains counter-clockwise, holes clockwise.
+    std::vector<Chain> chains = linkChains(lb.edges, true);
     std::vector<Chain> outers, holes;
-    for (Chain& c : chains) (twiceSignedArea(c) > 0 ? outers : holes).push_back(std::move(c));
+    for (Chain& c : chains) {
+        std::reverse(c.begin(), c.end());
+        (twiceSignedArea(c) > 0 ? outers : holes).push_back(std::move(c));
+    }
     std::vector<std::vector<size_t>> holesOf(outers.size());
     for (size_t h = 0; h < holes.size(); ++h) {
         size_t best = outers.size();
