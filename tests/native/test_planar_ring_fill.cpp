@@ -89,6 +89,7 @@ TEST(PlanarRingFill, NestedSquaresStripIsWalkedBetweenTheRings) {
     ShadowMesh m = fillRings(merged, 2, &stats);
     expectWellFormed(m);
     EXPECT_EQ(stats.fallbackStrips, 0u);
+    EXPECT_EQ(stats.roundedStrips, 0u);
     EXPECT_EQ(stats.bayTriangles, 0u);
     EXPECT_EQ(stats.leakTriangles, 0u);
     EXPECT_EQ(stats.stripTriangles, 8u);  // 4 + 4 ring points, a closed band: 8 triangles
@@ -125,6 +126,7 @@ TEST(PlanarRingFill, CrossingPointTakesTheMeanOfItsTwoRings) {
     ShadowMesh m = fillRings(merged, 2, &stats);
     expectWellFormed(m);
     EXPECT_EQ(stats.fallbackStrips, 0u);
+    EXPECT_EQ(stats.roundedStrips, 0u);
     EXPECT_EQ(stats.crossingVertices, 2u);
     EXPECT_EQ(m.shadowArea, 17500.0);
     EXPECT_EQ(m.umbraArea, 2500.0);
@@ -199,7 +201,7 @@ TEST(PlanarRingFill, CrossingPointMeanDependsOnTheStrip) {
 TEST(PlanarRingFill, RandomSamplesTileTheShadowBetweenTheirRings) {
     std::mt19937 rng(11);
     std::uniform_int_distribution<int64_t> coord(-5000, 5000), shift(-600, 600);
-    size_t strips = 0, bays = 0, fallbacks = 0;
+    size_t strips = 0, bays = 0, fallbacks = 0, rounded = 0;
     for (int c = 0; c < 12; ++c) {
         const int n = 2 + c % 6;
         std::vector<std::array<IPoint, 3>> base;
@@ -234,7 +236,10 @@ TEST(PlanarRingFill, RandomSamplesTileTheShadowBetweenTheirRings) {
         EXPECT_NEAR(rings.umbraArea, steps.umbraArea, 0.71 * perimeter) << "case " << c;
         double sum = 0;
         for (size_t i = 0; i < rings.indices.size(); i += 3) sum += triangleArea(rings, i);
-        EXPECT_NEAR(sum, rings.shadowArea, 1e-9 * rings.shadowArea) << "case " << c;  // the triangles tile what they claim
+        // The triangles tile the strips exactly, up to a grid-unit sliver where rounded chains cross.
+        EXPECT_NEAR(sum, rings.shadowArea, stats.roundedStrips == 0 ? 1e-9 * rings.shadowArea : 0.71 * perimeter)
+            << "case " << c;
+        rounded += stats.roundedStrips;
         std::uniform_real_distribution<double> u(-5700.0, 5700.0);
         int misses = 0, samples = 0;
         for (int i = 0; i < 400; ++i) {
@@ -256,7 +261,8 @@ TEST(PlanarRingFill, RandomSamplesTileTheShadowBetweenTheirRings) {
         }
         EXPECT_LE(misses, std::max(1, samples / 100)) << "case " << c;
     }
-    std::printf("strip triangles %zu, bays %zu, fallback strips %zu\n", strips, bays, fallbacks);
+    std::printf("strip triangles %zu, bays %zu, strips tiled up to a sliver %zu, fallback strips %zu\n", strips, bays,
+                rounded, fallbacks);
     EXPECT_EQ(fallbacks, 0u);
     EXPECT_GT(strips, bays);
 }

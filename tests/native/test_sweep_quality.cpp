@@ -8,6 +8,7 @@
 #include <map>
 
 #include "io/metrics.h"
+#include "methods/sweep/shadow.h"
 #include "methods/method.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
@@ -89,6 +90,13 @@ TEST(SweepQuality, RingFillAgainstReference) {
         EXPECT_GT(r.litIoU, 0.97) << name << ": " << r.toString();
         EXPECT_LT(r.rmse, 1.5 * d.rmse) << name << " rings " << r.toString() << " smooth " << d.toString();
         for (float v : layer(rings, "V").pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f) << name;
+        // Every strip was walked (none fell back to trapezoids), at 16 and at 64 samples.
+        for (int n : {16, 64}) {
+            SweepOptions o;
+            o.samples = n;
+            o.fill = planar::FillMode::Rings;
+            EXPECT_EQ(computeSweepShadow(scene, 0, o).mesh.ringFallbacks, 0u) << name << " n=" << n;
+        }
     }
 }
 

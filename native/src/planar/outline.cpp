@@ -14,7 +14,6 @@ struct Pending {
     bool open = false;
     bool regionBelow = false;
     RatX x0, x1;
-    int outside = 0;
 };
 
 IPoint roundPoint(const ISeg& s, const RatX& x) {
@@ -25,11 +24,6 @@ IPoint roundPoint(const ISeg& s, const RatX& x) {
 }  // namespace
 
 std::vector<DirectedEdge> regionBoundary(std::span<const SweepSegment> segments, const RegionFn& inside) {
-    return regionBoundary(segments, inside, nullptr);
-}
-
-std::vector<DirectedEdge> regionBoundary(std::span<const SweepSegment> segments, const RegionFn& inside,
-                                         std::vector<int>* outside) {
     std::vector<DirectedEdge> out;
     std::vector<Pending> pending(segments.size());
     auto flush = [&](int seg) {
@@ -40,22 +34,20 @@ std::vector<DirectedEdge> regionBoundary(std::span<const SweepSegment> segments,
         if (a == b) return;
         // Region below a left-to-right piece means it lies on the piece's right.
         out.push_back(p.regionBelow ? DirectedEdge{a, b, 1} : DirectedEdge{b, a, 1});
-        if (outside) outside->push_back(p.outside);
     };
     sweep(segments, [&](const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups) {
         int w = 0;
         for (const SlabGroup& g : groups) {
             bool below = inside(w), above = inside(w + g.delta);
-            int across = below ? w + g.delta : w;
             w += g.delta;
             if (below == above) continue;
             Pending& p = pending[g.seg];
-            if (p.open && p.regionBelow == below && compareX(p.x1, xl) == 0 && (!outside || p.outside == across)) {
+            if (p.open && p.regionBelow == below && compareX(p.x1, xl) == 0) {
                 p.x1 = xr;
                 continue;
             }
             flush(g.seg);
-            p = Pending{true, below, xl, xr, across};
+            p = Pending{true, below, xl, xr};
         }
     });
     for (size_t i = 0; i < segments.size(); ++i) flush(int(i));

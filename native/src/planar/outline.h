@@ -19,11 +19,6 @@ using RegionFn = std::function<bool(int winding)>;
 // and linkChains() restores them.
 std::vector<DirectedEdge> regionBoundary(std::span<const SweepSegment> segments, const RegionFn& inside);
 
-// The same, with the winding number just outside each edge (on its left) in `outside`, one per
-// edge; a run is also cut where that winding changes, so each edge has one.
-std::vector<DirectedEdge> regionBoundary(std::span<const SweepSegment> segments, const RegionFn& inside,
-                                         std::vector<int>* outside);
-
 // One closed chain: vertices in order, the last connects back to the first.
 using Chain = std::vector<IPoint>;
 

@@ -27,6 +27,7 @@ struct ShadowMesh {
     size_t penumbraTriangles = 0;
     double umbraArea = 0.0;     // grid units squared
     double shadowArea = 0.0;    // count >= 1
+    size_t ringFallbacks = 0;   // fill=rings: strips filled with trapezoids (ring_fill.h)
 };
 
 // `merged`: mergeOutlines() of the n samples' closed hard outlines.

@@ -14,6 +14,7 @@ struct RingFillStats {
     size_t bayTriangles = 0;      // every corner on the same one ring: flat
     size_t leakTriangles = 0;     // corners on one ring and crossing points
     size_t crossingVertices = 0;  // strip corners on both rings: the mean of the two
+    size_t roundedStrips = 0;     // pieces tiled up to a sliver where rounded chains cross
     size_t fallbackStrips = 0;    // strips (or the umbra) the walk could not finish: trapezoids
 };
 
