@@ -10,6 +10,7 @@
 #include "planar/outline.h"
 #include "planar/ring_fill.h"
 #include "planar/rings.h"
+#include "planar_oracles/level_rings.h"
 
 using namespace ss::planar;
 
