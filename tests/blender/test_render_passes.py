@@ -148,6 +148,27 @@ def test_a_setting_typo_is_a_problem_naming_the_key():
                  "problem names the key and the known keys: %s" % problems)
 
 
+def test_sweep_ring_fill_from_the_method_settings():
+    # The sweep's paper fill (fill=rings) is one entry in the light's method settings; a
+    # misspelt value is a problem naming the choices, never the default rendered.
+    scene = sstest.standard_scene(W, H)
+    scene.render.pixel_aspect_x = 1.0  # another test may have left it at 2
+    key = scene.objects["Key"].data.softshadow
+    key.method = "sweep"
+    smooth = ss.render_passes(scene)[("Key", "sweep")]
+    key.settings = "fill=rings"
+    rings = ss.render_passes(scene)[("Key", "sweep")]
+    _check_pass(rings, scene, "sweep fill=rings")
+    diff = np.abs(rings - smooth)
+    sstest.check(diff.max() > 1e-3 and diff.mean() < 0.02,
+                 "rings differ from smooth in the penumbra only: max %.4f mean %.4f" % (diff.max(), diff.mean()))
+    key.settings = "fill=ring"
+    result = ss.render_passes(scene)
+    sstest.check(("Key", "sweep") not in result, "the typo rendered the default: %s" % list(result))
+    problems = " ".join(ss.render_passes.last_problems)
+    sstest.check("is not one of: smooth, steps, rings" in problems, "problem names the choices: %s" % problems)
+
+
 def test_dbuffer_paper_formula_from_the_light_settings():
     # formula=paper (eq. 3 as printed) gives the centre's hard shadow: the penumbra the default
     # formula draws is gone. A misspelt value is a problem naming the setting.
