@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "core/visibility_classes.h"
 #include "gl/capabilities.h"
 #include "gl/context.h"
@@ -40,7 +41,7 @@ struct Renderer::Impl {
     // its render_passes scene (one context) do not evict each other.
     static constexpr size_t kKeptScenes = 2;
     std::vector<std::unique_ptr<Cached>> caches;
-    CacheStats finished;  // of frames already dropped
+    CacheStats finished;  // of frames already dropped (and every method run's time)
     TraceSceneCache traceCache;  // the Embree scene of the sparse checks
     size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
 
@@ -50,6 +51,11 @@ struct Renderer::Impl {
         into.shadowMaps += f.stats().shadowMaps;
         into.shadowMapsEvicted += f.stats().shadowMapsEvicted;
         into.shadowMapBytesPeak = std::max(into.shadowMapBytesPeak, f.stats().shadowMapBytesPeak);
+        into.cameraPassesPatched += f.stats().cameraPassesPatched;
+        into.shadowMapsPatched += f.stats().shadowMapsPatched;
+        into.uploadMs += f.stats().uploadMs;
+        into.cameraPassMs += f.stats().cameraPassMs;
+        into.shadowMapMs += f.stats().shadowMapMs;
     }
 
     // ss_shutdown() stopped the thread: everything GL died with its context, so the frame
@@ -249,8 +255,10 @@ Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::str
     } else {
         impl_->glThread().run([&] {
             impl_->trimCaches(frame);
+            const auto start = Clock::now();
             m.prepare(frame, lightIndex, settings);
             layers = m.render(frame, lightIndex, settings);
+            impl_->finished.methodMs += msSince(start);
         });
     }
     checkLayers(layers, scene.camera(), name);

@@ -42,7 +42,11 @@ public:
     // the benchmark's stage counts).
     struct CacheStats {
         int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0, shadowMapsEvicted = 0;
+        int cameraPassesPatched = 0, shadowMapsPatched = 0;  // of those: redrawn where meshes moved only
         size_t shadowMapBytesPeak = 0;  // the most the cached shadow maps of one frame held
+        // Milliseconds: mesh uploads, camera passes and shadow maps drawn (until the GL finished
+        // them), and whole GL method runs (prepare + render, the shared passes they drew included).
+        double uploadMs = 0.0, cameraPassMs = 0.0, shadowMapMs = 0.0, methodMs = 0.0;
     };
     CacheStats cacheStats() const;
 
