@@ -1,6 +1,6 @@
 # Where does the time go on the second frame of an animation where one object moved: render_passes per GL method, and the preview's edit-to-overlay latency?
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Usage: blender -b --factory-startup --python bench/warm_render_passes.py -- OUT.md [SIZE] [FRAMES] [SCENES]
+# Usage: blender -b --factory-startup --python bench/warm_render_passes.py -- OUT.md [SIZE] [FRAMES] [SCENES] [PARTS]
 # SOFTSHADOW_LIB and SOFTSHADOW_ADDON_PATH (or an installed add-on) as for tests/blender.
 # SCENES: comma-separated torus counts (default "1,9"): one torus of 110,592 triangles, or nine
 # (~1M triangles), over a ground plane, one disk light, a small box that moves 0.05 along x every
@@ -10,6 +10,7 @@
 #     the library's mesh upload, camera pass, shadow map and the method's own work (timed by
 #     ss_context_cache_stats), the rest of ss_render (thread hand-off, checks), the copy of the
 #     layers into numpy and the EXR write of a final render;
+# PARTS: comma-separated, of "render" and "preview" (default both): which of the two below run.
 #   - the preview after a move at 960x540 (shadow_map, pcss, occlusion_textures): edit-to-overlay
 #     latency (main thread's export of the edit + the worker's update, render and overlay) over
 #     an animated sequence of 2 x FRAMES moves, median and 95th percentile, with its stages.
@@ -27,6 +28,7 @@ out_path = argv[0] if argv else "warm_render_passes.md"
 size = int(argv[1]) if len(argv) > 1 else 1024
 frames = int(argv[2]) if len(argv) > 2 else 5
 torus_counts = [int(n) for n in (argv[3] if len(argv) > 3 else "1,9").split(",")]
+parts = set((argv[4] if len(argv) > 4 else "render,preview").split(","))
 
 sys.path.insert(0, os.environ.get("SOFTSHADOW_ADDON_PATH", ""))
 import softshadow  # noqa: E402
@@ -135,7 +137,7 @@ for tori in torus_counts:
     triangles = sum(len(m["triangles"]) for m in exported.meshes)
     methods = [m for m in native.method_names() if m != "reference"]
     rows = []
-    for method in methods:
+    for method in methods if "render" in parts else ():
         live = passes.LiveScene()
         render_passes_frame(scene, mover, method, live, exr_path)  # the first frame builds the kept scene
         runs = [render_passes_frame(scene, mover, method, live, exr_path) for _ in range(frames)]
@@ -146,7 +148,7 @@ for tori in torus_counts:
             "%s=%.3f" % (k, v) for k, v in row.items())), flush=True)
 
     preview_rows = []
-    for method in PREVIEW_METHODS:
+    for method in PREVIEW_METHODS if "preview" in parts else ():
         light.data.softshadow.method = method
         bpy.context.view_layer.update()
         depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -178,23 +180,26 @@ with open(out_path, "w") as f:
             "included; *ss_render rest* the rest of the call; *copy out* the layers into numpy; *total* what "
             "`render_passes` costs per light; *EXR write* what a final render adds for its pass file.\n\n")
     for tori, triangles, rows, preview_rows in report:
-        target = TARGET_RENDER.get(tori)
-        f.write("## %d triangles: render_passes at %d² per light\n\n" % (triangles, size))
-        if target:
-            f.write("Target: total ≤ %.0f ms per light.\n\n" % (target * 1e3))
-        f.write("| method | " + " | ".join(RENDER_COLUMNS) + " | meshes uploaded per frame |\n")
-        f.write("|---" * (len(RENDER_COLUMNS) + 2) + "|\n")
-        for method, row in rows:
-            f.write("| %s | " % method + " | ".join("%.3f" % row[k] for k in RENDER_COLUMNS)
-                    + " | %d |\n" % row["uploads"])
-        camera = statistics.median(row["camera pass"] for _, row in rows)
-        maps = statistics.median(row["shadow map"] for _, row in rows if row["shadow map"] > 0)
-        f.write("\nThe shared passes a move redraws (only inside the screen rectangle of the box's old and new "
-                "place, drawing the meshes that reach it: `Frame` patches them), medians over the methods that "
-                "draw them: camera pass %.3f s, light-centre shadow map (2048²) %.3f s; together %.3f s%s. The "
-                "rest of each total is the method's own GL or CPU work, which every moved frame redoes.\n\n"
-                % (camera, maps, camera + maps,
-                   ", above the target by themselves" if target and camera + maps > target else ""))
+        if rows:
+            target = TARGET_RENDER.get(tori)
+            f.write("## %d triangles: render_passes at %d² per light\n\n" % (triangles, size))
+            if target:
+                f.write("Target: total ≤ %.0f ms per light.\n\n" % (target * 1e3))
+            f.write("| method | " + " | ".join(RENDER_COLUMNS) + " | meshes uploaded per frame |\n")
+            f.write("|---" * (len(RENDER_COLUMNS) + 2) + "|\n")
+            for method, row in rows:
+                f.write("| %s | " % method + " | ".join("%.3f" % row[k] for k in RENDER_COLUMNS)
+                        + " | %d |\n" % row["uploads"])
+            camera = statistics.median(row["camera pass"] for _, row in rows)
+            maps = statistics.median(row["shadow map"] for _, row in rows if row["shadow map"] > 0)
+            f.write("\nThe shared passes a move redraws (only inside the screen rectangle of the box's old and new "
+                    "place, drawing the meshes that reach it: `Frame` patches them), medians over the methods that "
+                    "draw them: camera pass %.3f s, light-centre shadow map (2048²) %.3f s; together %.3f s%s. The "
+                    "rest of each total is the method's own GL or CPU work, which every moved frame redoes.\n\n"
+                    % (camera, maps, camera + maps,
+                       ", above the target by themselves" if target and camera + maps > target else ""))
+        if not preview_rows:
+            continue
         f.write("### The preview after a move (960x540), %d triangles\n\n" % triangles)
         f.write("Edit-to-overlay latency over %d consecutive moves: the main thread's export of the edit "
                 "(`preview.export_edit`: the moved object's matrix) and the worker's update, render and overlay "
