@@ -12,8 +12,9 @@
 #     layers into numpy and the EXR write of a final render;
 # PARTS: comma-separated, of "render" and "preview" (default both): which of the two below run.
 #   - the preview after a move at 960x540 (shadow_map, pcss, occlusion_textures): edit-to-overlay
-#     latency (main thread's export of the edit + the worker's update, render and overlay) over
-#     an animated sequence of 2 x FRAMES moves, median and 95th percentile, with its stages.
+#     latency of the coarse image and of the full one (main thread's export of the edit + the
+#     worker's updates, renders and overlays, `preview.progressive_job`) over an animated sequence
+#     of 2 x FRAMES moves, median and 95th percentile, with its stages.
 import math
 import os
 import statistics
@@ -40,6 +41,7 @@ preview = sys.modules["softshadow.preview"]
 PREVIEW_METHODS = ("shadow_map", "pcss", "occlusion_textures")
 TARGET_RENDER = {1: 0.100, 9: 1.0}    # render_passes per light (issue 16)
 TARGET_PREVIEW = 0.150                # edit-to-overlay at 960x540 on 1M triangles
+TARGET_COARSE = 0.050                 # edit-to-coarse-overlay on 1M triangles
 
 
 def build_scene(tori):
@@ -104,21 +106,25 @@ def render_passes_frame(scene, mover, method, live, exr_path):
             "uploads": after["mesh_uploads"]}
 
 
-def preview_frame(scene, mover, live, camera):
-    """Seconds per stage of one move in the preview: main thread, worker."""
+def preview_frame(scene, mover, scenes, camera):
+    """Seconds per stage of one move in the preview (coarse and full image together): main
+    thread, worker; and the edit-to-overlay latency of each image."""
     move(mover)  # the preview's depsgraph handler notes the move
     depsgraph = bpy.context.evaluated_depsgraph_get()
     t0 = time.perf_counter()
     edit = preview.export_edit(depsgraph, scene)
     t1 = time.perf_counter()
     before = native.cache_stats()
-    preview._render_job(live, [edit], camera, lambda: False)
+    images = []
+    preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False,
+                            lambda rgba: images.append(time.perf_counter()))
     t2 = time.perf_counter()
     after = stats_delta(before, native.cache_stats())
     shared = (after["upload_ms"] + after["camera_pass_ms"] + after["shadow_map_ms"]) / 1e3
     return {"main thread": t1 - t0, "camera pass": after["camera_pass_ms"] / 1e3,
             "shadow map": after["shadow_map_ms"] / 1e3, "method": after["method_ms"] / 1e3 - shared,
-            "worker rest": (t2 - t1) - after["method_ms"] / 1e3, "latency": t2 - t0}
+            "worker rest": (t2 - t1) - after["method_ms"] / 1e3, "full render": images[1] - images[0],
+            "coarse": images[0] - t0, "latency": images[1] - t0}
 
 
 def p95(values):
@@ -128,7 +134,7 @@ def p95(values):
 
 RENDER_COLUMNS = ("export", "update", "upload", "camera pass", "shadow map", "method", "ss_render rest",
                   "copy out", "total", "EXR write")
-PREVIEW_COLUMNS = ("main thread", "camera pass", "shadow map", "method", "worker rest")
+PREVIEW_COLUMNS = ("main thread", "camera pass", "shadow map", "method", "worker rest", "full render")
 report = []
 exr_path = os.path.join(tempfile.mkdtemp(prefix="ss_warm_"), "frame.exr")
 for tori in torus_counts:
@@ -154,14 +160,19 @@ for tori in torus_counts:
         depsgraph = bpy.context.evaluated_depsgraph_get()
         camera = scene_export.scene_camera(scene, depsgraph, 960, 540)
         preview._state.full = True
-        live = passes.LiveScene()
-        preview._render_job(live, [preview.export_edit(depsgraph, scene)], camera, lambda: False)
-        runs = [preview_frame(scene, mover, live, camera) for _ in range(2 * frames)]
-        live.close()
+        scenes = {"coarse": passes.LiveScene(), "full": passes.LiveScene()}
+        preview.progressive_job(scenes, {"coarse": [], "full": []}, [preview.export_edit(depsgraph, scene)],
+                                camera, lambda: False, lambda rgba: None)
+        runs = [preview_frame(scene, mover, scenes, camera) for _ in range(2 * frames)]
+        for live in scenes.values():
+            live.close()
         latencies = [r["latency"] for r in runs]
+        coarse = [r["coarse"] for r in runs]
         stages = {k: statistics.median(r[k] for r in runs) for k in PREVIEW_COLUMNS}
-        preview_rows.append((method, statistics.median(latencies), p95(latencies), stages))
-        print("BENCH preview %d tris %s: median %.3f s p95 %.3f s" % (triangles, method, *preview_rows[-1][1:3]),
+        preview_rows.append((method, statistics.median(coarse), p95(coarse), statistics.median(latencies),
+                             p95(latencies), stages))
+        print("BENCH preview %d tris %s: coarse median %.3f s p95 %.3f s, full median %.3f s p95 %.3f s, "
+              "full render alone %.3f s" % (triangles, method, *preview_rows[-1][1:5], stages["full render"]),
               flush=True)
     report.append((tori, triangles, rows, preview_rows))
 
@@ -201,14 +212,18 @@ with open(out_path, "w") as f:
         if not preview_rows:
             continue
         f.write("### The preview after a move (960x540), %d triangles\n\n" % triangles)
-        f.write("Edit-to-overlay latency over %d consecutive moves: the main thread's export of the edit "
-                "(`preview.export_edit`: the moved object's matrix) and the worker's update, render and overlay "
-                "(`preview._render_job`); stage medians beside. Target on 1M triangles: ≤ %.0f ms.\n\n"
-                % (2 * frames, TARGET_PREVIEW * 1e3))
-        f.write("| method | latency median | latency p95 | " + " | ".join(PREVIEW_COLUMNS) + " |\n")
-        f.write("|---" * (len(PREVIEW_COLUMNS) + 3) + "|\n")
-        for method, median, high, stages in preview_rows:
-            f.write("| %s | %.3f | %.3f | " % (method, median, high)
+        f.write("Edit-to-overlay latency over %d consecutive moves, of the coarse image (%dx%d) and of the full "
+                "one after it: the main thread's export of the edit (`preview.export_edit`: the moved object's "
+                "matrix) and the worker's updates, renders and overlays (`preview.progressive_job`); stage "
+                "medians of both renders together beside, and the full render alone (coarse image to full "
+                "image). Targets on 1M triangles: coarse ≤ %.0f ms, full ≤ %.0f ms.\n\n"
+                % (2 * frames, 960 // preview.COARSE_DIVISOR, 540 // preview.COARSE_DIVISOR,
+                   TARGET_COARSE * 1e3, TARGET_PREVIEW * 1e3))
+        f.write("| method | coarse median | coarse p95 | full median | full p95 | "
+                + " | ".join(PREVIEW_COLUMNS) + " |\n")
+        f.write("|---" * (len(PREVIEW_COLUMNS) + 5) + "|\n")
+        for method, coarse, coarse_high, median, high, stages in preview_rows:
+            f.write("| %s | %.3f | %.3f | %.3f | %.3f | " % (method, coarse, coarse_high, median, high)
                     + " | ".join("%.3f" % stages[k] for k in PREVIEW_COLUMNS) + " |\n")
         f.write("\n")
 print("BENCH-WARM-OK")
