@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The main thread exports what changed (from depsgraph.updates: only the objects an edit
 touched, a moved object as its matrix alone) and reads each viewport's view in its draw
-callback; a worker thread applies those edits to one native scene kept alive for the preview
+callback; a worker thread applies those edits to the native scenes kept alive for the preview
 (so the library keeps every unchanged mesh's GPU buffers and every unchanged light's shadow maps)
 and renders at reduced resolution through the library (which releases the GIL). Each request is
 rendered twice, progressively: a coarse image (COARSE_DIVISOR times fewer pixels in each axis) that
@@ -37,7 +37,7 @@ class _State:
         self.generation = 0         # bumped by every new request; older work is stale
         self.request = None         # (generation, key, camera)
         self.done = {}              # key -> (generation, rgba float32 (h, w, 4))
-        self.edits = []             # exports not yet applied to `live`, oldest first (under lock)
+        self.edits = []             # exports not yet handed to the worker, oldest first (under lock)
         self.live = passes.LiveScene()    # the worker's scene for the full image
         self.coarse = passes.LiveScene()  # the worker's scene for the coarse image
         self.delivered = []         # (generation, (width, height)) of each image handed over, oldest first
