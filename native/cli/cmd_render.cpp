@@ -200,7 +200,8 @@ int runRender(const std::vector<std::string>& argv) {
                 const char* name;
                 const float* pixels;
                 check(ss_result_layer(raw, i, &name, &pixels, &width, &height));
-                std::string pass = passName(ss_result_light(raw), ss_result_method(raw), name);
+                // Named by the method asked for, as the EXR names it (`auto` stays `auto`).
+                std::string pass = passName(ss_result_light(raw), method.c_str(), name);
                 row.passes += (row.passes.empty() ? "" : " ") + pass;
                 ++passCount;
                 if (!args.has("--png-dir")) continue;

@@ -1,10 +1,13 @@
 // Checks that a result's error estimate reaches the user: the C API, the CLI's render report and
 // the EXR header.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -61,7 +64,32 @@ TEST(ErrorEstimate, CliPrintsItAndTheExrHeaderKeepsIt) {
     auto in = OIIO::ImageInput::open(out);
     ASSERT_TRUE(in);
     const std::string estimates = in->spec().get_string_attribute(ss::kExrEstimatesAttribute);
+    const std::vector<std::string> channels = in->spec().channelnames;
     in->close();
+    // The report's passes are the EXR's own: auto's row names `Area_auto...`, beside the method
+    // that ran; every pass it lists is a channel of the file.
+    std::istringstream report(r.out);
+    std::string line;
+    bool sawAutoRow = false;
+    while (std::getline(report, line)) {
+        std::istringstream row(line);
+        std::string light, asked, used, seconds, estimate, pass;
+        if (!(row >> light >> asked >> used >> seconds >> estimate) || light != "Area") continue;
+        std::vector<std::string> passes;
+        while (row >> pass) passes.push_back(pass);
+        if (asked == "auto") {
+            sawAutoRow = true;
+            EXPECT_NE(used, "auto") << line;
+            ASSERT_GE(passes.size(), 2u) << line;
+            EXPECT_EQ(passes[0], "Area_auto") << line;
+            EXPECT_EQ(passes[1], "Area_auto_mask") << line;
+            for (const std::string& p : passes) EXPECT_EQ(p.rfind("Area_auto", 0), 0u) << line;
+        }
+        for (const std::string& p : passes)
+            EXPECT_NE(std::find(channels.begin(), channels.end(), "ViewLayer." + p + ".V"), channels.end())
+                << p << " is printed but not in the EXR";
+    }
+    EXPECT_TRUE(sawAutoRow) << r.out;
     const double autoEstimate = estimateOf(estimates, "Area_auto");
     ASSERT_TRUE(std::isfinite(autoEstimate)) << estimates;
     EXPECT_TRUE(std::isnan(estimateOf(estimates, "Area_shadow_map"))) << estimates;  // none was asked for
