@@ -72,12 +72,11 @@ double errorLowerBound(const SparseCheck& check, const std::string& method) {
 
 double estimatedRmse(const SparseCheck& check, const Layers& layers) {
     const Image* v = layers.find("V");
-    const Image* mask = layers.find("mask");
     if (!v) return std::numeric_limits<double>::quiet_NaN();
     double sum = 0.0;
     size_t n = 0;
     for (const PixelVisibility& p : check.truth) {
-        if (!p.inMask || (mask && mask->at(p.x, p.y) <= 0.5f)) continue;
+        if (!p.inMask) continue;
         const float value = v->at(p.x, p.y);
         const double d = std::isfinite(value) ? double(value) - double(p.visibility) : 1.0;
         sum += d * d;

@@ -42,8 +42,10 @@ SparseCheck runSparseCheck(const TraceScene& trace, const Scene& scene, int ligh
 // along the hard edge, so the bound is exact up to that thin band.
 double errorLowerBound(const SparseCheck& check, const std::string& method);
 
-// The RMSE of layers' V against the check over the pixels both masks hold (as `compare` measures
-// by default); NaN when no checked pixel is in both masks.
+// The RMSE of layers' V against the check over every checked pixel the light reaches (the
+// check's mask), whatever the method's own mask: outside it a method's V is 1 by the contract,
+// and that is what a composite multiplies there (sweep leaves every surface but its plane at
+// 1). As `compare --mask <light>_reference_mask` measures. NaN when the check's mask is empty.
 double estimatedRmse(const SparseCheck& check, const Layers& layers);
 
 }  // namespace ss
