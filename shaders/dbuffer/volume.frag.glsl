@@ -20,10 +20,27 @@ uniform float uFar;       // distances are divided by it for the depth test
 // exit of a ray that grazes the occluder lies just behind it (see methods/dbuffer/method.cpp).
 uniform int uBeyondOccluder;
 uniform float uExitEpsilon;
+// Eq. 2 as printed, |cx_s| = (dir(c, x)·n / dir(c, e)·n) dist(c, e), and silhouette faces
+// storing their own distance (formula=paper).
+uniform int uPaperFormula;
 
 const int KIND_QUAD = 0;
 const int KIND_FAN = 1;
 const int KIND_SILHOUETTE_FACE = 2;
+
+// Eq. 2 for the silhouette point e: the distance of the ray's point at e's depth below the
+// light plane (this code's form: the printed ratio of cosines the other way up), or the printed
+// form (formula=paper), which has no guard: e in the light plane gives an infinity.
+float silhouetteDistance(vec3 e, float cosRay, float dist) {
+    vec3 toE = e - uCentre;
+    float depthE = dot(toE, uNormal);
+    if (uPaperFormula != 0) return cosRay * length(toE) * length(toE) / depthE;
+    return cosRay > 1e-6 ? depthE / cosRay : dist;
+}
+
+// clamp() of a NaN is undefined in GLSL; comparisons with NaN are false, so this keeps it for
+// the camera pass's raw read-back.
+float clampKeepNaN(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
 // Written to all four channels; the colour mask picks (R, G) for the umbra volume and (B, A)
 // for the penumbra volume.
@@ -40,6 +57,15 @@ void main() {
         if (!(shadowDistanceOf(vWorld) > o * (1.0 + uExitEpsilon))) discard;
     }
 
+    if (vKind == KIND_SILHOUETTE_FACE && uPaperFormula != 0) {
+        // The face as a surface of the umbra volume (§3.3), its "edge" e the point of its line
+        // nearest to the fragment.
+        vec3 along = normalize(vEdgeB - vEdgeA);
+        vec3 e = vEdgeA + along * dot(vWorld - vEdgeA, along);
+        float xs = silhouetteDistance(e, cosRay, dist);
+        oDistances = vec4(dist, xs, dist, xs);
+        return;
+    }
     if (vKind == KIND_SILHOUETTE_FACE) {
         // The face's own "edge" is the line through vEdgeA along (vEdgeB - vEdgeA), parallel to
         // the light plane. x_s: the ray at that line's depth; w: its signed offset from the line
@@ -70,8 +96,7 @@ void main() {
     }
     // Eq. 2: x_s is the point of the ray at e*'s depth below the light plane (the 2D section of
     // assumption 1); its distance from c is depth(e*) / cos(angle between ray and normal).
-    float depthE = dot(eStar - uCentre, uNormal);
-    float xs = cosRay > 1e-6 ? depthE / cosRay : dist;
-    xs = clamp(xs, 0.0, dist);
+    float xs = silhouetteDistance(eStar, cosRay, dist);
+    if (uPaperFormula == 0) xs = clampKeepNaN(xs, 0.0, dist);
     oDistances = vec4(dist, xs, dist, xs);
 }

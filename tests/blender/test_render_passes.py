@@ -148,6 +148,27 @@ def test_a_setting_typo_is_a_problem_naming_the_key():
                  "problem names the key and the known keys: %s" % problems)
 
 
+def test_dbuffer_paper_formula_from_the_light_settings():
+    # formula=paper (eq. 3 as printed) gives the centre's hard shadow: the penumbra the default
+    # formula draws is gone. A misspelt value is a problem naming the setting.
+    scene = sstest.standard_scene(W, H)
+    light = scene.objects["Key"].data.softshadow
+    light.method = "dbuffer"
+    exact = ss.render_passes(scene)[("Key", "dbuffer")]
+    light.settings = "formula=paper"
+    paper = ss.render_passes(scene)[("Key", "dbuffer")]
+    soft_exact = int(np.sum((exact > 0.05) & (exact < 0.95)))
+    soft_paper = int(np.sum((paper > 0.05) & (paper < 0.95)))
+    sstest.check(soft_exact > 20 and soft_paper < soft_exact // 4,
+                 "penumbra pixels: default %d, formula=paper %d" % (soft_exact, soft_paper))
+    sstest.check(np.isfinite(paper).all() and paper.min() >= 0.0 and paper.max() <= 1.0, "paper V in [0, 1]")
+    light.settings = "formula=printed"
+    result = ss.render_passes(scene)
+    sstest.check(("Key", "dbuffer") not in result, "a bad formula rendered: %s" % list(result))
+    problems = " ".join(ss.render_passes.last_problems)
+    sstest.check("'formula'" in problems and "paper" in problems, "problem names the setting: %s" % problems)
+
+
 def test_method_list_comes_from_the_library():
     names = ss.native.method_names()
     sstest.check(names[0] == "shadow_map" and names[-1] == "reference" and len(names) == 7, "%s" % (names,))

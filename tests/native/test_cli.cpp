@@ -159,4 +159,24 @@ TEST(Cli, UnknownSettingKeyFailsNamingItAndTheKnownKeys) {
     fs::remove_all(dir);
 }
 
+TEST(Cli, OcclusionTexturesSlicingRunsFromTheCommandLine) {
+    // Figure 4's comparison is a user setting: slicing=orthographic renders (and differs from the
+    // default perspective slicing); an unknown value fails naming both, writing nothing.
+    fs::path dir = tempDir("slicing");
+    std::string scene = "render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m occlusion_textures --width 64 ";
+    std::string perspective = (dir / "perspective.exr").string(), orthographic = (dir / "orthographic.exr").string();
+    CliRun r = cli(scene + "-o '" + perspective + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    r = cli(scene + "--set slicing=orthographic -o '" + orthographic + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    ss::ExrContents p = ss::readMultilayerExr(perspective), o = ss::readMultilayerExr(orthographic);
+    ASSERT_TRUE(p.find("Area_occlusion_textures") && o.find("Area_occlusion_textures"));
+    EXPECT_NE(p.find("Area_occlusion_textures")->image.pixels, o.find("Area_occlusion_textures")->image.pixels);
+    fs::path bad = dir / "bad.exr";
+    expectFailure(cli(scene + "--set slicing=fisheye -o '" + bad.string() + "'"),
+                  {"slicing", "fisheye", "perspective, orthographic"});
+    EXPECT_FALSE(fs::exists(bad));
+    fs::remove_all(dir);
+}
+
 }  // namespace

@@ -40,10 +40,11 @@ const Image& layer(const Layers& l, const char* name) {
 
 int referenceSamples() { return test::quickTests() ? 64 : 256; }
 
-// Every layer finite; V in [0, 1]; masks exactly 0 or 1; distances >= 0; V = 1 outside the mask.
+// Every layer finite, t and V before clamping included (raw_t, raw_V: a NaN or infinity from the
+// shaders shows there); V in [0, 1]; masks exactly 0 or 1; distances >= 0; V = 1 outside the mask.
 void expectSaneLayers(const Layers& l, const std::string& what) {
     for (const char* name : {"V", "mask", "umbra", "penumbra", "umbra_volume", "penumbra_volume", "dist_occluder",
-                             "dist_umbra", "dist_penumbra", "dist_silhouette"})
+                             "dist_umbra", "dist_penumbra", "dist_silhouette", "raw_t", "raw_V"})
         ASSERT_NE(l.find(name), nullptr) << what << ": no layer " << name;
     const Image& V = layer(l, "V");
     const Image& mask = layer(l, "mask");
@@ -58,7 +59,7 @@ void expectSaneLayers(const Layers& l, const std::string& what) {
             else if (name == "mask" || name == "umbra" || name == "penumbra" || name == "umbra_volume" ||
                      name == "penumbra_volume")
                 ok = ok && (v == 0.0f || v == 1.0f);
-            else ok = ok && v >= 0.0f;
+            else if (name != "raw_t" && name != "raw_V") ok = ok && v >= 0.0f;
             if (!ok) ++bad;
         }
     }
@@ -87,7 +88,7 @@ TEST(DbufferQuality, SharedScenesMatchReferenceAndBeatShadowMap) {
     if (dump) params.width = 480, params.height = 360;
     for (auto& [name, scene] : test::sharedScenes(params)) {
         Layers ref = run(renderer, scene, "reference", referenceSamples());
-        Layers db = run(renderer, scene, "dbuffer");
+        Layers db = run(renderer, scene, "dbuffer", 0, {{"raw_layers", "true"}});
         Layers sm = run(renderer, scene, "shadow_map");
         expectSaneLayers(db, name);
         const Image* mask = ref.find("mask");
@@ -104,7 +105,7 @@ TEST(DbufferQuality, SharedScenesMatchReferenceAndBeatShadowMap) {
                 writePngPreview(std::string(dump) + "/" + name + "_db_" + ln + ".png", v);
             }
         }
-        Layers seg = run(renderer, scene, "dbuffer", 0, {{"profile", "segment"}});
+        Layers seg = run(renderer, scene, "dbuffer", 0, {{"profile", "segment"}, {"raw_layers", "true"}});
         expectSaneLayers(seg, name + " segment");
         Metrics mseg = compareVisibility(layer(seg, "V"), layer(ref, "V"), mask);
         std::printf("[dbuffer] %s dbuffer profile=segment: %s\n", name.c_str(), mseg.toString().c_str());
@@ -158,7 +159,8 @@ TEST(DbufferQuality, Figure1SameCentreSilhouetteDifferentShadows) {
     for (const SilhouetteEdge& e : sp.umbraEdges) EXPECT_NE(mp.positions[e.a].z, 0.5f);
 
     Renderer renderer(SS_BACKEND_AUTO);
-    Layers dbP = run(renderer, plate, "dbuffer"), dbT = run(renderer, tall, "dbuffer");
+    Layers dbP = run(renderer, plate, "dbuffer", 0, {{"raw_layers", "true"}});
+    Layers dbT = run(renderer, tall, "dbuffer", 0, {{"raw_layers", "true"}});
     Layers refP = run(renderer, plate, "reference", referenceSamples());
     Layers refT = run(renderer, tall, "reference", referenceSamples());
     Layers smP = run(renderer, plate, "shadow_map"), smT = run(renderer, tall, "shadow_map");

@@ -38,17 +38,22 @@ const Image& layer(const Layers& l, const char* name) {
 int referenceSamples() { return test::quickTests() ? 64 : 256; }
 
 // No NaN or Inf in any layer, V in [0, 1].
+// Every layer finite, t and V before any clamping included (raw_layers=true: a NaN or infinity
+// from the shaders would otherwise leave the camera pass as 0 or 1).
 void expectFinite(const Layers& l, const std::string& what) {
+    ASSERT_NE(l.find("raw_t"), nullptr) << what << ": render with raw_layers=true";
     size_t bad = 0;
     for (auto& [name, img] : l.items)
         for (float v : img.pixels) bad += !std::isfinite(v) || (name == "V" && (v < 0.0f || v > 1.0f));
     EXPECT_EQ(bad, 0u) << what;
-    EXPECT_EQ(l.items.size(), 10u) << what;  // V, mask, umbra, penumbra, two volumes, four distances
+    EXPECT_EQ(l.items.size(), 12u) << what;  // V, mask, umbra, penumbra, two volumes, four distances, raw t, V
 }
 
 Metrics againstReference(Renderer& r, const Scene& scene, const std::string& what,
                          const std::map<std::string, std::string>& options = {}) {
-    Layers db = render(r, scene, "dbuffer", 0, options);
+    std::map<std::string, std::string> withRaw = options;
+    withRaw["raw_layers"] = "true";
+    Layers db = render(r, scene, "dbuffer", 0, withRaw);
     Layers ref = render(r, scene, "reference", referenceSamples());
     expectFinite(db, what);
     Metrics m = compareVisibility(layer(db, "V"), layer(ref, "V"), ref.find("mask"));
@@ -169,8 +174,8 @@ TEST(DbufferOptions, SmallOccluderProfileAndPaperUmbraRule) {
     Renderer r(SS_BACKEND_AUTO);
     Scene scene = test::sceneTorus();
     Layers base = render(r, scene, "dbuffer");
-    Layers root = render(r, scene, "dbuffer", 0, {{"small_occluders", "true"}});
-    Layers paper = render(r, scene, "dbuffer", 0, {{"umbra_rule", "farthest"}});
+    Layers root = render(r, scene, "dbuffer", 0, {{"small_occluders", "true"}, {"raw_layers", "true"}});
+    Layers paper = render(r, scene, "dbuffer", 0, {{"umbra_rule", "farthest"}, {"raw_layers", "true"}});
     expectFinite(root, "small_occluders");
     expectFinite(paper, "umbra_rule=farthest");
     // Same umbra and lit regions (t = 0 and t = 1 map to 0 and 1 either way); in the outer

@@ -1,11 +1,13 @@
-// Does occlusion_textures keep the paper's claims: kernels never jut out of the slice (figure 5),
-// and a quality that does not depend on the light's size?
+// Does occlusion_textures keep the paper's claims: perspective slicing leaks less light than
+// orthographic (figure 4), kernels never jut out of the slice (figure 5), and a quality that
+// does not depend on the light's size?
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "core/light.h"
@@ -91,6 +93,68 @@ TEST(PaperPropertiesOcclusionTextures, LightSizeIndependence) {
     EXPECT_GT(double(inPenumbra[1].pixels), 1.8 * double(inPenumbra[0].pixels)) << "the penumbra must grow";
     EXPECT_LT(inPenumbra[1].rmse, 1.35 * inPenumbra[0].rmse)
         << inPenumbra[0].toString() << " / " << inPenumbra[1].toString();
+}
+
+// Figure 4's scene: a thin plate tilted through several slices under a small square light. An
+// orthographic slicing camera cuts the plate into patches stored straight below each piece;
+// the lookup follows the line from the light centre, which passes between the patches: light
+// leaks in stripes across the plate's shadow. The perspective camera (COP just behind the
+// light) stores each piece close to where those lines cross it.
+Scene tiltedThinPlate() {
+    Scene s;
+    s.addMesh(makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    Mesh plate = makeBox({-1.2f, -0.6f, -0.01f}, {1.2f, 0.6f, 0.01f}, SS_MESH_CAST);
+    for (glm::vec3& p : plate.positions) p.z += 1.5f + 0.5f * p.x;  // 0.9 .. 2.1 above the ground
+    plate.finalize();
+    s.addMesh(plate);
+    Light light = makeDiskLight({0.3f, 0.2f, 4.0f}, 0.5f);
+    light.type = LightType::Square;
+    s.addLight(light);
+    s.setCamera(makeTopCamera());
+    return s;
+}
+
+TEST(PaperPropertiesOcclusionTextures, Figure4PerspectiveSlicingLeaksLessThanOrthographic) {
+    Scene scene = tiltedThinPlate();
+    Layers ref = renderReference(scene);
+    const Image& vref = *ref.find("V");
+    const Image& mask = *ref.find("mask");
+    struct Result {
+        Metrics image;
+        size_t leaks = 0;  // lit (V > 0.5) where the reference is in umbra (V < 0.1)
+    };
+    auto measure = [&](const char* slicing, const char* resolution) {
+        Layers ot = renderWith(scene, "occlusion_textures", {{"slicing", slicing}, {"resolution", resolution}});
+        dumpPng(std::string("figure4_") + slicing + "_" + resolution, *ot.find("V"));
+        Result r;
+        r.image = compareToReference(ot, ref);
+        const Image& v = *ot.find("V");
+        for (size_t i = 0; i < v.pixels.size(); ++i)
+            r.leaks += mask.pixels[i] > 0.5f && vref.pixels[i] < 0.1f && v.pixels[i] > 0.5f;
+        std::printf("[occlusion_textures] figure 4, slicing=%s resolution=%s: %zu px leak (lit where the reference "
+                    "is umbra); %s\n",
+                    slicing, resolution, r.leaks, r.image.toString().c_str());
+        return r;
+    };
+    dumpPng("figure4_reference", vref);
+    Result perspective = measure("perspective", "512"), orthographic = measure("orthographic", "512");
+    Result sharpOrthographic = measure("orthographic", "4096");
+    size_t umbra = 0;
+    for (size_t i = 0; i < vref.pixels.size(); ++i) umbra += mask.pixels[i] > 0.5f && vref.pixels[i] < 0.1f;
+    ASSERT_GT(umbra, 300u) << "the plate must cast an umbra";
+    // Measured (160 x 120, 8 slices, sat): perspective RMSE 0.018 with no leaking pixel;
+    // orthographic 0.070 with 11, and still 0.074 with 10 at 4096² (eight times the texel
+    // density): the leaks are the patches' misalignment, not the orthographic textures' coarser
+    // texels (the paper's other objection).
+    for (const Result* o : {&orthographic, &sharpOrthographic}) {
+        EXPECT_LT(perspective.image.rmse, 0.5 * o->image.rmse);
+        EXPECT_GE(o->leaks, 5u);
+        EXPECT_LT(2 * perspective.leaks, o->leaks);
+    }
+}
+
+TEST(PaperPropertiesOcclusionTextures, SlicingSettingIsChecked) {
+    expectSettingRefused(tiltedThinPlate(), "occlusion_textures", {{"slicing", "fisheye"}}, "slicing");
 }
 
 }  // namespace

@@ -32,14 +32,28 @@ bool thirdVertex(const Mesh& mesh, uint32_t face, uint32_t a, uint32_t b, glm::v
     return false;
 }
 
-// Angle between the normals of the quad's two triangles (p0 p1 q1) and (p0 q1 q0).
-float quadTwist(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& q1, const glm::vec3& q0) {
-    glm::vec3 n1 = glm::cross(p1 - p0, q1 - p0);
-    glm::vec3 n2 = glm::cross(q1 - p0, q0 - p0);
-    float l1 = glm::length(n1), l2 = glm::length(n2);
-    if (!(l1 > 0.0f) || !(l2 > 0.0f)) return 0.0f;
-    float c = std::clamp(glm::dot(n1, n2) / (l1 * l2), -1.0f, 1.0f);
-    return std::acos(c);
+// The point where the sheet's plane touches the light's disk (centre c, radius R, normal
+// `axis`): the plane through the edge (pa, pb) tangent to the disk on the side opposite the
+// outward direction d (unit, perpendicular to axis and to the edge's image). Lines from that
+// point through the edge are the outer boundary of the edge's penumbra; the plane meets the far
+// plane in the outer common tangent of the two end cones' base circles.
+glm::vec3 outerTangentPoint(const PenumbraLight& light, const glm::vec3& pa, const glm::vec3& pb,
+                            float za, float zb, const glm::vec3& d) {
+    const float R = light.radius;
+    // k (a' - c), a' where the edge's line meets the light's plane, k = za - zb: finite when
+    // the edge is parallel to that plane (k = 0, a' at infinity).
+    const float k = za - zb;
+    glm::vec3 h = (pa - light.centre) * k + (pb - pa) * za;
+    h -= glm::dot(h, light.axis) * light.axis;
+    const float hl = glm::length(h);
+    // s = R / |a' - c|: 0 for an edge parallel to the light, 1 when its line grazes the disk.
+    const float s = hl > 0.0f ? std::min(R * std::abs(k) / hl, 1.0f) : 0.0f;
+    const glm::vec3 toward = hl > 0.0f ? h * (k < 0.0f ? -1.0f / hl : 1.0f / hl) : glm::vec3(0.0f);
+    // Tangent points from a' to the circle: c + R s g^ +- R sqrt(1 - s^2) d, with g^ along a'
+    // (perpendicular to d: a' lies on the image of the edge's plane through c). The outer one
+    // is on the -d side. A line through the disk (s clamped to 1) has no tangent plane: the
+    // sheet then passes through the rim point nearest a'.
+    return light.centre + R * s * toward - R * std::sqrt(std::max(0.0f, 1.0f - s * s)) * d;
 }
 
 }  // namespace
@@ -58,7 +72,6 @@ void ConesSheets::append(const ConesSheets& other) {
     for (int s : other.sheetOfEdge) sheetOfEdge.push_back(s < 0 ? s : s + sBase);
     for (uint32_t f : other.coneFirstTriangle) coneFirstTriangle.push_back(f + tBase);
     for (uint32_t f : other.sheetFirstTriangle) sheetFirstTriangle.push_back(f + tBase);
-    sheetStrips.insert(sheetStrips.end(), other.sheetStrips.begin(), other.sheetStrips.end());
 }
 
 ConesSheets buildConesSheets(const Mesh& mesh, const PointSilhouette& silhouette,
@@ -78,7 +91,9 @@ ConesSheets buildConesSheets(const Mesh& mesh, const PointSilhouette& silhouette
         const float zv = lightDepth(light, v);
         if (!usable(zv)) continue;
         const glm::vec3 base = onFarPlane(light, v, zv);
-        const float radius = coneRadius(light, zv);
+        // The polygon's edges touch the circle (vertices at r / cos(pi / n)), so the cone holds
+        // the true cone and the sheet's tangent line meets the polygon: no sliver between them.
+        const float radius = coneRadius(light, zv) / std::cos(float(M_PI) / float(segments));
         out.coneOfVertex[i] = int(out.cones());
         out.coneFirstTriangle.push_back(uint32_t(out.triangles.size()));
         const uint32_t tip = uint32_t(out.vertices.size());
@@ -113,27 +128,21 @@ ConesSheets buildConesSheets(const Mesh& mesh, const PointSilhouette& silhouette
         float dl = glm::length(d);
         if (!(dl > 0.0f)) continue;
         d /= dl;
-        const glm::vec3 qa = onFarPlane(light, pa, za) + coneRadius(light, za) * d;
-        const glm::vec3 qb = onFarPlane(light, pb, zb) + coneRadius(light, zb) * d;
-        const float twist = quadTwist(pa, pb, qb, qa);
-        int strips = int(std::ceil(twist / std::max(settings.maxTwist, 1e-4f)));
-        strips = std::clamp(strips, 1, std::max(1, settings.maxSheetStrips));
-
+        // The sheet lies in the plane through the edge tangent to the light's disk: its rulings
+        // run from the tangent point t through the edge to the far plane, so its far edge is the
+        // two base circles' outer common tangent and the quad is planar by construction.
+        const glm::vec3 t = outerTangentPoint(light, pa, pb, za, zb, d);
+        const glm::vec3 qa = t + (pa - t) * (light.farDepth / za);
+        const glm::vec3 qb = t + (pb - t) * (light.farDepth / zb);
         out.sheetOfEdge[i] = int(out.sheets());
         out.sheetFirstTriangle.push_back(uint32_t(out.triangles.size()));
-        out.sheetStrips.push_back(uint32_t(strips));
         const uint32_t first = uint32_t(out.vertices.size());
-        for (int k = 0; k <= strips; ++k) {
-            float s = float(k) / float(strips);
-            float z = (1.0f - s) * za + s * zb;
-            out.vertices.push_back({glm::mix(pa, pb, s), z});
-            out.vertices.push_back({glm::mix(qa, qb, s), z});
-        }
-        for (int k = 0; k < strips; ++k) {
-            uint32_t p0 = first + 2 * k, q0 = p0 + 1, p1 = p0 + 2, q1 = p0 + 3;
-            out.triangles.push_back({p0, p1, q1});
-            out.triangles.push_back({p0, q1, q0});
-        }
+        out.vertices.push_back({pa, za});
+        out.vertices.push_back({qa, za});
+        out.vertices.push_back({pb, zb});
+        out.vertices.push_back({qb, zb});
+        out.triangles.push_back({first, first + 2, first + 3});
+        out.triangles.push_back({first, first + 3, first + 1});
     }
     return out;
 }

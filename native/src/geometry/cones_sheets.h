@@ -31,12 +31,7 @@ struct ConeSheetVertex {
 };
 
 struct ConeSheetSettings {
-    int coneSegments = 16;      // triangles per cone
-    // A sheet quad is split into strips along its edge so that the angle between the normals
-    // of each strip's two triangles (its twist; it shrinks in proportion to the strip's share
-    // of the edge) stays below this many radians; at most maxSheetStrips strips.
-    float maxTwist = 0.1f;
-    int maxSheetStrips = 16;
+    int coneSegments = 16;  // triangles per cone
 };
 
 struct ConesSheets {
@@ -47,7 +42,7 @@ struct ConesSheets {
     // index of its sheet or -1; the triangle ranges of each cone and sheet.
     std::vector<int> coneOfVertex;
     std::vector<int> sheetOfEdge;
-    std::vector<uint32_t> coneFirstTriangle, sheetFirstTriangle, sheetStrips;
+    std::vector<uint32_t> coneFirstTriangle, sheetFirstTriangle;
     size_t cones() const { return coneFirstTriangle.size(); }
     size_t sheets() const { return sheetFirstTriangle.size(); }
 
@@ -63,8 +58,11 @@ inline float lightDepth(const PenumbraLight& light, const glm::vec3& p) {
 }
 
 // Builds one cone per silhouette vertex and one sheet per silhouette edge of `mesh` (whose
-// silhouette from light.centre is `silhouette`). Every sheet lies on the outer side of its
-// edge: away from the occluder, in the plane through the light centre and the edge.
+// silhouette from light.centre is `silhouette`). Every sheet is one planar quad (two triangles:
+// edge end a, its far corner, edge end b, its far corner as vertices 0..3) on the outer side of
+// its edge, away from the occluder: in the plane through the edge tangent to the light's disk
+// (the disk of `radius` perpendicular to `axis`), so it touches both end cones. Cone polygons
+// are circumscribed about the true cones.
 ConesSheets buildConesSheets(const Mesh& mesh, const PointSilhouette& silhouette,
                              const PenumbraLight& light, const ConeSheetSettings& settings = {});
 

@@ -16,6 +16,8 @@ void ShadowVolumes::append(const ShadowVolumes& o) {
     fanTriangles += o.fanTriangles;
     silhouetteFaces += o.silhouetteFaces;
     trimmedCorners += o.trimmedCorners;
+    multiEdgeCorners += o.multiEdgeCorners;
+    openCornerEnds += o.openCornerEnds;
     insideDiskEdges += o.insideDiskEdges;
 }
 
@@ -186,6 +188,88 @@ bool trimCorner(const Mesh& mesh, Quad& in, Quad& out, uint32_t v) {
     return true;
 }
 
+// The corners at one silhouette vertex: each quad that ends there (b == vertex) paired with the
+// quad that starts there (a == vertex) and continues the same strand of the silhouette. At a
+// simple vertex that is its only other edge. Where the silhouette passes through a vertex more
+// than once (3+ edges: a saddle, a star's apex, two loops touching), the partner is the edge
+// that bounds the same run of "upper" faces around the vertex: from the incoming edge's upper
+// face, walk around the vertex across edges that are not silhouette edges (their two faces are
+// in the same class) until a silhouette edge of this vertex is reached. Ends the walk cannot
+// pair (non-manifold or open edges around the vertex) are paired by the nearest far-end
+// direction; an end left over (an odd count) stays open and is counted.
+struct Corner {
+    uint32_t in, out;  // indices into the quad list
+};
+
+std::vector<Corner> cornersAt(const Mesh& mesh, const std::vector<SilhouetteEdge>& edges,
+                              const std::vector<Quad>& quads, const SilhouetteVertex& sv,
+                              size_t* unpaired) {
+    std::vector<Corner> corners;
+    std::vector<uint32_t> ins, outs;
+    for (uint32_t i : sv.edges) {
+        if (quads[i].b == sv.vertex) ins.push_back(i);
+        else if (quads[i].a == sv.vertex) outs.push_back(i);
+    }
+    if (ins.size() == 1 && outs.size() == 1 && sv.edges.size() == 2) {
+        corners.push_back({ins[0], outs[0]});
+        return corners;
+    }
+    const auto& adj = mesh.adjacency;
+    auto silhouetteAt = [&](uint32_t meshEdge) -> int {
+        for (uint32_t i : sv.edges)
+            if (edges[i].edge == meshEdge) return int(i);
+        return -1;
+    };
+    std::vector<bool> outUsed(outs.size(), false);
+    std::vector<uint32_t> leftIns;
+    for (uint32_t in : ins) {
+        uint32_t face = edges[in].face, from = edges[in].edge;
+        int found = -1;
+        for (size_t step = 0; face != kNoFace && step <= mesh.triangles.size() && step < 256; ++step) {
+            uint32_t next = kNoFace;
+            for (int k = 0; k < 3; ++k) {
+                uint32_t e = adj.faceEdges[face][k];
+                if (e != from && (adj.edges[e].v0 == sv.vertex || adj.edges[e].v1 == sv.vertex)) next = e;
+            }
+            if (next == kNoFace) break;
+            int s = silhouetteAt(next);
+            if (s >= 0) {
+                found = s;
+                break;
+            }
+            const Edge& e = adj.edges[next];
+            if (!e.isManifold()) break;
+            face = e.faces[0] == face ? e.faces[1] : e.faces[0];
+            from = next;
+        }
+        size_t slot = outs.size();
+        for (size_t k = 0; k < outs.size(); ++k)
+            if (found >= 0 && outs[k] == uint32_t(found) && !outUsed[k]) slot = k;
+        if (slot < outs.size()) {
+            outUsed[slot] = true;
+            corners.push_back({in, outs[slot]});
+        } else {
+            leftIns.push_back(in);
+        }
+    }
+    for (uint32_t in : leftIns) {
+        size_t best = outs.size();
+        float bestDot = -2.0f;
+        for (size_t k = 0; k < outs.size(); ++k) {
+            float d = glm::dot(quads[in].dirB, quads[outs[k]].dirA);
+            if (!outUsed[k] && d > bestDot) bestDot = d, best = k;
+        }
+        if (best == outs.size()) {
+            ++*unpaired;
+            continue;
+        }
+        outUsed[best] = true;
+        corners.push_back({in, outs[best]});
+    }
+    for (bool used : outUsed) *unpaired += used ? 0 : 1;
+    return corners;
+}
+
 // Angle of a rim point around the disk centre in the frame (u, w).
 float rimAngle(const glm::vec3& p, const Disk& disk, const glm::vec3& u, const glm::vec3& w) {
     glm::vec3 d = p - disk.centre;
@@ -196,18 +280,15 @@ float rimAngle(const glm::vec3& p, const Disk& disk, const glm::vec3& u, const g
 
 namespace {
 
-// Umbra: quads, trimmed where two meet at a simple silhouette vertex, plus silhouette faces.
+// Umbra: quads, trimmed at every corner where two meet, plus silhouette faces.
 void extrudeUmbra(const Mesh& mesh, const DiskSilhouette& sil, const Disk& disk, float length,
                   ShadowVolumes& vol) {
     std::vector<Quad> uq = buildQuads(mesh, sil.umbraEdges, disk, true, &vol.insideDiskEdges);
-    for (const SilhouetteVertex& sv : sil.umbraVertices) {
-        if (sv.edges.size() != 2) continue;
-        uint32_t i0 = sv.edges[0], i1 = sv.edges[1];
-        Quad *in = nullptr, *out = nullptr;
-        if (uq[i0].b == sv.vertex && uq[i1].a == sv.vertex) in = &uq[i0], out = &uq[i1];
-        else if (uq[i1].b == sv.vertex && uq[i0].a == sv.vertex) in = &uq[i1], out = &uq[i0];
-        if (in && trimCorner(mesh, *in, *out, sv.vertex)) ++vol.trimmedCorners;
-    }
+    for (const SilhouetteVertex& sv : sil.umbraVertices)
+        for (const Corner& c : cornersAt(mesh, sil.umbraEdges, uq, sv, &vol.openCornerEnds)) {
+            if (trimCorner(mesh, uq[c.in], uq[c.out], sv.vertex)) ++vol.trimmedCorners;
+            if (sv.edges.size() > 2) ++vol.multiEdgeCorners;
+        }
     for (const Quad& q : uq) pushQuad(vol.umbra, mesh, q, length);
     vol.umbraQuads += uq.size();
     // Silhouette faces of both kinds close the gap between the two silhouettes (§3.3). Their
@@ -229,44 +310,47 @@ void extrudeUmbra(const Mesh& mesh, const DiskSilhouette& sil, const Disk& disk,
         }
 }
 
-// Penumbra: quads with their own directions, closed at each simple vertex by a fan.
+// A fan at silhouette vertex `pv` from the far edge of `in` to that of `out`: directions run
+// along the shorter disk-rim arc from one quad's p_p to the next one's, at most `step` apart; the
+// last far vertex is exactly `out`'s, so the side surface stays closed.
+void pushFan(const glm::vec3& pv, const Quad& in, const Quad& out, const Disk& disk, float length,
+             float step, ShadowVolumes& vol) {
+    glm::vec3 u = glm::normalize(glm::cross(disk.normal, std::abs(disk.normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+    glm::vec3 w = glm::cross(disk.normal, u);
+    float t0 = rimAngle(in.p, disk, u, w), t1 = rimAngle(out.p, disk, u, w);
+    float span = t1 - t0;
+    while (span > float(M_PI)) span -= 2.0f * float(M_PI);
+    while (span < -float(M_PI)) span += 2.0f * float(M_PI);
+    if (std::abs(span) < 1e-6f) return;
+    int steps = std::max(1, int(std::ceil(std::abs(span) / step)));
+    glm::vec3 prev = pv + length * in.dirB;
+    for (int k = 1; k <= steps; ++k) {
+        glm::vec3 next;
+        if (k == steps) {
+            next = pv + length * out.dirA;
+        } else {
+            float ang = t0 + span * float(k) / float(steps);
+            glm::vec3 rim = disk.centre + disk.radius * (std::cos(ang) * u + std::sin(ang) * w);
+            next = pv + length * safeNormalize(pv - rim, in.dirB);
+        }
+        pushTriangle(vol.penumbra, pv, prev, next, pv, pv, disk.centre, VolumeKind::Fan);
+        ++vol.fanTriangles;
+        prev = next;
+    }
+}
+
+// Penumbra: quads with their own directions, closed by a fan at every corner.
 void extrudePenumbra(const Mesh& mesh, const DiskSilhouette& sil, const Disk& disk, float length,
                      float fanStepRadians, ShadowVolumes& vol) {
-    // Fans: directions run along the disk rim from one quad's p_p to the next one's.
     std::vector<Quad> pq = buildQuads(mesh, sil.penumbraEdges, disk, false, &vol.insideDiskEdges);
     for (const Quad& q : pq) pushQuad(vol.penumbra, mesh, q, length);
     vol.penumbraQuads += pq.size();
-    glm::vec3 u = glm::normalize(glm::cross(disk.normal, std::abs(disk.normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
-    glm::vec3 w = glm::cross(disk.normal, u);
-    for (const SilhouetteVertex& sv : sil.penumbraVertices) {
-        if (sv.edges.size() != 2 || !(disk.radius > 0.0f)) continue;
-        uint32_t i0 = sv.edges[0], i1 = sv.edges[1];
-        const Quad *in = nullptr, *out = nullptr;
-        if (pq[i0].b == sv.vertex && pq[i1].a == sv.vertex) in = &pq[i0], out = &pq[i1];
-        else if (pq[i1].b == sv.vertex && pq[i0].a == sv.vertex) in = &pq[i1], out = &pq[i0];
-        if (!in) continue;
-        float t0 = rimAngle(in->p, disk, u, w), t1 = rimAngle(out->p, disk, u, w);
-        float span = t1 - t0;
-        while (span > float(M_PI)) span -= 2.0f * float(M_PI);
-        while (span < -float(M_PI)) span += 2.0f * float(M_PI);
-        int steps = std::max(1, int(std::ceil(std::abs(span) / fanStepRadians)));
-        if (std::abs(span) < 1e-6f) continue;
-        glm::vec3 pv = mesh.positions[sv.vertex];
-        glm::vec3 prev = pv + length * in->dirB;
-        for (int k = 1; k <= steps; ++k) {
-            glm::vec3 next;
-            if (k == steps) {
-                next = pv + length * out->dirA;  // exactly the next quad's far vertex
-            } else {
-                float ang = t0 + span * float(k) / float(steps);
-                glm::vec3 rim = disk.centre + disk.radius * (std::cos(ang) * u + std::sin(ang) * w);
-                next = pv + length * safeNormalize(pv - rim, in->dirB);
-            }
-            pushTriangle(vol.penumbra, pv, prev, next, pv, pv, disk.centre, VolumeKind::Fan);
-            ++vol.fanTriangles;
-            prev = next;
+    if (!(disk.radius > 0.0f)) return;
+    for (const SilhouetteVertex& sv : sil.penumbraVertices)
+        for (const Corner& c : cornersAt(mesh, sil.penumbraEdges, pq, sv, &vol.openCornerEnds)) {
+            if (sv.edges.size() > 2) ++vol.multiEdgeCorners;
+            pushFan(mesh.positions[sv.vertex], pq[c.in], pq[c.out], disk, length, fanStepRadians, vol);
         }
-    }
 }
 
 }  // namespace

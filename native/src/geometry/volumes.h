@@ -36,6 +36,8 @@ struct ShadowVolumes {
     std::vector<VolumeVertex> penumbra;  // penumbra quads + fans closing them around the disk
     size_t umbraQuads = 0, penumbraQuads = 0, fanTriangles = 0, silhouetteFaces = 0;
     size_t trimmedCorners = 0;   // umbra corners whose two quads were cut at their intersection
+    size_t multiEdgeCorners = 0; // corners (umbra and penumbra) at vertices with 3+ silhouette edges
+    size_t openCornerEnds = 0;   // quad ends no partner could be found for (odd counts: open meshes)
     size_t insideDiskEdges = 0;  // edges whose line crosses the disk (open meshes only): see .cpp
     void append(const ShadowVolumes& other);
 };

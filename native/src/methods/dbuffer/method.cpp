@@ -80,7 +80,8 @@ public:
     const char* name() const override { return "dbuffer"; }
     bool needsGl() const override { return true; }
     std::vector<std::string> settingKeys() const override {
-        return {"shadow_map_size", "umbra_rule", "small_occluders", "profile", "bias_texels", "finish_stages"};
+        return {"shadow_map_size", "umbra_rule", "small_occluders", "profile", "bias_texels", "formula",
+                "raw_layers", "finish_stages"};
     }
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
@@ -99,6 +100,10 @@ public:
             if (finishStages) g.Finish();
         };
         finishStage();
+        // formula=paper: eq. 2 and eq. 3 as printed (docs/methods/dbuffer.md names the repairs).
+        const bool paper = settings.choice("formula", "exact", {"exact", "paper"}) == "paper";
+        // raw_layers (tests): t and V before any clamping, so a NaN or infinity stays visible.
+        const bool raw = settings.flag("raw_layers", false);
         const CameraPass& cam = frame.cameraPass();
         finishStage();
         const ShadowMap& map = frame.shadowMap(lightIndex, shadowMapSizeSetting(settings));
@@ -121,6 +126,7 @@ public:
         // Depth = distance / uFar: anything past the far plane is clipped anyway.
         float far = glm::length(map.origin - geo.disk.centre) + map.farPlane * 2.0f + 1e-6f;
         vol.set("uFar", far);
+        vol.set("uPaperFormula", paper ? 1 : 0);
         GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
         // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
         std::string rule = settings.choice("umbra_rule", "first_exit", {"first_exit", "farthest"});
@@ -143,7 +149,9 @@ public:
 
         // Camera pass: eq. 3 and eq. 4 per pixel.
         settings.report(0.7f, "camera pass");
-        gl::Framebuffer& out = gl::scratchFramebuffer("dbuffer.camera", cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F});
+        gl::Framebuffer& out =
+            raw ? gl::scratchFramebuffer("dbuffer.camera.raw", cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F})
+                : gl::scratchFramebuffer("dbuffer.camera", cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F});
         out.bind();
         gl::apply(gl::states::overwrite);  // writes every pixel: no clear needed
         const gl::Program& shade = gl::program("common/fullscreen.vert.glsl", "dbuffer/camera.frag.glsl");
@@ -157,6 +165,7 @@ public:
         std::string profile = settings.choice("profile", "smoothstep", {"smoothstep", "segment"});
         shade.set("uSegmentProfile", profile == "segment" ? 1 : 0);
         shade.set("uBiasTexels", settings.number("bias_texels", 1.5f, 0.0f, 1000.0f));
+        shade.set("uPaperFormula", paper ? 1 : 0);
         frame.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("drawing the dbuffer camera pass");
@@ -177,6 +186,11 @@ public:
             layers.add("dist_umbra", std::move(dist[1]));
             layers.add("dist_penumbra", std::move(dist[2]));
             layers.add("dist_silhouette", std::move(dist[3]));
+        }
+        if (raw) {
+            std::vector<Image> unclamped = out.readChannels(2, 2);
+            layers.add("raw_t", std::move(unclamped[0]));
+            layers.add("raw_V", std::move(unclamped[1]));
         }
         finishStage();
         settings.report(1.0f, "done");

@@ -18,12 +18,14 @@ public:
     const char* name() const override { return "occlusion_textures"; }
     bool needsGl() const override { return true; }
     std::vector<std::string> settingKeys() const override {
-        return {"slices", "resolution", "filter", "thin_fix", "fade", "finish_stages", "skip_empty_slices"};
+        return {"slices", "resolution", "filter", "thin_fix", "fade", "finish_stages", "skip_empty_slices",
+                "slicing"};
     }
 
     // Settings: slices (1..16, default 8), resolution (long side of the occlusion textures,
     // default 512), filter (mipmap | nbuffer | sat, default sat: exact and the fastest on llvmpipe), thin_fix (on: every
     // mesh; default off: only meshes flagged SS_MESH_THIN), fade (below | paper),
+    // slicing (perspective, the paper's | orthographic, its figure 4's worse alternative),
     // finish_stages (benchmark: glFinish at each stage so the progress marks time the GPU),
     // skip_empty_slices (default on; off only for the test that shows it is exact).
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
@@ -34,6 +36,10 @@ public:
         occlusion::Fade fade =
             settings.choice("fade", "below", {"below", "paper"}) == "below" ? occlusion::Fade::Below : occlusion::Fade::Paper;
         bool thinFixAll = settings.flag("thin_fix", false);
+        occlusion::Projection projection =
+            settings.choice("slicing", "perspective", {"perspective", "orthographic"}) == "perspective"
+                ? occlusion::Projection::Perspective
+                : occlusion::Projection::Orthographic;
         // Tests only: shade every slice, to show that skipping the empty ones changes nothing.
         bool skipEmptySlices = settings.flag("skip_empty_slices", true);
         // The benchmark's per-stage times: wait for the GPU at each stage boundary.
@@ -44,7 +50,7 @@ public:
         };
 
         occlusion::KernelLight kernel = occlusion::kernelLight(light, frame.scene().bounds());
-        occlusion::SliceSetup setup = occlusion::fitSlices(frame.scene(), kernel, sliceCount, resolution);
+        occlusion::SliceSetup setup = occlusion::fitSlices(frame.scene(), kernel, sliceCount, resolution, projection);
         stage(0.1f, "slicing");
         occlusion::SliceTextures slices = occlusion::renderSlices(frame, setup, filter, thinFixAll);
         stage(0.4f, "pre-filtering");

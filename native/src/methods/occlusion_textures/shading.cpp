@@ -50,12 +50,12 @@ void setReachUniforms(const gl::Program& program, const SliceSetup& setup, const
         const float start = fade == Fade::Paper ? top : bottom;
         const bool belowReceivers = start >= setup.receiverDepthMax * (1.0f + 1e-6f) - 1e-4f * (bottom - top);
         if (b.x > b.z || belowReceivers) continue;
-        const float project = setup.d / (setup.d + bottom);
-        const glm::vec2 centreScale = bottom * project * 0.5f * texels / lightHalf;
+        const glm::vec2 ndc = setup.ndcPerUnit(bottom);
+        const glm::vec2 centreScale = bottom * ndc * 0.5f * texels;
         rect = glm::vec4(glm::min(glm::vec2(rect), glm::vec2(b)), glm::max(glm::vec2(rect.z, rect.w), glm::vec2(b.z, b.w)));
         scale = glm::vec4(glm::min(glm::vec2(scale), centreScale), glm::max(glm::vec2(scale.z, scale.w), centreScale));
         depth = glm::vec4(std::min(depth.x, start), std::min(depth.y, bottom), std::max(depth.z, bottom), 0.0f);
-        half = glm::max(half, 0.5f * project * texels);
+        half = glm::max(half, 0.5f * lightHalf * ndc * texels);
     }
     if (!skipEmptySlices) {  // every pixel goes to the full pass
         rect = glm::vec4(-1e30f, -1e30f, 1e30f, 1e30f);
@@ -86,11 +86,11 @@ void setShadingUniforms(Frame& frame, const gl::Program& program, int lightIndex
     const glm::vec2 lightHalf(setup.light.halfX, setup.light.halfY);
     for (int k = 0; k < setup.count(); ++k) {
         const float top = setup.planes[size_t(k)], bottom = setup.planes[size_t(k) + 1];
-        const float project = setup.d / (setup.d + bottom);  // the COP's scale at the lower plane
+        const glm::vec2 ndc = setup.ndcPerUnit(bottom);  // the slicing camera's scale at the lower plane
         const std::string index = "[" + std::to_string(k) + "]";
         program.set(("sliceDepths" + index).c_str(), glm::vec4(top, bottom, 1.0f / (bottom - top), 0.0f));
         program.set(("sliceScales" + index).c_str(),
-                    glm::vec4(bottom * project * 0.5f * texels / lightHalf, project * texels));
+                    glm::vec4(bottom * ndc * 0.5f * texels, lightHalf * ndc * texels));
     }
     program.set("sliceSize", texels);
     program.set("skipEmptySlices", skipEmptySlices ? 1 : 0);

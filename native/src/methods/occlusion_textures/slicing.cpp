@@ -77,7 +77,13 @@ int SliceSetup::sliceOf(float z) const {
     return std::clamp(int(std::floor(t * float(count()))), 0, count() - 1);
 }
 
-SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCount, int resolution) {
+glm::vec2 SliceSetup::ndcPerUnit(float depth) const {
+    if (projection == Projection::Orthographic) return 1.0f / orthoHalf;
+    return glm::vec2(1.0f / light.halfX, 1.0f / light.halfY) * (d / (d + depth));
+}
+
+SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCount, int resolution,
+                     Projection projection) {
     if (sliceCount < 1 || sliceCount > 16)
         fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: slices = " + std::to_string(sliceCount) +
                                             " is outside 1..16");
@@ -87,12 +93,14 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
     const float inf = std::numeric_limits<float>::infinity();
     float zAllMax = 0.0f, zCastMin = inf, zCastMax = 0.0f, zReceiveMax = 0.0f;
     float d = inf;
+    float coverX = light.halfX, coverY = light.halfY;  // orthographic: the extent to cover
     for (const Mesh& mesh : scene.meshes()) {
         if (!mesh.casts() && !mesh.receives()) continue;
         for (const glm::vec3& p : mesh.positions) {
             glm::vec3 q = light.toLocal(p);
             if (q.z <= 0.0f) continue;
             zAllMax = std::max(zAllMax, q.z);
+            coverX = std::max(coverX, std::abs(q.x)), coverY = std::max(coverY, std::abs(q.y));
             if (mesh.casts()) zCastMin = std::min(zCastMin, q.z), zCastMax = std::max(zCastMax, q.z);
             if (mesh.receives()) zReceiveMax = std::max(zReceiveMax, q.z);
             // Inside the frustum when |x| <= a (z + d) / d, i.e. d <= a z / (|x| - a).
@@ -105,6 +113,11 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
     float dMin = std::max(light.halfX, light.halfY) / std::tan(kMaxHalfAngle);
     SliceSetup s;
     s.light = light;
+    s.projection = projection;
+    // A kernel's centre and corners are convex combinations of the point and the light's
+    // corners, so covering both covers every lookup.
+    const float cover = 1.001f * std::max(coverX / light.halfX, coverY / light.halfY);
+    s.orthoHalf = glm::vec2(light.halfX, light.halfY) * cover;
     s.d = std::clamp(d, dMin, std::max(dMin, 4.0f * zAllMax));
     s.receiverDepthMax = zReceiveMax;
     // Vertices touching the light plane would make the first slice start at 0 depth; keep a
@@ -117,6 +130,15 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
     s.width = aspect <= 1.0f ? resolution : std::max(16, int(std::lround(resolution / aspect)));
     s.height = aspect <= 1.0f ? std::max(16, int(std::lround(resolution * aspect))) : resolution;
 
+    if (projection == Projection::Orthographic) {
+        glm::mat4 lightToWorld(glm::vec4(light.axisX, 0.0f), glm::vec4(light.axisY, 0.0f),
+                               glm::vec4(-light.normal, 0.0f), glm::vec4(light.centre, 1.0f));
+        float margin = 1e-3f * (z1 - z0);
+        s.worldToClip = glm::ortho(-s.orthoHalf.x, s.orthoHalf.x, -s.orthoHalf.y, s.orthoHalf.y,
+                                   std::max(z0 - margin, 0.5f * z0), z1 + margin) *
+                        glm::inverse(lightToWorld);
+        return s;
+    }
     glm::vec3 eye = light.centre - s.d * light.normal;
     glm::mat4 cameraToWorld(glm::vec4(light.axisX, 0.0f), glm::vec4(light.axisY, 0.0f),
                             glm::vec4(-light.normal, 0.0f), glm::vec4(eye, 1.0f));
@@ -128,7 +150,7 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
 }
 
 glm::vec2 sliceUv(const SliceSetup& s, const glm::vec3& local) {
-    glm::vec2 ndc = glm::vec2(local.x / s.light.halfX, local.y / s.light.halfY) * (s.d / (s.d + local.z));
+    glm::vec2 ndc = glm::vec2(local.x, local.y) * s.ndcPerUnit(local.z);
     return 0.5f * ndc + 0.5f;
 }
 
@@ -145,8 +167,9 @@ SliceLookup lookupSlice(const SliceSetup& s, const glm::vec3& local, int k, Fade
     // a rectangle there, centred on the line from the light centre through the point.
     float ratio = bottom / z;
     out.uv = sliceUv(s, glm::vec3(local.x * ratio, local.y * ratio, bottom));
-    float halfNdc = std::abs(z - bottom) / z * s.d / (bottom + s.d);
-    out.kernelTexels = glm::vec2(halfNdc * float(s.width), halfNdc * float(s.height));
+    // The footprint's half size over the texture's half size: full kernel size in texels.
+    glm::vec2 halfNdc = std::abs(z - bottom) / z * glm::vec2(s.light.halfX, s.light.halfY) * s.ndcPerUnit(bottom);
+    out.kernelTexels = halfNdc * glm::vec2(float(s.width), float(s.height));
     return out;
 }
 

@@ -31,9 +31,16 @@ enum class Fade {
     Paper   // the slice containing the point fades in towards its lower plane (paper, Sec. 3.4)
 };
 
+enum class Projection {
+    Perspective,  // the paper's: centre of projection d behind the light, frustum fitted to it
+    Orthographic  // along the light's normal over the whole scene (the paper's figure 4, left)
+};
+
 struct SliceSetup {
     KernelLight light;
+    Projection projection = Projection::Perspective;
     float d = 1.0f;              // centre of projection sits d behind the light, on its normal
+    glm::vec2 orthoHalf{1.0f};   // orthographic: the half sizes (light axes) the textures cover
     std::vector<float> planes;   // count + 1 depths below the light plane, increasing
     int width = 256, height = 256;  // occlusion texture size (aspect of the light)
     glm::mat4 worldToClip{1.0f};    // the slicing camera (COP) for the slicing pass
@@ -41,12 +48,17 @@ struct SliceSetup {
     int count() const { return int(planes.size()) - 1; }
     // Slice holding depth z (clamped to the range).
     int sliceOf(float z) const;
+    // Normalised device units per world unit along the light's axes, in the plane at `depth`.
+    glm::vec2 ndcPerUnit(float depth) const;
 };
 
 // Fits the slicing camera: d so that every casting or receiving vertex in front of the light is
 // inside the frustum (half-angle capped at 80 degrees), slices spread uniformly in depth over
-// the casters' depth range. Throws ss::Error when no geometry lies in front of the light.
-SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCount, int resolution);
+// the casters' depth range. Orthographic: the textures cover every casting or receiving vertex
+// in front of the light (and the light), with the light's aspect. Throws ss::Error when no
+// geometry lies in front of the light.
+SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCount, int resolution,
+                     Projection projection = Projection::Perspective);
 
 // How a point (light-local) reads slice k: texture centre (uv in [0, 1]), kernel size in
 // texels (w, h) and the slice's weight (0: not used).
