@@ -50,6 +50,21 @@ TEST(ErrorEstimate, CApiGivesItForAutoAndOnRequestForAMethod) {
     const double pcss = estimate("pcss", "estimate_rmse=1");
     EXPECT_TRUE(std::isfinite(pcss) && pcss >= autoEstimate) << pcss << " vs auto " << autoEstimate;
     EXPECT_TRUE(std::isnan(ss_result_estimated_rmse(nullptr)));
+    // auto renders at most three candidates at full size here (pcss, dbuffer, sweep under the
+    // demo's disk light; shadow_map, penumbra_map and occlusion_textures are left out).
+    auto rendered = [&](const char* method) {
+        options.settings = nullptr;
+        ss_result* result = nullptr;
+        EXPECT_EQ(ss_render(context, scene, 0, method, &options, &result), SS_OK) << ss_last_error();
+        const int32_t n = ss_result_methods_rendered(result);
+        ss_result_destroy(result);
+        return n;
+    };
+    const int32_t autoRendered = rendered("auto");
+    EXPECT_GE(autoRendered, 1);
+    EXPECT_LE(autoRendered, 3);
+    EXPECT_EQ(rendered("pcss"), 1);
+    EXPECT_EQ(ss_result_methods_rendered(nullptr), 0);
     ss_context_destroy(context);
     ss_scene_destroy(scene);
 }
