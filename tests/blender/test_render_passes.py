@@ -148,6 +148,27 @@ def test_a_setting_typo_is_a_problem_naming_the_key():
                  "problem names the key and the known keys: %s" % problems)
 
 
+def test_sweep_ring_fill_from_the_method_settings():
+    # The sweep's paper fill (fill=rings) is one entry in the light's method settings; a
+    # misspelt value is a problem naming the choices, never the default rendered.
+    scene = sstest.standard_scene(W, H)
+    scene.render.pixel_aspect_x = 1.0  # another test may have left it at 2
+    key = scene.objects["Key"].data.softshadow
+    key.method = "sweep"
+    smooth = ss.render_passes(scene)[("Key", "sweep")]
+    key.settings = "fill=rings"
+    rings = ss.render_passes(scene)[("Key", "sweep")]
+    _check_pass(rings, scene, "sweep fill=rings")
+    diff = np.abs(rings - smooth)
+    sstest.check(diff.max() > 1e-3 and diff.mean() < 0.02,
+                 "rings differ from smooth in the penumbra only: max %.4f mean %.4f" % (diff.max(), diff.mean()))
+    key.settings = "fill=ring"
+    result = ss.render_passes(scene)
+    sstest.check(("Key", "sweep") not in result, "the typo rendered the default: %s" % list(result))
+    problems = " ".join(ss.render_passes.last_problems)
+    sstest.check("is not one of: smooth, steps, rings" in problems, "problem names the choices: %s" % problems)
+
+
 def test_dbuffer_paper_formula_from_the_light_settings():
     # formula=paper (eq. 3 as printed) gives the centre's hard shadow: the penumbra the default
     # formula draws is gone. A misspelt value is a problem naming the setting.
@@ -172,9 +193,26 @@ def test_dbuffer_paper_formula_from_the_light_settings():
 def test_method_list_comes_from_the_library():
     names = ss.native.method_names()
     sstest.check(names[0] == "shadow_map" and names[-1] == "reference" and len(names) == 7, "%s" % (names,))
-    items = [item[0] for item in ss.properties.METHOD_ITEMS]
+    items = [item[0] for item in ss.properties.method_items()]
     sstest.check(items == ["auto"] + list(names), "the light's method menu follows the library: %s" % items)
+    sstest.check(list(ss.properties.METHOD_LABELS) == items,
+                 "the labels (the stand-in list without a library) are the same list: %s" % list(ss.properties.METHOD_LABELS))
+    light = bpy.data.lights.new("MenuProbe", "AREA")
+    try:
+        shown = [item.identifier for item in light.softshadow.bl_rna.properties["method"].enum_items]
+        sstest.check(light.softshadow.method == "auto", "an unset method is auto: %r" % light.softshadow.method)
+        for name in names:
+            light.softshadow.method = name
+            sstest.check(light.softshadow.method == name, "%s round-trips: %r" % (name, light.softshadow.method))
+        numbers = [item[3] for item in ss.properties.method_items()]
+        sstest.check(numbers == list(range(len(items))), "numbers of the earlier fixed menu: %s" % numbers)
+    finally:
+        bpy.data.lights.remove(light)
+    sstest.check(shown in ([], items), "Blender's menu lists the same items: %s" % shown)
     sstest.check(set(ss.preview.fast_methods()) == set(names) - {"reference"}, "%s" % (ss.preview.fast_methods(),))
+    sstest.check(ss.native.pass_name("Key. Light", "pcss") == "Key__Light_pcss" and
+                 ss.native.pass_name("Key", "auto", "mask") == "Key_auto_mask" and
+                 ss.native.pass_name("Key", "auto", "V") == "Key_auto", "pass names from the library")
 
 
 if __name__ == "__main__":

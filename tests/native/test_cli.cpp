@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -144,6 +145,27 @@ TEST(Cli, AdaptiveReferenceAndRefinedPcssWriteTheirRayCounts) {
     ASSERT_EQ(r.code, 0) << r.err;
     back = ss::readMultilayerExr(out);
     ASSERT_TRUE(back.find("Area_reference_rays"));
+    fs::remove_all(dir);
+}
+
+// The sweep's paper fill is one --set away; a misspelt fill value fails naming the choices.
+TEST(Cli, SweepRingFillRendersAndABadFillFails) {
+    fs::path dir = tempDir("sweep_rings");
+    std::string out = (dir / "demo.exr").string();
+    CliRun r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m sweep --width 48 --set fill=rings -o '" +
+                   out + "'");
+    ASSERT_EQ(r.code, 0) << r.err;
+    ss::ExrContents back = ss::readMultilayerExr(out);
+    const auto* pass = back.find("Area_sweep");
+    ASSERT_TRUE(pass);
+    float lo = 1.0f;
+    for (float v : pass->image.pixels) lo = std::min(lo, v);
+    EXPECT_LT(lo, 0.5f);  // a shadow was drawn
+    fs::remove(out);
+    expectFailure(cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m sweep --width 48 --set fill=ring -o '" +
+                      out + "'"),
+                  {"setting 'fill' = 'ring' is not one of: smooth, steps, rings"});
+    EXPECT_FALSE(fs::exists(out));
     fs::remove_all(dir);
 }
 

@@ -11,6 +11,7 @@
 #include "planar/outline.h"
 #include "planar/penumbra_fill.h"
 #include "planar/rings.h"
+#include "planar_oracles/level_rings.h"
 
 using namespace ss::planar;
 

@@ -3,6 +3,7 @@
 #include "planar/outline.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace ss::planar {
@@ -78,7 +79,7 @@ void addVerticalConnectors(std::vector<DirectedEdge>* boundary) {
     }
 }
 
-std::vector<Chain> linkChains(std::span<const DirectedEdge> boundaryIn) {
+std::vector<Chain> linkChains(std::span<const DirectedEdge> boundaryIn, bool keepStraight) {
     auto less = &lessPoint;
     std::vector<DirectedEdge> boundary(boundaryIn.begin(), boundaryIn.end());
     addVerticalConnectors(&boundary);
@@ -98,13 +99,31 @@ std::vector<Chain> linkChains(std::span<const DirectedEdge> boundaryIn) {
         for (;;) {
             used[e] = true;
             chain.push_back(edges[e].first);
-            IPoint at = edges[e].second;
+            const IPoint from = edges[e].first, at = edges[e].second;
             if (at == edges[start].first) break;
-            auto& outs = outgoing[at];
-            while (!outs.empty() && used[outs.back()]) outs.pop_back();
-            if (outs.empty()) break;  // cannot happen when every balance is zero
-            e = size_t(outs.back());
-            outs.pop_back();
+            // Where the boundary meets itself (two rings touching at a crossing), continue
+            // along the first outgoing edge counter-clockwise from the way in: the region on
+            // the right then lies in one wedge per visit, so the chain touches itself there
+            // without crossing (a polygon a triangulation can walk).
+            const double back = std::atan2(double(from.y - at.y), double(from.x - at.x));
+            int best = -1;
+            double bestTurn = 0;
+            for (int o : outgoing[at]) {
+                if (used[size_t(o)]) continue;
+                const IPoint& to = edges[size_t(o)].second;
+                double turn = std::fmod(std::atan2(double(to.y - at.y), double(to.x - at.x)) - back + 4.0 * M_PI, 2.0 * M_PI);
+                if (turn == 0.0) turn = 2.0 * M_PI;
+                if (best < 0 || turn < bestTurn) {
+                    best = o;
+                    bestTurn = turn;
+                }
+            }
+            if (best < 0) break;  // cannot happen when every balance is zero
+            e = size_t(best);
+        }
+        if (keepStraight) {
+            if (chain.size() >= 3) chains.push_back(std::move(chain));
+            continue;
         }
         // Drop vertices where the chain goes straight on.
         Chain simple;

@@ -23,8 +23,10 @@ std::vector<DirectedEdge> regionBoundary(std::span<const SweepSegment> segments,
 using Chain = std::vector<IPoint>;
 
 // Links boundary edges (vertical connectors restored) into closed chains. Outer boundaries
-// run clockwise, holes counter-clockwise.
-std::vector<Chain> linkChains(std::span<const DirectedEdge> boundary);
+// run clockwise, holes counter-clockwise. Where the boundary meets itself, each visit bounds
+// one wedge of the region, so a chain touches itself (or another) without crossing.
+// Vertices where a chain goes straight on are dropped unless `keepStraight`.
+std::vector<Chain> linkChains(std::span<const DirectedEdge> boundary, bool keepStraight = false);
 
 // Twice the signed area (counter-clockwise positive), exact.
 i128 twiceSignedArea(const Chain& chain);

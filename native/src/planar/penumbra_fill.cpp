@@ -10,6 +10,8 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "planar/ring_fill.h"
+
 namespace ss::planar {
 
 namespace {
@@ -220,6 +222,7 @@ private:
 
 }  // namespace
 ShadowMesh fillShadow(std::span<const DirectedEdge> mergedEdges, int samples, FillMode mode) {
+    if (mode == FillMode::Rings) return fillRings(mergedEdges, samples);
     ShadowMesh mesh;
     std::vector<SweepSegment> merged = toSweepSegments(mergedEdges);
     const int n = std::max(samples, 1);

@@ -11,8 +11,9 @@
 
 namespace ss::planar {
 
-// smooth: Gouraud between ring intensities (the paper); steps: count / n, flat per region.
-enum class FillMode { Smooth, Steps };
+// smooth: the merged sweep's trapezoids, Gouraud between ring intensities; steps: count / n,
+// flat per region; rings: the paper's strips walked between neighbouring rings (ring_fill.h).
+enum class FillMode { Smooth, Steps, Rings };
 
 struct ShadowVertex {
     double x = 0, y = 0;      // grid coordinates
@@ -26,6 +27,7 @@ struct ShadowMesh {
     size_t penumbraTriangles = 0;
     double umbraArea = 0.0;     // grid units squared
     double shadowArea = 0.0;    // count >= 1
+    size_t ringFallbacks = 0;   // fill=rings: strips filled with trapezoids (ring_fill.h)
 };
 
 // `merged`: mergeOutlines() of the n samples' closed hard outlines.

@@ -1,4 +1,4 @@
-// How outlines are merged and their level-set rings extracted.
+// How outlines are merged and what intensity each ring carries.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "planar/rings.h"
 
@@ -13,19 +13,6 @@ std::vector<DirectedEdge> mergeOutlines(std::span<const std::vector<DirectedEdge
 float ringIntensity(int level, int samples) {
     if (samples <= 1) return 1.0f;
     return float(level - 1) / float(samples - 1);
-}
-
-std::vector<Ring> buildRings(std::span<const DirectedEdge> mergedEdges, int samples) {
-    std::vector<SweepSegment> merged = toSweepSegments(mergedEdges);
-    std::vector<Ring> rings;
-    for (int k = 1; k <= samples; ++k) {
-        Ring r;
-        r.level = k;
-        r.intensity = ringIntensity(k, samples);
-        r.chains = linkChains(regionBoundary(merged, [k](int w) { return w >= k; }));
-        rings.push_back(std::move(r));
-    }
-    return rings;
 }
 
 }  // namespace ss::planar

@@ -28,8 +28,8 @@ SweepOptions sweepOptions(const RenderSettings& settings) {
     o.seed = settings.seed;
     o.cancel = settings.cancel;
     o.receiver = settings.text("receiver", "");
-    o.fill = settings.choice("fill", "smooth", {"smooth", "steps"}) == "smooth" ? planar::FillMode::Smooth
-                                                                               : planar::FillMode::Steps;
+    const std::string fill = settings.choice("fill", "smooth", {"smooth", "steps", "rings"});
+    o.fill = fill == "smooth" ? planar::FillMode::Smooth : fill == "steps" ? planar::FillMode::Steps : planar::FillMode::Rings;
     o.borderShare = settings.number("border", 0.25f, 0.0f, 1.0f);
     o.clusters = settings.integer("clusters", 1, 1, 64);
     o.irradianceWeights = settings.choice("weights", "irradiance", {"irradiance", "equal"}) == "irradiance";

@@ -34,7 +34,7 @@ struct SweepOptions {
 
 // The keys of RenderSettings::options the sweep reads (its shadow mesh and its camera pass).
 std::vector<std::string> sweepSettingKeys();
-// Reads RenderSettings: samples (0 = 16), seed, options "receiver", "fill" (smooth|steps),
+// Reads RenderSettings: samples (0 = 16), seed, options "receiver", "fill" (smooth|steps|rings),
 // "border" (share of samples on the light's border, 0..1), "clusters" (1..64), "weights"
 // (irradiance|equal). Throws ss::Error on an unknown key or a bad value.
 SweepOptions sweepOptions(const RenderSettings& settings);
