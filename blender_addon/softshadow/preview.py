@@ -174,6 +174,12 @@ def _worker():
             state.full = True
 
 
+def full_image_delivered():
+    """Whether the newest request's full image was handed over (after its coarse one)."""
+    with _state.lock:
+        return sum(1 for g, _size in _state.delivered if g == _state.generation) >= 2
+
+
 def _ensure_worker():
     if _state.thread is None or not _state.thread.is_alive():
         _state.stop = False

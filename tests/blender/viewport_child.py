@@ -32,13 +32,6 @@ def _shot(name):
     xvfb_screen.snapshot(os.environ["SOFTSHADOW_XVFB_FBDIR"], os.path.join(OUT, name))
 
 
-def _full_delivered(preview_state):
-    """The newest request's full image has been handed over (its coarse one comes first)."""
-    full = [key[1:3] for key in preview_state.keys.values()]
-    return any(g == preview_state.generation and list(size) == list(f)
-               for g, size in preview_state.delivered for f in full)
-
-
 def step():
     softshadow = sstest.addon()
     win, area, region, space = _view()
@@ -60,7 +53,7 @@ def step():
         area.tag_redraw()
         state["t"] = time.time()
     elif s == 2:
-        if not _full_delivered(softshadow.preview._state) and time.time() - state["t"] < 60:
+        if not softshadow.preview.full_image_delivered() and time.time() - state["t"] < 60:
             area.tag_redraw()
             return 0.5  # still computing
         area.tag_redraw()
