@@ -1,6 +1,6 @@
 # Where does the time go on the second frame of an animation where one object moved: render_passes per GL method, and the preview's edit-to-overlay latency?
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Usage: blender -b --factory-startup --python bench/warm_render_passes.py -- OUT.md [SIZE] [FRAMES] [SCENES]
+# Usage: blender -b --factory-startup --python bench/warm_render_passes.py -- OUT.md [SIZE] [FRAMES] [SCENES] [PARTS]
 # SOFTSHADOW_LIB and SOFTSHADOW_ADDON_PATH (or an installed add-on) as for tests/blender.
 # SCENES: comma-separated torus counts (default "1,9"): one torus of 110,592 triangles, or nine
 # (~1M triangles), over a ground plane, one disk light, a small box that moves 0.05 along x every
@@ -10,9 +10,11 @@
 #     the library's mesh upload, camera pass, shadow map and the method's own work (timed by
 #     ss_context_cache_stats), the rest of ss_render (thread hand-off, checks), the copy of the
 #     layers into numpy and the EXR write of a final render;
+# PARTS: comma-separated, of "render" and "preview" (default both): which of the two below run.
 #   - the preview after a move at 960x540 (shadow_map, pcss, occlusion_textures): edit-to-overlay
-#     latency (main thread's export of the edit + the worker's update, render and overlay) over
-#     an animated sequence of 2 x FRAMES moves, median and 95th percentile, with its stages.
+#     latency of the coarse image and of the full one (main thread's export of the edit + the
+#     worker's updates, renders and overlays, `preview.progressive_job`) over an animated sequence
+#     of 2 x FRAMES moves, median and 95th percentile, with its stages.
 import math
 import os
 import statistics
@@ -27,6 +29,7 @@ out_path = argv[0] if argv else "warm_render_passes.md"
 size = int(argv[1]) if len(argv) > 1 else 1024
 frames = int(argv[2]) if len(argv) > 2 else 5
 torus_counts = [int(n) for n in (argv[3] if len(argv) > 3 else "1,9").split(",")]
+parts = set((argv[4] if len(argv) > 4 else "render,preview").split(","))
 
 sys.path.insert(0, os.environ.get("SOFTSHADOW_ADDON_PATH", ""))
 import softshadow  # noqa: E402
@@ -38,6 +41,7 @@ preview = sys.modules["softshadow.preview"]
 PREVIEW_METHODS = ("shadow_map", "pcss", "occlusion_textures")
 TARGET_RENDER = {1: 0.100, 9: 1.0}    # render_passes per light (issue 16)
 TARGET_PREVIEW = 0.150                # edit-to-overlay at 960x540 on 1M triangles
+TARGET_COARSE = 0.050                 # edit-to-coarse-overlay on 1M triangles
 
 
 def build_scene(tori):
@@ -102,21 +106,25 @@ def render_passes_frame(scene, mover, method, live, exr_path):
             "uploads": after["mesh_uploads"]}
 
 
-def preview_frame(scene, mover, live, camera):
-    """Seconds per stage of one move in the preview: main thread, worker."""
+def preview_frame(scene, mover, scenes, camera):
+    """Seconds per stage of one move in the preview (coarse and full image together): main
+    thread, worker; and the edit-to-overlay latency of each image."""
     move(mover)  # the preview's depsgraph handler notes the move
     depsgraph = bpy.context.evaluated_depsgraph_get()
     t0 = time.perf_counter()
     edit = preview.export_edit(depsgraph, scene)
     t1 = time.perf_counter()
     before = native.cache_stats()
-    preview._render_job(live, [edit], camera, lambda: False)
+    images = []
+    preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False,
+                            lambda rgba: images.append(time.perf_counter()))
     t2 = time.perf_counter()
     after = stats_delta(before, native.cache_stats())
     shared = (after["upload_ms"] + after["camera_pass_ms"] + after["shadow_map_ms"]) / 1e3
     return {"main thread": t1 - t0, "camera pass": after["camera_pass_ms"] / 1e3,
             "shadow map": after["shadow_map_ms"] / 1e3, "method": after["method_ms"] / 1e3 - shared,
-            "worker rest": (t2 - t1) - after["method_ms"] / 1e3, "latency": t2 - t0}
+            "worker rest": (t2 - t1) - after["method_ms"] / 1e3, "full render": images[1] - images[0],
+            "coarse": images[0] - t0, "latency": images[1] - t0}
 
 
 def p95(values):
@@ -126,7 +134,7 @@ def p95(values):
 
 RENDER_COLUMNS = ("export", "update", "upload", "camera pass", "shadow map", "method", "ss_render rest",
                   "copy out", "total", "EXR write")
-PREVIEW_COLUMNS = ("main thread", "camera pass", "shadow map", "method", "worker rest")
+PREVIEW_COLUMNS = ("main thread", "camera pass", "shadow map", "method", "worker rest", "full render")
 report = []
 exr_path = os.path.join(tempfile.mkdtemp(prefix="ss_warm_"), "frame.exr")
 for tori in torus_counts:
@@ -135,7 +143,7 @@ for tori in torus_counts:
     triangles = sum(len(m["triangles"]) for m in exported.meshes)
     methods = [m for m in native.method_names() if m != "reference"]
     rows = []
-    for method in methods:
+    for method in methods if "render" in parts else ():
         live = passes.LiveScene()
         render_passes_frame(scene, mover, method, live, exr_path)  # the first frame builds the kept scene
         runs = [render_passes_frame(scene, mover, method, live, exr_path) for _ in range(frames)]
@@ -146,20 +154,25 @@ for tori in torus_counts:
             "%s=%.3f" % (k, v) for k, v in row.items())), flush=True)
 
     preview_rows = []
-    for method in PREVIEW_METHODS:
+    for method in PREVIEW_METHODS if "preview" in parts else ():
         light.data.softshadow.method = method
         bpy.context.view_layer.update()
         depsgraph = bpy.context.evaluated_depsgraph_get()
         camera = scene_export.scene_camera(scene, depsgraph, 960, 540)
         preview._state.full = True
-        live = passes.LiveScene()
-        preview._render_job(live, [preview.export_edit(depsgraph, scene)], camera, lambda: False)
-        runs = [preview_frame(scene, mover, live, camera) for _ in range(2 * frames)]
-        live.close()
+        scenes = {"coarse": passes.LiveScene(), "full": passes.LiveScene()}
+        preview.progressive_job(scenes, {"coarse": [], "full": []}, [preview.export_edit(depsgraph, scene)],
+                                camera, lambda: False, lambda rgba: None)
+        runs = [preview_frame(scene, mover, scenes, camera) for _ in range(2 * frames)]
+        for live in scenes.values():
+            live.close()
         latencies = [r["latency"] for r in runs]
+        coarse = [r["coarse"] for r in runs]
         stages = {k: statistics.median(r[k] for r in runs) for k in PREVIEW_COLUMNS}
-        preview_rows.append((method, statistics.median(latencies), p95(latencies), stages))
-        print("BENCH preview %d tris %s: median %.3f s p95 %.3f s" % (triangles, method, *preview_rows[-1][1:3]),
+        preview_rows.append((method, statistics.median(coarse), p95(coarse), statistics.median(latencies),
+                             p95(latencies), stages))
+        print("BENCH preview %d tris %s: coarse median %.3f s p95 %.3f s, full median %.3f s p95 %.3f s, "
+              "full render alone %.3f s" % (triangles, method, *preview_rows[-1][1:5], stages["full render"]),
               flush=True)
     report.append((tori, triangles, rows, preview_rows))
 
@@ -178,32 +191,39 @@ with open(out_path, "w") as f:
             "included; *ss_render rest* the rest of the call; *copy out* the layers into numpy; *total* what "
             "`render_passes` costs per light; *EXR write* what a final render adds for its pass file.\n\n")
     for tori, triangles, rows, preview_rows in report:
-        target = TARGET_RENDER.get(tori)
-        f.write("## %d triangles: render_passes at %d² per light\n\n" % (triangles, size))
-        if target:
-            f.write("Target: total ≤ %.0f ms per light.\n\n" % (target * 1e3))
-        f.write("| method | " + " | ".join(RENDER_COLUMNS) + " | meshes uploaded per frame |\n")
-        f.write("|---" * (len(RENDER_COLUMNS) + 2) + "|\n")
-        for method, row in rows:
-            f.write("| %s | " % method + " | ".join("%.3f" % row[k] for k in RENDER_COLUMNS)
-                    + " | %d |\n" % row["uploads"])
-        camera = statistics.median(row["camera pass"] for _, row in rows)
-        maps = statistics.median(row["shadow map"] for _, row in rows if row["shadow map"] > 0)
-        f.write("\nThe shared passes a move redraws (only inside the screen rectangle of the box's old and new "
-                "place, drawing the meshes that reach it: `Frame` patches them), medians over the methods that "
-                "draw them: camera pass %.3f s, light-centre shadow map (2048²) %.3f s; together %.3f s%s. The "
-                "rest of each total is the method's own GL or CPU work, which every moved frame redoes.\n\n"
-                % (camera, maps, camera + maps,
-                   ", above the target by themselves" if target and camera + maps > target else ""))
+        if rows:
+            target = TARGET_RENDER.get(tori)
+            f.write("## %d triangles: render_passes at %d² per light\n\n" % (triangles, size))
+            if target:
+                f.write("Target: total ≤ %.0f ms per light.\n\n" % (target * 1e3))
+            f.write("| method | " + " | ".join(RENDER_COLUMNS) + " | meshes uploaded per frame |\n")
+            f.write("|---" * (len(RENDER_COLUMNS) + 2) + "|\n")
+            for method, row in rows:
+                f.write("| %s | " % method + " | ".join("%.3f" % row[k] for k in RENDER_COLUMNS)
+                        + " | %d |\n" % row["uploads"])
+            camera = statistics.median(row["camera pass"] for _, row in rows)
+            maps = statistics.median(row["shadow map"] for _, row in rows if row["shadow map"] > 0)
+            f.write("\nThe shared passes a move redraws (only inside the screen rectangle of the box's old and new "
+                    "place, drawing the meshes that reach it: `Frame` patches them), medians over the methods that "
+                    "draw them: camera pass %.3f s, light-centre shadow map (2048²) %.3f s; together %.3f s%s. The "
+                    "rest of each total is the method's own GL or CPU work, which every moved frame redoes.\n\n"
+                    % (camera, maps, camera + maps,
+                       ", above the target by themselves" if target and camera + maps > target else ""))
+        if not preview_rows:
+            continue
         f.write("### The preview after a move (960x540), %d triangles\n\n" % triangles)
-        f.write("Edit-to-overlay latency over %d consecutive moves: the main thread's export of the edit "
-                "(`preview.export_edit`: the moved object's matrix) and the worker's update, render and overlay "
-                "(`preview._render_job`); stage medians beside. Target on 1M triangles: ≤ %.0f ms.\n\n"
-                % (2 * frames, TARGET_PREVIEW * 1e3))
-        f.write("| method | latency median | latency p95 | " + " | ".join(PREVIEW_COLUMNS) + " |\n")
-        f.write("|---" * (len(PREVIEW_COLUMNS) + 3) + "|\n")
-        for method, median, high, stages in preview_rows:
-            f.write("| %s | %.3f | %.3f | " % (method, median, high)
+        f.write("Edit-to-overlay latency over %d consecutive moves, of the coarse image (%dx%d) and of the full "
+                "one after it: the main thread's export of the edit (`preview.export_edit`: the moved object's "
+                "matrix) and the worker's updates, renders and overlays (`preview.progressive_job`); stage "
+                "medians of both renders together beside, and the full render alone (coarse image to full "
+                "image). Targets on 1M triangles: coarse ≤ %.0f ms, full ≤ %.0f ms.\n\n"
+                % (2 * frames, 960 // preview.COARSE_DIVISOR, 540 // preview.COARSE_DIVISOR,
+                   TARGET_COARSE * 1e3, TARGET_PREVIEW * 1e3))
+        f.write("| method | coarse median | coarse p95 | full median | full p95 | "
+                + " | ".join(PREVIEW_COLUMNS) + " |\n")
+        f.write("|---" * (len(PREVIEW_COLUMNS) + 5) + "|\n")
+        for method, coarse, coarse_high, median, high, stages in preview_rows:
+            f.write("| %s | %.3f | %.3f | %.3f | %.3f | " % (method, coarse, coarse_high, median, high)
                     + " | ".join("%.3f" % stages[k] for k in PREVIEW_COLUMNS) + " |\n")
         f.write("\n")
 print("BENCH-WARM-OK")

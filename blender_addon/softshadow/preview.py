@@ -2,11 +2,15 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The main thread exports what changed (from depsgraph.updates: only the objects an edit
 touched, a moved object as its matrix alone) and reads each viewport's view in its draw
-callback; a worker thread applies those edits to one native scene kept alive for the preview
+callback; a worker thread applies those edits to the native scenes kept alive for the preview
 (so the library keeps every unchanged mesh's GPU buffers and every unchanged light's shadow maps)
-and renders at reduced resolution through the library (which releases the GIL); a newer request
-cancels the running one through the progress callback. The finished image is drawn with the `gpu`
-module only (no bgl), as black with alpha 1 - V."""
+and renders at reduced resolution through the library (which releases the GIL). Each request is
+rendered twice, progressively: a coarse image (COARSE_DIVISOR times fewer pixels in each axis) that
+the viewport draws scaled up at once, then the full one that replaces it. The two sizes are two
+native scenes fed the same edits, so each keeps its own camera pass and neither is redrawn whole
+for the other's resolution. A newer request cancels the running render, coarse or full, through
+the progress callback. Images are drawn with the `gpu` module only (no bgl), as black with alpha
+1 - V."""
 import threading
 
 import bpy
@@ -17,6 +21,8 @@ from gpu_extras.presets import draw_texture_2d
 from . import native, passes, scene_export
 
 PREVIEW_OPACITY = 0.75
+COARSE_DIVISOR = 4    # the coarse image's width and height are the full one's divided by this
+RECORD_LENGTH = 64    # entries kept in _State.delivered and _State.cancelled
 
 
 def fast_methods():
@@ -31,8 +37,11 @@ class _State:
         self.generation = 0         # bumped by every new request; older work is stale
         self.request = None         # (generation, key, camera)
         self.done = {}              # key -> (generation, rgba float32 (h, w, 4))
-        self.edits = []             # exports not yet applied to `live`, oldest first (under lock)
-        self.live = passes.LiveScene()  # the worker's scene
+        self.edits = []             # exports not yet handed to the worker, oldest first (under lock)
+        self.live = passes.LiveScene()    # the worker's scene for the full image
+        self.coarse = passes.LiveScene()  # the worker's scene for the coarse image
+        self.delivered = []         # (generation, (width, height)) of each image handed over, oldest first
+        self.cancelled = []         # (generation, (width, height)) of each render a newer request stopped
         self.full = True            # the next edit is a full export (object set changed, start)
         self.changed = set()        # objects an update touched since the last export
         self.geometry = set()       # of those, the ones whose mesh data changed
@@ -90,8 +99,44 @@ def _render_job(live, edits, camera, cancelled):
     return np.ascontiguousarray(np.flipud(rgba))  # textures start at the bottom row
 
 
+def coarse_camera(camera):
+    """The camera of the coarse image: the same view with fewer pixels."""
+    return dict(camera, width=max(1, camera["width"] // COARSE_DIVISOR),
+                height=max(1, camera["height"] // COARSE_DIVISOR))
+
+
+def _record(entries, entry):
+    entries.append(entry)
+    del entries[:-RECORD_LENGTH]
+
+
+def progressive_job(scenes, backlog, edits, camera, cancelled, deliver):
+    """Renders the coarse image, hands it to deliver(rgba), then the full one, unless cancelled()
+    turns true first. scenes and backlog are keyed "coarse" and "full"; backlog holds the edits a
+    scene has not yet applied (a cancelled request leaves the scenes it did not reach behind).
+    Returns the (width, height) of the render a cancellation stopped, else None."""
+    for stage in ("coarse", "full"):
+        backlog[stage].extend(edits)
+    for stage in ("coarse", "full"):
+        view = coarse_camera(camera) if stage == "coarse" else camera
+        size = (view["width"], view["height"])
+        if cancelled():
+            return size
+        pending, backlog[stage] = backlog[stage], []
+        try:
+            rgba = _render_job(scenes[stage], pending, view, cancelled)
+        except native.SoftShadowError as exc:
+            if exc.cancelled:
+                return size
+            raise
+        deliver(rgba)
+    return None
+
+
 def _worker():
     state = _state
+    scenes = {"coarse": state.coarse, "full": state.live}
+    backlog = {"coarse": [], "full": []}
     while True:
         with state.lock:
             while state.request is None and not state.stop:
@@ -105,24 +150,34 @@ def _worker():
         def cancelled(generation=generation):
             return state.stop or state.generation != generation
 
+        def deliver(rgba, generation=generation, key=key):
+            with state.lock:
+                if state.generation == generation:
+                    state.done[key] = (generation, rgba)
+                    _record(state.delivered, (generation, (rgba.shape[1], rgba.shape[0])))
+                    state.error = ""
+                    state.fresh = True
+
         try:
-            rgba = _render_job(state.live, edits, camera, cancelled)
+            stopped = progressive_job(scenes, backlog, edits, camera, cancelled, deliver)
+            if stopped is not None:
+                with state.lock:
+                    _record(state.cancelled, (generation, stopped))
         except native.SoftShadowError as exc:
-            if not exc.cancelled:
-                state.error = str(exc)
-            if state.live.scene is None:
-                state.full = True  # an edit failed and dropped the scene: export it whole
-            continue
+            state.error = str(exc)
+            if any(live.scene is None for live in scenes.values()):
+                state.full = True  # an edit failed and dropped a scene: export it whole
         except Exception as exc:  # the preview must never take Blender down
             state.error = "%s: %s" % (type(exc).__name__, exc)
-            state.live.close()
+            for live in scenes.values():
+                live.close()
             state.full = True
-            continue
-        with state.lock:
-            if state.generation == generation:
-                state.done[key] = (generation, rgba)
-                state.error = ""
-                state.fresh = True
+
+
+def full_image_delivered():
+    """Whether the newest request's full image was handed over (after its coarse one)."""
+    with _state.lock:
+        return sum(1 for g, _size in _state.delivered if g == _state.generation) >= 2
 
 
 def _ensure_worker():
@@ -175,13 +230,21 @@ def _submit(context, region, rv3d):
     camera, key = _view_camera(region, rv3d, scene.softshadow.preview_scale)
     if _state.keys.get(region.as_pointer()) == key:
         return key
+    _state.keys[region.as_pointer()] = key
+    request_render(key, camera)
+    return key
+
+
+def request_render(key, camera):
+    """Asks the worker for the image of `camera` (after the edits queued so far), cancelling
+    whatever it renders now. Returns the request's generation."""
     with _state.lock:
         _state.generation += 1
         _state.request = (_state.generation, key, camera)
-        _state.keys[region.as_pointer()] = key
         _state.wake.notify()
+        generation = _state.generation
     _ensure_worker()
-    return key
+    return generation
 
 
 def _draw():
@@ -199,14 +262,15 @@ def _draw():
         if done is None:
             return
         generation, rgba = done
+        image = (generation, rgba.shape)  # the coarse image, then the full one, of a generation
         cached = _state.textures.get(region.as_pointer())
-        if cached is None or cached[0] != generation:
+        if cached is None or cached[0] != image:
             h, w = rgba.shape[:2]
             buffer = gpu.types.Buffer("FLOAT", w * h * 4, rgba.reshape(-1))
-            cached = (generation, gpu.types.GPUTexture((w, h), format="RGBA16F", data=buffer))
+            cached = (image, gpu.types.GPUTexture((w, h), format="RGBA16F", data=buffer))
             _state.textures[region.as_pointer()] = cached
         gpu.state.blend_set("ALPHA")
-        draw_texture_2d(cached[1], (0, 0), region.width, region.height)
+        draw_texture_2d(cached[1], (0, 0), region.width, region.height)  # the coarse one scaled up
         gpu.state.blend_set("NONE")
     except Exception as exc:
         _state.error = "%s: %s" % (type(exc).__name__, exc)
@@ -278,7 +342,8 @@ def unregister():
     _state.done.clear()
     _state.keys.clear()
     _state.edits = []
-    with _state.live.lock:  # a worker that outlived the join above still holds it while rendering
-        _state.live.close()
+    for live in (_state.coarse, _state.live):
+        with live.lock:  # a worker that outlived the join above still holds it while rendering
+            live.close()
     _state.full = True
     passes.release()

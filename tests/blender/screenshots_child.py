@@ -69,7 +69,7 @@ def step():
         props.tag_redraw()
     elif s == 4:
         _shot(props, "output-panel.png")
-        if not softshadow.preview._state.done and time.time() - state["t"] < 60:
+        if not softshadow.preview.full_image_delivered() and time.time() - state["t"] < 60:
             view3d.tag_redraw()
             return 0.5
     elif s == 5:

@@ -5,6 +5,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 
 import numpy as np
 
@@ -18,6 +19,81 @@ ss = sstest.addon()
 DARKENED = 0.4   # at least this fraction of the brightness is removed inside the umbra
 UNCHANGED = 0.03  # a lit pixel changes by less than this (8-bit screenshots, same view)
 LIT_GROUND = 0.2  # solid shading draws the lit ground at least this bright
+
+
+COARSE_MATCH = 0.05  # mean |alpha| difference of the coarse image (scaled up) from the full one
+
+
+def _wait(predicate, what, seconds=120):
+    end = time.time() + seconds
+    while not predicate():
+        sstest.check(time.time() < end, "timed out waiting for %s" % what)
+        time.sleep(0.001)
+
+
+def _edit(preview, scene):
+    """Moves the plate and queues the edit for the preview worker, as the viewport's draw does."""
+    scene.objects["Occluder"].location.x += 0.1
+    bpy.context.view_layer.update()  # the add-on's depsgraph handler notes the move
+    edit = preview.export_edit(bpy.context.evaluated_depsgraph_get(), scene)
+    sstest.check(edit is not None and edit[0] == "objects", "the move is an edit of one object: %r" % (edit,))
+    with preview._state.lock:
+        preview._state.edits.append(edit)
+
+
+def test_coarse_then_full_and_a_newer_edit_cancels():
+    preview = ss.preview
+    scene = sstest.standard_scene(64, 48)
+    scene.objects["Key"].data.softshadow.method = "pcss"
+    bpy.context.view_layer.update()
+    full = (1920, 1080)  # large enough that a full render lasts far longer than the polling below
+    coarse = (full[0] // preview.COARSE_DIVISOR, full[1] // preview.COARSE_DIVISOR)
+    camera = ss.scene_export.scene_camera(scene, bpy.context.evaluated_depsgraph_get(), *full)
+    state = preview._state
+    state.full = True
+    state.edits.append(preview.export_edit(bpy.context.evaluated_depsgraph_get(), scene))
+    try:
+        first = preview.request_render("first", camera)
+        _wait(lambda: (first, full) in state.delivered or state.error, "the first full image")
+        sstest.check(state.error == "", "the worker rendered: %s" % state.error)
+        mine = [size for g, size in state.delivered if g == first]
+        sstest.check(mine == [coarse, full], "coarse then full for one request: %s" % mine)
+
+        # The coarse image shows the shadow where the full one does.
+        _edit(preview, scene)
+        second = preview.request_render("second", camera)
+        images = {}
+
+        def seen():
+            done = state.done.get("second")
+            if done is not None and done[0] == second:
+                images[done[1].shape[:2]] = done[1]
+            return (second, full) in state.delivered or state.error
+        _wait(seen, "the second full image")
+        sstest.check(set(images) == {coarse[::-1], full[::-1]}, "both images were handed over: %s" % list(images))
+        scaled = np.repeat(np.repeat(images[coarse[::-1]][..., 3], preview.COARSE_DIVISOR, 0),
+                           preview.COARSE_DIVISOR, 1)
+        difference = float(np.abs(scaled - images[full[::-1]][..., 3]).mean())
+        sstest.check(images[full[::-1]][..., 3].max() > 0.5, "the full image has a shadow")
+        sstest.check(difference <= COARSE_MATCH, "the coarse image matches the full one (%.4f)" % difference)
+
+        # An edit arriving once the coarse image is out cancels that request's full render.
+        _edit(preview, scene)
+        third = preview.request_render("third", camera)
+        _wait(lambda: (third, coarse) in state.delivered or state.error, "the third coarse image")
+        _edit(preview, scene)
+        fourth = preview.request_render("fourth", camera)
+        _wait(lambda: (fourth, full) in state.delivered or state.error, "the fourth full image")
+        sstest.check(state.error == "", "the worker rendered: %s" % state.error)
+        sstest.check((third, full) not in state.delivered, "the stale full image was never handed over")
+        sstest.check((third, full) in state.cancelled, "the third full render was cancelled: %s" % state.cancelled)
+        mine = [size for g, size in state.delivered if g == fourth]
+        sstest.check(mine == [coarse, full], "the newer edit got coarse then full: %s" % mine)
+        print("   coarse %s then full %s; coarse vs full alpha %.4f; cancelled %s"
+              % (coarse, full, difference, state.cancelled))
+    finally:
+        ss.preview.unregister()
+        ss.preview.register()
 
 
 def _screenshot(path):
@@ -50,6 +126,11 @@ def test_preview_under_xvfb():
     with open(info_path) as f:
         info = json.load(f)
     sstest.check(info["error"] == "" and info["done"] >= 1, "the preview worker delivered: %s" % info)
+    # The window got the coarse image first, then the full one that the screenshot shows.
+    last = info["delivered"][-1][0]
+    sizes = [tuple(size) for g, size in info["delivered"] if g == last]
+    coarse = tuple(n // ss.preview.COARSE_DIVISOR for n in info["full"])
+    sstest.check(sizes == [coarse, tuple(info["full"])], "coarse then full in the window: %s" % info["delivered"])
     off = _screenshot(os.path.join(folder, "off.xwd"))
     on = _screenshot(os.path.join(folder, "on.xwd"))
     rx, ry = info["region"][:2]

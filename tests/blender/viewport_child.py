@@ -1,7 +1,8 @@
 # How the viewport-preview test drives a real Blender window (run by test_viewport_preview.py).
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Top view over the scene; a screenshot with the preview off, then one with it on once the
-preview worker has delivered; writes the region and the projected test points as JSON."""
+preview worker has delivered its full image; writes the region, the projected test points and the
+preview's record of the images it handed over as JSON."""
 import json
 import os
 import sys
@@ -52,7 +53,7 @@ def step():
         area.tag_redraw()
         state["t"] = time.time()
     elif s == 2:
-        if not softshadow.preview._state.done and time.time() - state["t"] < 60:
+        if not softshadow.preview.full_image_delivered() and time.time() - state["t"] < 60:
             area.tag_redraw()
             return 0.5  # still computing
         area.tag_redraw()
@@ -61,7 +62,9 @@ def step():
         rv3d = space.region_3d
         info = {"region": [region.x, region.y, region.width, region.height],
                 "window": [win.width, win.height], "error": softshadow.preview._state.error,
-                "done": len(softshadow.preview._state.done)}
+                "done": len(softshadow.preview._state.done),
+                "delivered": softshadow.preview._state.delivered,
+                "full": list(next(iter(softshadow.preview._state.keys.values()))[1:3])}
         for name, p in POINTS.items():
             xy = location_3d_to_region_2d(region, rv3d, Vector(p))
             info[name] = [xy.x, xy.y] if xy is not None else None

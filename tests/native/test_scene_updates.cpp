@@ -230,31 +230,35 @@ TEST(SceneUpdates, RemovalRendersAsASceneBuiltWithoutIt) {
     expectSameAsFresh(renderer, scene, fresh);
 }
 
-// The add-on's preview scene and its render_passes scene share one context.
-TEST(SceneUpdates, TwoScenesRenderedInTurnKeepTheirCaches) {
+// The add-on's two preview scenes (coarse and full size) and its render_passes scene share one
+// context.
+TEST(SceneUpdates, ThreeScenesRenderedInTurnKeepTheirCaches) {
+    Scene coarse = threeMeshTwoLights();
     Scene preview = threeMeshTwoLights();
     Scene render = threeMeshTwoLights();
     Renderer renderer(SS_BACKEND_AUTO);
+    renderer.render(coarse, 0, "shadow_map", RenderSettings{}, nullptr);
     renderer.render(preview, 0, "shadow_map", RenderSettings{}, nullptr);
     renderer.render(render, 0, "shadow_map", RenderSettings{}, nullptr);
     Renderer::CacheStats first = renderer.cacheStats();
     for (int i = 0; i < 3; ++i) {
+        renderer.render(coarse, 0, "shadow_map", RenderSettings{}, nullptr);
         renderer.render(preview, 0, "shadow_map", RenderSettings{}, nullptr);
         renderer.render(render, 0, "shadow_map", RenderSettings{}, nullptr);
     }
     Renderer::CacheStats s = renderer.cacheStats();
-    EXPECT_EQ(s.frames, 2);
+    EXPECT_EQ(s.frames, 3);
     EXPECT_EQ(s.meshUploads, first.meshUploads);
     EXPECT_EQ(s.shadowMaps, first.shadowMaps);
     EXPECT_EQ(s.cameraPasses, first.cameraPasses);
 
-    // A third scene evicts the least recently rendered one.
-    Scene third = threeMeshTwoLights();
-    renderer.render(third, 0, "shadow_map", RenderSettings{}, nullptr);
+    // A fourth scene evicts the least recently rendered one.
+    Scene fourth = threeMeshTwoLights();
+    renderer.render(fourth, 0, "shadow_map", RenderSettings{}, nullptr);
     renderer.render(render, 0, "shadow_map", RenderSettings{}, nullptr);
-    EXPECT_EQ(renderer.cacheStats().frames, 3);
-    renderer.render(preview, 0, "shadow_map", RenderSettings{}, nullptr);
     EXPECT_EQ(renderer.cacheStats().frames, 4);
+    renderer.render(coarse, 0, "shadow_map", RenderSettings{}, nullptr);
+    EXPECT_EQ(renderer.cacheStats().frames, 5);
 }
 
 TEST(SceneUpdates, ARefusedEditLeavesTheSceneAsItWas) {

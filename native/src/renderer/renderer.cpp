@@ -37,9 +37,10 @@ struct Renderer::Impl {
         std::map<std::string, std::unique_ptr<Method>> methods;
         TraceSceneCache refineTrace;  // the BVH of "refine=on", built at its first use
     };
-    // The scenes rendered last, least recent first: two, so that the add-on's preview scene and
-    // its render_passes scene (one context) do not evict each other.
-    static constexpr size_t kKeptScenes = 2;
+    // The scenes rendered last, least recent first: three, so that the add-on's two preview
+    // scenes (coarse and full size, each with its own camera pass) and its render_passes scene
+    // (one context) do not evict each other.
+    static constexpr size_t kKeptScenes = 3;
     std::vector<std::unique_ptr<Cached>> caches;
     CacheStats finished;  // of frames already dropped (and every method run's time)
     TraceSceneCache traceCache;  // the Embree scene of the sparse checks
