@@ -37,7 +37,9 @@ void BM_PenumbraMapStages(benchmark::State& state) {
     double geometryMs = msSince(t0);
 
     // Shared passes (camera G-buffer + shadow map), drawn once for every method of the frame.
-    RenderSettings shared = settings;
+    // shadow_map takes no finish_stages: only the map size is shared.
+    RenderSettings shared;
+    shared.options = {{"shadow_map_size", std::to_string(res)}};
     t0 = Clock::now();
     bench::sharedRenderer().render(scene, 0, "shadow_map", shared, nullptr);
     double sharedMs = msSince(t0);
