@@ -18,6 +18,12 @@ struct Bounds {
     bool empty() const { return lo.x > hi.x; }
     glm::vec3 center() const { return 0.5f * (lo + hi); }
     float diagonal() const { return empty() ? 0.0f : glm::length(hi - lo); }
+    std::vector<glm::vec3> corners() const {
+        std::vector<glm::vec3> c;
+        for (int i = 0; i < 8; ++i)
+            c.emplace_back(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+        return c;
+    }
 };
 
 class Scene {
