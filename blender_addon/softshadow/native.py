@@ -89,7 +89,8 @@ class _RenderOptions(ctypes.Structure):
 
 class _CacheStats(ctypes.Structure):
     _fields_ = [("frames", ctypes.c_int32), ("mesh_uploads", ctypes.c_int32),
-                ("camera_passes", ctypes.c_int32), ("shadow_maps", ctypes.c_int32)]
+                ("camera_passes", ctypes.c_int32), ("shadow_maps", ctypes.c_int32),
+                ("trace_scene_builds", ctypes.c_int32)]
 
 
 _vp = ctypes.c_void_p
@@ -304,7 +305,7 @@ def reset_after_shutdown():
 
 def cache_stats():
     """What the shared context's caches did so far: {frames, mesh_uploads, camera_passes,
-    shadow_maps} (tests count re-uploads with it)."""
+    shadow_maps, trace_scene_builds} (tests count re-uploads and BVH builds with it)."""
     stats = _CacheStats()
     _check(lib().ss_context_cache_stats(context(), ctypes.byref(stats)))
     return {name: getattr(stats, name) for name, _ in _CacheStats._fields_}
