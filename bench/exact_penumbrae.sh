@@ -6,6 +6,8 @@
 #   EXACT_SCENES  scenes at 512² (default: the quality scenes of bench/scenes.py)
 #   EXACT_LARGE   scenes at 1024² (default: scaled_4,scaled_5)
 #   EXACT_TRUTH / EXACT_TRUTH_LARGE  samples of the converged reference (default 1024 / 512)
+#   EXACT_TARGETS error targets of our runs (default "0.005 0.02": the default and a looser one)
+#   EXACT_REUSE=1 keeps the scene files, Cycles images and truths of the last run (ours rerun)
 # Writes bench/results/exact_penumbrae.md (and .json); EXRs stay in BUILD_DIR/bench_exact.
 set -euo pipefail
 BUILD_DIR=$(cd "${1:?usage: exact_penumbrae.sh BUILD_DIR}" && pwd)
@@ -18,6 +20,8 @@ SMALL=${EXACT_SCENES-convex,concave,overlapping,torus,small_occluder,foliage,cur
 LARGE=${EXACT_LARGE-scaled_4,scaled_5}
 TRUTH=${EXACT_TRUTH:-1024}
 TRUTH_LARGE=${EXACT_TRUTH_LARGE:-512}
+TARGETS=${EXACT_TARGETS:-0.005 0.02}
+REUSE=${EXACT_REUSE:-0}
 CYCLES=64
 export SOFTSHADOW_LIB="$BUILD_DIR/libsoftshadow.so"
 for f in "$CLI" "$SOFTSHADOW_LIB"; do
@@ -34,10 +38,13 @@ blender_scenes() {  # size names
   grep -q EXACT-BLENDER-OK "$WORK/blender_$1.log" || { tail -n 40 "$WORK/blender_$1.log"; exit 1; }
   grep '^EXACT ' "$WORK/blender_$1.log"
 }
-blender_scenes 512 "$SMALL"
-blender_scenes 1024 "$LARGE"
+if [ "$REUSE" != 1 ]; then
+  rm -rf "$WORK/512" "$WORK/1024"
+  blender_scenes 512 "$SMALL"
+  blender_scenes 1024 "$LARGE"
+fi
 
-# 2. Per scene: the truth, our two exact runs, their errors and shares.
+# 2. Per scene: the truth, our exact runs, their errors and shares.
 render() {  # dir name method [args...]: renders dir/name.exr, prints the CLI's total seconds
   local dir=$1 name=$2 method=$3
   shift 3
@@ -55,8 +62,19 @@ layer_mean() {  # file suffix [ops...]
   channel=$(oiiotool --info -v "$file" | sed -n 's/.*channel list: //p' | tr -d ' ' | tr ',' '\n' |
     grep -E "_[a-z_]+${suffix}\.V$" | head -n 1 || true)
   [ -n "$channel" ] || { echo 0; return; }
-  oiiotool "$file" --ch "$channel" "$@" --stats | sed -n 's/.*Stats Avg: \([-0-9.e+]*\).*/\1/p'
+  oiiotool "$file" --ch "$channel" "$@" --printstats | sed -n 's/.*Stats Avg: \([-0-9.e+]*\).*/\1/p'
 }
+row() {  # dir size truth_samples run_label seconds file share rays_per_pixel
+  python3 - "$1/cycles.json" "$2" "$3" "$4" "$5" "$(rmse "$6" "$1/truth.exr")" "$7" "$8" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))
+size, truth, run, seconds, rmse, share, rays = sys.argv[2:]
+print(json.dumps({"scene": c["scene"], "size": int(size), "triangles": c["triangles"], "truth_samples": int(truth),
+                  "cycles_seconds": c["seconds"], "run": run, "seconds": float(seconds), "rmse": float(rmse),
+                  "traced_share": float(share), "rays_per_mask_pixel": float(rays)}))
+PY
+}
+ratio() { python3 -c "import sys; a, b = map(float, sys.argv[1:]); print(a / b if b > 0 else 0.0)" "$1" "$2"; }
 
 ROWS="$WORK/rows.jsonl"
 : > "$ROWS"
@@ -69,32 +87,26 @@ for size in 512 1024; do
     name=$(basename "$dir")
     echo "exact_penumbrae: $name at ${size}²" >&2
     light=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['lights'][0]['name'].replace('.', '_').replace(' ', '_'))" "$dir/scene.json")
-    render "$dir" truth reference --samples "$truth_samples" --no-extra > /dev/null
-    oiiotool "$dir/cycles_$CYCLES.exr" --ch R,G --chnames "ViewLayer.${light}_reference.V,ViewLayer.${light}_reference_mask.V" \
-      -d float -o "$dir/cycles.named.exr"
-    t_adaptive=$(render "$dir" adaptive reference --set adaptive=on)
-    t_refine=$(render "$dir" refine pcss --set refine=on)
-    mask=$(layer_mean "$dir/adaptive.exr" _mask)
-    rays=$(layer_mean "$dir/adaptive.exr" _rays)
-    # Pixels past the first round (16 rays): the ones adaptive sampling did not decide at once.
-    beyond=$(layer_mean "$dir/adaptive.exr" _rays --subc 16.5 --clamp:min=0 --mulc 1000 --clamp:max=1)
-    refined=$(layer_mean "$dir/refine.exr" _refined)
-    refine_rays=$(layer_mean "$dir/refine.exr" _rays)
-    python3 - "$dir/cycles.json" "$size" "$truth_samples" "$t_adaptive" "$t_refine" "$mask" "$rays" "$beyond" \
-      "$refined" "$refine_rays" "$(rmse "$dir/cycles.named.exr" "$dir/truth.exr")" \
-      "$(rmse "$dir/adaptive.exr" "$dir/truth.exr")" "$(rmse "$dir/refine.exr" "$dir/truth.exr")" >> "$ROWS" <<'PY'
-import json, sys
-c = json.load(open(sys.argv[1]))
-(size, truth, t_ad, t_re, mask, rays, beyond, refined, refine_rays,
- e_cy, e_ad, e_re) = sys.argv[2:]
-mask = float(mask) or 1.0
-print(json.dumps({"scene": c["scene"], "size": int(size), "triangles": c["triangles"], "truth_samples": int(truth),
-                  "cycles": {"seconds": c["seconds"], "rmse": float(e_cy)},
-                  "adaptive": {"seconds": float(t_ad), "rmse": float(e_ad), "rays_per_mask_pixel": float(rays) / mask,
-                               "share_beyond_first_round": float(beyond) / mask},
-                  "refine": {"seconds": float(t_re), "rmse": float(e_re), "share_traced": float(refined) / mask,
-                             "rays_per_mask_pixel": float(refine_rays) / mask}}))
-PY
+    if [ "$REUSE" != 1 ] || [ ! -e "$dir/truth.exr" ]; then
+      render "$dir" truth reference --samples "$truth_samples" --no-extra > /dev/null
+      oiiotool "$dir/cycles_$CYCLES.exr" --ch R,G --chnames "ViewLayer.${light}_reference.V,ViewLayer.${light}_reference_mask.V" \
+        -d float -o "$dir/cycles.named.exr"
+    fi
+    row "$dir" "$size" "$truth_samples" "Cycles-$CYCLES" "$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['seconds'])" "$dir/cycles.json")" \
+      "$dir/cycles.named.exr" 1 "$CYCLES" >> "$ROWS"
+    for target in $TARGETS; do
+      t=$(render "$dir" "adaptive_$target" reference --set adaptive=on --set error_target="$target")
+      f="$dir/adaptive_$target.exr"
+      mask=$(layer_mean "$f" _mask)
+      # Traced: the mask pixels past the first round of 16 rays (not decided at once).
+      row "$dir" "$size" "$truth_samples" "reference adaptive, error_target $target" "$t" "$f" \
+        "$(ratio "$(layer_mean "$f" _rays --subc 16.5 --clamp:min=0 --mulc 1000 --clamp:max=1)" "$mask")" \
+        "$(ratio "$(layer_mean "$f" _rays)" "$mask")" >> "$ROWS"
+      t=$(render "$dir" "refine_$target" pcss --set refine=on --set error_target="$target")
+      f="$dir/refine_$target.exr"
+      row "$dir" "$size" "$truth_samples" "pcss refine=on, error_target $target" "$t" "$f" \
+        "$(ratio "$(layer_mean "$f" _refined)" "$mask")" "$(ratio "$(layer_mean "$f" _rays)" "$mask")" >> "$ROWS"
+    done
   done
 done
 
@@ -102,27 +114,31 @@ done
 python3 - "$ROWS" "$OUT/exact_penumbrae.md" "$OUT/exact_penumbrae.json" "$CYCLES" <<'PY'
 import json, sys
 rows = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
-cycles = sys.argv[4]
+cycles = "Cycles-" + sys.argv[4]
 json.dump(rows, open(sys.argv[3], "w"), indent=1)
-def verdict(run, c):
-    return "yes" if run["rmse"] <= c["rmse"] and run["seconds"] <= c["seconds"] / 5 else "no"
-out = ["# Exact penumbrae against Cycles-%s" % cycles, "",
-       "bench/exact_penumbrae.sh, one run on this machine (2 shared cores): per scene, Cycles at %s samples" % cycles,
-       "(direct light only, as bench/scenes.py renders it; seconds of its shadowed render in Blender) beside",
-       "`reference adaptive=on` (default error_target 0.005) and `pcss refine=on` (the CLI's total: render,",
-       "BVH build, GL start and EXR write; not process start or scene load). RMSE of V against `reference`",
-       "at the truth's sample",
-       "count over the truth's mask. Target (issue 18): RMSE at or below Cycles' in at most 1/5 of its time.",
-       "Traced: adaptive, the share of mask pixels past the first round of 16 rays; refine, the share of",
-       "mask pixels re-traced.", "",
-       "| scene | size | triangles | truth spp | Cycles-%s s | Cycles RMSE | adaptive s | RMSE | speed-up | rays/px | traced | target | refine s | RMSE | speed-up | traced | target |" % cycles,
-       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+base = {(r["scene"], r["size"]): r for r in rows if r["run"] == cycles}
+out = ["# Exact penumbrae against %s" % cycles, "",
+       "bench/exact_penumbrae.sh, one run on this machine (2 cores shared with other jobs: seconds are rough).",
+       "%s: direct light only, as bench/scenes.py renders it; seconds of its shadowed render in Blender." % cycles,
+       "Ours: the CLI's total (render, BVH build, GL start, EXR write; not process start or scene load).",
+       "RMSE of V against `reference` at the truth's samples, over the truth's mask. Target (issue 18): RMSE",
+       "at or below %s's in at most 1/5 of its time. Traced: for the adaptive reference the share of mask" % cycles,
+       "pixels past the first round of 16 rays, for refine the share of mask pixels re-traced.", "",
+       "| scene | size | triangles | run | seconds | RMSE | speed-up vs %s | rays per mask pixel | traced | target met |" % cycles,
+       "|---|---|---|---|---|---|---|---|---|---|"]
+met = {}
 for r in rows:
-    c, a, f = r["cycles"], r["adaptive"], r["refine"]
-    out.append("| %s | %d² | %d | %d | %.2f | %.4f | %.2f | %.4f | %.1f× | %.1f | %.0f%% | %s | %.2f | %.4f | %.1f× | %.0f%% | %s |" % (
-        r["scene"], r["size"], r["triangles"], r["truth_samples"], c["seconds"], c["rmse"],
-        a["seconds"], a["rmse"], c["seconds"] / a["seconds"], a["rays_per_mask_pixel"], 100 * a["share_beyond_first_round"],
-        verdict(a, c), f["seconds"], f["rmse"], c["seconds"] / f["seconds"], 100 * f["share_traced"], verdict(f, c)))
+    c = base[(r["scene"], r["size"])]
+    if r["run"] == cycles:
+        out.append("| %s | %d² | %d | %s | %.2f | %.4f | 1.0× | %.0f | 100%% | |" % (
+            r["scene"], r["size"], r["triangles"], r["run"], r["seconds"], r["rmse"], r["rays_per_mask_pixel"]))
+        continue
+    ok = r["rmse"] <= c["rmse"] and r["seconds"] <= c["seconds"] / 5
+    met.setdefault(r["run"], []).append(ok)
+    out.append("| %s | %d² | %d | %s | %.2f | %.4f | %.1f× | %.1f | %.1f%% | %s |" % (
+        r["scene"], r["size"], r["triangles"], r["run"], r["seconds"], r["rmse"], c["seconds"] / r["seconds"],
+        r["rays_per_mask_pixel"], 100 * r["traced_share"], "yes" if ok else "no"))
+out += ["", "Target met per run: " + "; ".join("%s %d of %d" % (k, sum(v), len(v)) for k, v in met.items())]
 open(sys.argv[2], "w").write("\n".join(out) + "\n")
 print("\n".join(out))
 PY

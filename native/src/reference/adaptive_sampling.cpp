@@ -47,8 +47,8 @@ struct Tracer {
 };
 
 // Rounds after the first until the pixel is decided; `sums` holds the first round's samples.
-void continueRounds(const Tracer& t, const AdaptiveSampling& a, const SurfaceHit& hit, int x, int y,
-                    SampleSums* sums) {
+void continueRounds(const Tracer& t, const AdaptiveSampling& a, float pixelTarget, const SurfaceHit& hit,
+                    int x, int y, SampleSums* sums) {
     int n = a.minSamples, passed = 0;
     while (n < a.maxSamples) {
         const int next = std::min(2 * n, a.maxSamples);
@@ -59,12 +59,18 @@ void continueRounds(const Tracer& t, const AdaptiveSampling& a, const SurfaceHit
         if (!(before.weight > 0.0) || !(roundWeight > 0.0)) continue;
         const double roundV = (sums->visible - before.visible) / roundWeight;
         const double error = 0.5 * std::abs(before.visibility() - roundV);
-        passed = error <= a.errorTarget ? passed + 1 : 0;
+        passed = error <= pixelTarget ? passed + 1 : 0;
         if (passed >= (decidedByAgreement(*sums, a) ? 1 : 2)) break;
     }
 }
 
 }  // namespace
+
+float pixelErrorTarget(const AdaptiveSampling& a, size_t maskPixels, size_t undecidedPixels) {
+    if (undecidedPixels == 0) return a.errorTarget;
+    const double spread = std::sqrt(double(maskPixels) / double(undecidedPixels));
+    return std::max(a.errorTarget, std::min(float(a.errorTarget * spread), AdaptiveSampling::kMaxPixelError));
+}
 
 std::vector<std::string> adaptiveSamplingKeys() { return {"error_target", "guard_band"}; }
 
@@ -114,6 +120,12 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
                 }
         }
     state.swap(next);
+    size_t maskPixels = sampling.untracedMaskPixels, undecided = 0;
+    for (size_t i = 0; i < count; ++i) {
+        if (state[i] == PixelState::Undecided) ++undecided;
+        if (state[i] != PixelState::Skipped && sums[i].weight > 0.0) ++maskPixels;
+    }
+    const float pixelTarget = pixelErrorTarget(sampling, maskPixels, undecided);
 
     forEachRow(settings, height, "tracing shadow rays (adaptive rounds)", 0.3f, 1.0f, [&](int y) {
         for (int x = 0; x < width; ++x) {
@@ -122,7 +134,7 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
             if (state[i] == PixelState::Undecided) {
                 SurfaceHit hit;
                 t.surface(x, y, &hit);  // the same deterministic hit as the first round's
-                continueRounds(t, sampling, hit, x, y, &sums[i]);
+                continueRounds(t, sampling, pixelTarget, hit, x, y, &sums[i]);
             }
             if (rays) rays->at(x, y) = float(sums[i].rays);
             if (!(sums[i].weight > 0.0)) continue;
