@@ -93,25 +93,23 @@ def light_radius(light):
     return 0.0
 
 
-def object_casts_shadow(obj):
-    """The object's own shadow visibility (Cycles ray visibility; 3.0+ and the older shape)."""
-    value = getattr(obj, "visible_shadow", None)
+def _ray_visibility(obj, ray):
+    """One of the object's Cycles ray visibilities: `visible_<ray>` (3.0+), else the older
+    `cycles_visibility.<ray>`; True where neither exists."""
+    value = getattr(obj, "visible_" + ray, None)
     if value is not None:
         return bool(value)
-    legacy = getattr(obj, "cycles_visibility", None)
-    if legacy is not None and getattr(legacy, "shadow", None) is not None:
-        return bool(legacy.shadow)
-    return True
+    legacy = getattr(getattr(obj, "cycles_visibility", None), ray, None)
+    return True if legacy is None else bool(legacy)
+
+
+def object_casts_shadow(obj):
+    """The object's own shadow visibility."""
+    return _ray_visibility(obj, "shadow")
 
 
 def object_camera_visible(obj):
-    value = getattr(obj, "visible_camera", None)
-    if value is not None:
-        return bool(value)
-    legacy = getattr(obj, "cycles_visibility", None)
-    if legacy is not None and getattr(legacy, "camera", None) is not None:
-        return bool(legacy.camera)
-    return True
+    return _ray_visibility(obj, "camera")
 
 
 def materials_cast_shadow(materials):

@@ -155,6 +155,8 @@ def pass_enum_name(number):
 def expected_passes(scene, view_layer):
     """The main pass names a render will write for the view layer's plainly placed lights (pass
     names are `<light>_<method asked for>`, so they are known before anything is computed)."""
+    if not native.available():
+        return []  # no library, no passes: the report says why
     names = []
     for obj in scene_export.rendering_objects(view_layer):
         light = obj.data if obj.type == "LIGHT" else None
@@ -163,7 +165,7 @@ def expected_passes(scene, view_layer):
             continue
         if not (compat.light_use_shadow(light) or settings.replaces_shadow):
             continue
-        names.append(scene_export.pass_name(obj.name, settings.method or "auto"))
+        names.append(native.pass_name(obj.name, settings.method or "auto"))
     return names
 
 

@@ -137,6 +137,7 @@ _SIGNATURES = {
                               ctypes.POINTER(ctypes.POINTER(ctypes.c_float)),
                               ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_int32)]),
     "ss_write_exr": (_st, [ctypes.c_char_p, ctypes.c_char_p, ctypes.POINTER(_vp), ctypes.c_int32]),
+    "ss_pass_name": (_st, [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t]),
 }
 
 
@@ -230,6 +231,15 @@ def method_names():
     """The library's methods, in its order ("auto" is not one)."""
     loaded = lib()
     return tuple(loaded.ss_method_name(i).decode() for i in range(loaded.ss_method_count()))
+
+
+def pass_name(light_name, method, layer=None):
+    """The EXR pass name of one (light, method[, extra layer]) result, as the library writes it
+    (ss_pass_name: dots and spaces of the light's name become '_'; the layer V is the pass)."""
+    buffer = ctypes.create_string_buffer(4 * len(_text(light_name)) + len(_text(method)) + 256)
+    _check(lib().ss_pass_name(_text(light_name), _text(method), _text(layer) if layer else None,
+                              buffer, len(buffer)))
+    return buffer.value.decode("utf-8", "replace")
 
 
 def context():
@@ -330,25 +340,19 @@ def _matrix16(values):
     return (ctypes.c_float * 16)(*array.tolist())
 
 
-class Scene:
-    """An ss_scene: meshes, lights and a camera in world space."""
+class _Owned:
+    """A handle the library made and this object destroys: once, by close(), `with` or when
+    collected. Subclasses name their destroy function and what they are."""
 
-    def __init__(self, handle=None):
-        library = lib()
-        if handle is None:
-            handle = ctypes.c_void_p()
-            _check(library.ss_scene_create(ctypes.byref(handle)))
+    _destroy = None  # the ss_*_destroy function's name
+    _what = "handle"
+
+    def __init__(self, handle):
         self._handle = handle
-
-    @classmethod
-    def load(cls, path):
-        handle = ctypes.c_void_p()
-        _check(lib().ss_scene_load(_text(os.fspath(path)), ctypes.byref(handle)))
-        return cls(handle)
 
     def close(self):
         if self._handle is not None and _lib is not None:
-            _lib.ss_scene_destroy(self._handle)
+            getattr(_lib, self._destroy)(self._handle)
         self._handle = None
 
     def __del__(self):
@@ -366,8 +370,28 @@ class Scene:
     @property
     def handle(self):
         if self._handle is None:
-            raise ValueError("the scene was closed")
+            raise ValueError("the %s was closed" % self._what)
         return self._handle
+
+
+class Scene(_Owned):
+    """An ss_scene: meshes, lights and a camera in world space."""
+
+    _destroy = "ss_scene_destroy"
+    _what = "scene"
+
+    def __init__(self, handle=None):
+        library = lib()
+        if handle is None:
+            handle = ctypes.c_void_p()
+            _check(library.ss_scene_create(ctypes.byref(handle)))
+        super().__init__(handle)
+
+    @classmethod
+    def load(cls, path):
+        handle = ctypes.c_void_p()
+        _check(lib().ss_scene_load(_text(os.fspath(path)), ctypes.byref(handle)))
+        return cls(handle)
 
     def add_mesh(self, name, vertices, triangles, flags):
         """vertices: (N, 3) world-space float; triangles: (M, 3) indices. Returns the index."""
@@ -462,28 +486,11 @@ class Scene:
         return Result(out)
 
 
-class Result:
+class Result(_Owned):
     """The layers of one (light, method) render."""
 
-    def __init__(self, handle):
-        self._handle = handle
-
-    def close(self):
-        if self._handle is not None and _lib is not None:
-            _lib.ss_result_destroy(self._handle)
-        self._handle = None
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
-
-    @property
-    def handle(self):
-        if self._handle is None:
-            raise ValueError("the result was closed")
-        return self._handle
+    _destroy = "ss_result_destroy"
+    _what = "result"
 
     @property
     def method(self):

@@ -183,12 +183,4 @@ class SOFTSHADOW_OT_render_animation_passes(bpy.types.Operator):
 CLASSES = (SOFTSHADOW_OT_render_passes, SOFTSHADOW_OT_setup_compositor, SOFTSHADOW_OT_export_scene,
            SOFTSHADOW_OT_render_animation_passes)
 
-
-def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(CLASSES)

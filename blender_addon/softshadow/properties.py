@@ -2,23 +2,47 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 import bpy
 
-METHOD_ITEMS = [
-    ("auto", "Auto", "Render each fast method and keep the one with the least error on a sparse ray-traced check (the report says which)"),
-    ("shadow_map", "Shadow Map", "Hard shadow from the light centre (fast baseline)"),
-    ("pcss", "PCSS", "Percentage-closer soft shadows"),
-    ("dbuffer", "D-Buffer", "Umbra/penumbra volumes with a D-buffer (disk lights)"),
-    ("sweep", "Sweep", "Geometric sweep line over light samples (planar receivers)"),
-    ("penumbra_map", "Penumbra Map", "Shadow map with cones and sheets (sphere/disk lights)"),
-    ("occlusion_textures", "Occlusion Textures", "Slices with pre-filtering (rectangle lights)"),
-    ("reference", "Reference", "Ray traced with stratified light samples (slow, exact)"),
-]
+from . import native
+
+# The light's method menu: the library's methods (ss_method_name), in its order, after "auto".
+# This table only labels them for the interface; when the library cannot be loaded its keys
+# stand in for the list (test_method_list_comes_from_the_library checks they are the same list).
+METHOD_LABELS = {
+    "auto": ("Auto", "Render each fast method and keep the one with the least error on a sparse "
+                     "ray-traced check (the report says which)"),
+    "shadow_map": ("Shadow Map", "Hard shadow from the light centre (fast baseline)"),
+    "pcss": ("PCSS", "Percentage-closer soft shadows"),
+    "dbuffer": ("D-Buffer", "Umbra/penumbra volumes with a D-buffer (disk lights)"),
+    "sweep": ("Sweep", "Geometric sweep line over light samples (planar receivers)"),
+    "penumbra_map": ("Penumbra Map", "Shadow map with cones and sheets (sphere/disk lights)"),
+    "occlusion_textures": ("Occlusion Textures", "Slices with pre-filtering (rectangle lights)"),
+    "reference": ("Reference", "Ray traced with stratified light samples (slow, exact)"),
+}
+
+# Blender keeps no reference to the strings a dynamic enum returns: they must outlive the call.
+_method_items = []
+
+
+def method_items(self=None, context=None):
+    """The menu's items; each item's number is its place in the list ("auto" 0), the numbers the
+    saved files of the earlier fixed menu hold."""
+    try:
+        names = ("auto",) + native.method_names()
+    except native.LibraryUnavailable:
+        names = tuple(METHOD_LABELS)
+    items = [(name, *METHOD_LABELS.get(name, (name.replace("_", " ").title(), "")), number)
+             for number, name in enumerate(names)]
+    if items != _method_items:
+        _method_items[:] = items  # replaced only when the list changes (the library loaded)
+    return _method_items
 
 
 class SoftShadowLightSettings(bpy.types.PropertyGroup):
     enabled: bpy.props.BoolProperty(
         name="Soft Shadow Pass", default=True,
         description="Compute a soft-shadow visibility pass for this light")
-    method: bpy.props.EnumProperty(name="Method", items=METHOD_ITEMS, default="auto")
+    # A dynamic enum takes no string default; an unset value is item 0, "auto".
+    method: bpy.props.EnumProperty(name="Method", items=method_items)
     samples: bpy.props.IntProperty(
         name="Samples", default=0, min=0, soft_max=1024,
         description="Light samples for sampling methods (0: the method's default)")
@@ -137,9 +161,11 @@ class SoftShadowSceneSettings(bpy.types.PropertyGroup):
 CLASSES = (SoftShadowLightSettings, SoftShadowSceneSettings)
 
 
+_register_classes, _unregister_classes = bpy.utils.register_classes_factory(CLASSES)
+
+
 def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
+    _register_classes()
     bpy.types.Light.softshadow = bpy.props.PointerProperty(type=SoftShadowLightSettings)
     bpy.types.Scene.softshadow = bpy.props.PointerProperty(type=SoftShadowSceneSettings)
 
@@ -147,5 +173,4 @@ def register():
 def unregister():
     del bpy.types.Scene.softshadow
     del bpy.types.Light.softshadow
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+    _unregister_classes()

@@ -18,7 +18,7 @@ import re
 
 import bpy
 
-from . import compat, compositor, scene_export
+from . import compat, compositor, native, scene_export
 
 GROUP_NAME = "SoftShadow Replace"
 NODE_PREFIX = "SoftShadow Replace "
@@ -207,7 +207,7 @@ def setup(scene, view_layer, node):
             compat.set_renderer_shadow(obj.data, False, engine)
             changes.append("light '%s': the renderer's shadow off (the pass replaces it)" % obj.name)
         settings.replaces_shadow = True
-        pass_name = scene_export.pass_name(obj.name, settings.method or "auto")
+        pass_name = native.pass_name(obj.name, settings.method or "auto")
         if pass_name not in have:
             changes.append("light '%s': no pass %s in the pass file yet, left out" % (obj.name, pass_name))
             continue

@@ -27,13 +27,6 @@ class ExportedScene:
     skipped: list = field(default_factory=list)   # names of objects left out on purpose
 
 
-def pass_name(light_name, method, layer=None):
-    """The EXR pass name of one (light, method[, extra layer]) result, as the library names it:
-    dots and spaces of the light's name become '_' (DESIGN.md)."""
-    base = "%s_%s" % ("".join("_" if c in ". " else c for c in light_name), method)
-    return base if layer in (None, "", "V") else "%s_%s" % (base, layer)
-
-
 def column_major(matrix):
     """A 4x4 row-indexed matrix (mathutils or nested lists) -> 16 floats, m[col*4 + row]."""
     rows = np.asarray([list(r) for r in matrix], dtype=np.float64).reshape(4, 4)

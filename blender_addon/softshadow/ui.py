@@ -47,19 +47,33 @@ def _wrap(text, width):
     return lines + ([line] if line else [])
 
 
-class SOFTSHADOW_PT_light(bpy.types.Panel):
-    bl_label = "Soft Shadow"
+class _SettingsPanel:
+    """A Properties-editor panel over the `softshadow` settings of one ID (`owner`), with their
+    on/off switch in its header."""
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
-    bl_context = "data"
-    COMPAT_ENGINES = {"CYCLES", "BLENDER_EEVEE", "BLENDER_WORKBENCH", "BLENDER_EEVEE_NEXT"}
+
+    @staticmethod
+    def owner(context):
+        raise NotImplementedError
 
     @classmethod
     def poll(cls, context):
-        return context.light is not None and hasattr(context.light, "softshadow")
+        owner = cls.owner(context)
+        return owner is not None and hasattr(owner, "softshadow")
 
     def draw_header(self, context):
-        self.layout.prop(context.light.softshadow, "enabled", text="")
+        self.layout.prop(self.owner(context).softshadow, "enabled", text="")
+
+
+class SOFTSHADOW_PT_light(_SettingsPanel, bpy.types.Panel):
+    bl_label = "Soft Shadow"
+    bl_context = "data"
+    COMPAT_ENGINES = {"CYCLES", "BLENDER_EEVEE", "BLENDER_WORKBENCH", "BLENDER_EEVEE_NEXT"}
+
+    @staticmethod
+    def owner(context):
+        return context.light
 
     def draw(self, context):
         light = context.light
@@ -79,18 +93,13 @@ class SOFTSHADOW_PT_light(bpy.types.Panel):
             layout.label(text="Last render used: %s" % chosen[obj.name])
 
 
-class SOFTSHADOW_PT_output(bpy.types.Panel):
+class SOFTSHADOW_PT_output(_SettingsPanel, bpy.types.Panel):
     bl_label = "Soft Shadow Passes"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
     bl_context = "output"
 
-    @classmethod
-    def poll(cls, context):
-        return context.scene is not None and hasattr(context.scene, "softshadow")
-
-    def draw_header(self, context):
-        self.layout.prop(context.scene.softshadow, "enabled", text="")
+    @staticmethod
+    def owner(context):
+        return context.scene
 
     def draw(self, context):
         props = context.scene.softshadow
@@ -128,12 +137,4 @@ class SOFTSHADOW_PT_output(bpy.types.Panel):
 
 CLASSES = (SoftShadowPreferences, SOFTSHADOW_PT_light, SOFTSHADOW_PT_output)
 
-
-def register():
-    for cls in CLASSES:
-        bpy.utils.register_class(cls)
-
-
-def unregister():
-    for cls in reversed(CLASSES):
-        bpy.utils.unregister_class(cls)
+register, unregister = bpy.utils.register_classes_factory(CLASSES)

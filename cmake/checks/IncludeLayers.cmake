@@ -1,7 +1,8 @@
 # Do the library's #include lines point down the layers only?
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The order (docs/architecture.md, "Layers"): a folder may include its own layer and the ones
-# below it, never one above. Folders of one layer do not include each other either.
+# below it, never one above. Folders of one layer do not include each other either. The CLI
+# (native/cli/) may include only the public C API header and its own files.
 cmake_minimum_required(VERSION 3.20)
 # Usage: cmake -DROOT=<source dir> -P IncludeLayers.cmake
 set(layer_softshadow 0)  # the public C header: plain types and status codes
@@ -36,11 +37,29 @@ foreach(path IN LISTS files)
     continue()
   endif()
   file(STRINGS ${path} includes REGEX "^#include \"")
+  if(from STREQUAL "cli")
+    # <io/...> finds the library's folders too (they are on the include path).
+    file(STRINGS ${path} bracketed REGEX "^#include <[^/>]+/")
+    foreach(line IN LISTS bracketed)
+      string(REGEX MATCH "^#include <([^/>]+)/" unused "${line}")
+      set(to ${CMAKE_MATCH_1})
+      if(DEFINED layer_${to} AND NOT to STREQUAL "softshadow")
+        string(APPEND problems "  ${rel}: ${line}: the CLI may include only the C API (softshadow/softshadow.h)\n")
+      endif()
+    endforeach()
+  endif()
   foreach(line IN LISTS includes)
     if(NOT line MATCHES "^#include \"([^/\"]+)/")
       continue()  # a file of the same folder
     endif()
     set(to ${CMAKE_MATCH_1})
+    if(from STREQUAL "cli")
+      # The CLI is a client of the C API like the add-on: the public header and its own files.
+      if(NOT to STREQUAL "softshadow")
+        string(APPEND problems "  ${rel}: ${line}: the CLI may include only the C API (softshadow/softshadow.h)\n")
+      endif()
+      continue()
+    endif()
     if(to STREQUAL from OR "${from}->${to}" IN_LIST allowed)
       continue()
     endif()

@@ -8,13 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <set>
 
 #include "cli_common.h"
-#include "io/atomic_file.h"
-#include "io/exr_file.h"
-#include "io/pass_names.h"
-#include "io/png_preview.h"
 #include "progress_bar.h"
 
 namespace ss::cli {
@@ -71,15 +66,6 @@ std::vector<int32_t> chooseLights(ss_scene* scene, const std::vector<std::string
     return out;
 }
 
-// Fails before a long render when the output obviously cannot be written: not a regular file
-// (after symlinks), or no writable folder.
-void checkWritable(const std::string& out) {
-    fs::path target(resolveOutputPath(out));
-    fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    if (access(dir.c_str(), W_OK) != 0)
-        throw CliError("cannot write '" + out + "': folder '" + dir.string() + "' is not writable");
-}
-
 // Creates the preview folder before the render, so a bad one fails before anything is written.
 void preparePreviewFolder(const std::string& dir) {
     std::error_code ec;
@@ -92,18 +78,6 @@ void preparePreviewFolder(const std::string& dir) {
                        (ec ? ec.message() : std::string("not a folder")));
     if (access(dir.c_str(), W_OK) != 0)
         throw CliError("cannot write previews to '" + dir + "': the folder is not writable");
-}
-
-// A pass name as a file name inside the preview folder: path separators, control characters
-// and a leading dot become "_", so no light name reaches outside the folder or hides a file.
-std::string previewFileName(const std::string& pass) {
-    std::string name = pass;
-    for (char& c : name) {
-        unsigned char u = (unsigned char)c;
-        if (c == '/' || c == '\\' || u < 0x20 || u == 0x7F) c = '_';
-    }
-    if (!name.empty() && name[0] == '.') name[0] = '_';
-    return name + ".png";
 }
 
 }  // namespace
@@ -122,7 +96,8 @@ int runRender(const std::vector<std::string>& argv) {
             for (const std::string& m : splitList(v)) methods.push_back(m);
     if (methods.empty()) throw CliError("render needs a method: -m reference|shadow_map|...|auto");
 
-    checkWritable(out);
+    // Fails before a long render when the output obviously cannot be written.
+    check(ss_check_output_path(out.c_str()));
     if (args.has("--png-dir")) preparePreviewFolder(args.value("--png-dir"));
 
     ss_scene* rawScene = nullptr;
@@ -153,17 +128,16 @@ int runRender(const std::vector<std::string>& argv) {
         // Every method gives at least V and mask: refuse now what the EXR could not hold.
         ss_camera_desc cam;
         check(ss_scene_get_camera(scene.get(), &cam));
-        try {
-            checkExrShape(out, 2 * lights.size() * methods.size(), cam.width);
-        } catch (const std::exception& e) {
-            throw CliError(e.what());
-        }
+        check(ss_check_exr_shape(out.c_str(), int64_t(2 * lights.size() * methods.size()), cam.width));
     }
-    // Each result goes to the writer's spool (and its previews to staged files) as soon as it
-    // is rendered and is then released, so memory does not grow with the number of lights.
+    // Each result goes to the writer's spool (and its previews to staged files, renamed into
+    // place after the EXR) as soon as it is rendered and is then released, so memory does not
+    // grow with the number of lights.
     ss_exr_writer* rawWriter = nullptr;
     check(ss_exr_writer_create(out.c_str(), ss_scene_view_layer(scene.get()), &rawWriter));
     std::unique_ptr<ss_exr_writer, void (*)(ss_exr_writer*)> writer(rawWriter, ss_exr_writer_destroy);
+    const bool previews = args.has("--png-dir");
+    if (previews) check(ss_exr_writer_set_preview_folder(writer.get(), args.value("--png-dir").c_str()));
 
     struct Row {
         std::string light, asked, used, passes;
@@ -171,9 +145,6 @@ int runRender(const std::vector<std::string>& argv) {
         double estimate = 0.0;  // expected RMSE against the reference; NaN: none made
     };
     std::vector<Row> rows;
-    std::vector<StagedFile> previews;
-    std::vector<std::string> pngs;
-    std::set<std::string> seenPreviews;
     int32_t width = 0, height = 0;
     int passCount = 0;
     auto total0 = std::chrono::steady_clock::now();
@@ -198,30 +169,15 @@ int runRender(const std::vector<std::string>& argv) {
             check(ss_exr_writer_add(writer.get(), raw));
             for (int32_t i = 0; i < ss_result_layer_count(raw); ++i) {
                 const char* name;
-                const float* pixels;
-                check(ss_result_layer(raw, i, &name, &pixels, &width, &height));
+                check(ss_result_layer(raw, i, &name, nullptr, &width, &height));
                 std::string pass = passName(ss_result_light(raw), ss_result_method(raw), name);
                 row.passes += (row.passes.empty() ? "" : " ") + pass;
                 ++passCount;
-                if (!args.has("--png-dir")) continue;
-                // Previews under temporary names now, renamed into place after the EXR: any
-                // failure before that leaves every old file as it was.
-                std::string dir = args.value("--png-dir");
-                std::string file = previewFileName(pass);
-                if (!seenPreviews.insert(file).second)
-                    throw CliError("two passes would share the preview '" + file + "' in '" + dir +
-                                   "' (light names that differ only in '/', '.' or control characters)");
-                Image img(width, height);
-                img.pixels.assign(pixels, pixels + size_t(width) * height);
-                std::string path = (fs::path(dir) / file).string();
-                previews.push_back(stagePngPreview(path, img));
-                pngs.push_back(path);
             }
             rows.push_back(std::move(row));
         }
 
     check(ss_exr_writer_finish(writer.get()));
-    for (StagedFile& f : previews) f.commit();
 
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - total0).count();
     std::error_code ec;
@@ -236,7 +192,8 @@ int runRender(const std::vector<std::string>& argv) {
         std::printf("  %-24s %-14s %-14s %9.3f %s  %s\n", r.light.c_str(), r.asked.c_str(), r.used.c_str(), r.seconds,
                     estimate, r.passes.c_str());
     }
-    if (!pngs.empty()) std::printf("  %zu PNG previews in %s\n", pngs.size(), args.value("--png-dir").c_str());
+    if (previews && passCount > 0)
+        std::printf("  %d PNG previews in %s\n", passCount, args.value("--png-dir").c_str());
     std::printf("  total %.3f s\n", total);
     return 0;
 }

@@ -193,9 +193,26 @@ def test_dbuffer_paper_formula_from_the_light_settings():
 def test_method_list_comes_from_the_library():
     names = ss.native.method_names()
     sstest.check(names[0] == "shadow_map" and names[-1] == "reference" and len(names) == 7, "%s" % (names,))
-    items = [item[0] for item in ss.properties.METHOD_ITEMS]
+    items = [item[0] for item in ss.properties.method_items()]
     sstest.check(items == ["auto"] + list(names), "the light's method menu follows the library: %s" % items)
+    sstest.check(list(ss.properties.METHOD_LABELS) == items,
+                 "the labels (the stand-in list without a library) are the same list: %s" % list(ss.properties.METHOD_LABELS))
+    light = bpy.data.lights.new("MenuProbe", "AREA")
+    try:
+        shown = [item.identifier for item in light.softshadow.bl_rna.properties["method"].enum_items]
+        sstest.check(light.softshadow.method == "auto", "an unset method is auto: %r" % light.softshadow.method)
+        for name in names:
+            light.softshadow.method = name
+            sstest.check(light.softshadow.method == name, "%s round-trips: %r" % (name, light.softshadow.method))
+        numbers = [item[3] for item in ss.properties.method_items()]
+        sstest.check(numbers == list(range(len(items))), "numbers of the earlier fixed menu: %s" % numbers)
+    finally:
+        bpy.data.lights.remove(light)
+    sstest.check(shown in ([], items), "Blender's menu lists the same items: %s" % shown)
     sstest.check(set(ss.preview.fast_methods()) == set(names) - {"reference"}, "%s" % (ss.preview.fast_methods(),))
+    sstest.check(ss.native.pass_name("Key. Light", "pcss") == "Key__Light_pcss" and
+                 ss.native.pass_name("Key", "auto", "mask") == "Key_auto_mask" and
+                 ss.native.pass_name("Key", "auto", "V") == "Key_auto", "pass names from the library")
 
 
 if __name__ == "__main__":

@@ -253,6 +253,68 @@ TEST(CApi, WriteExrKeepsAutoPassNamesAndRecordsTheMethodThatRan) {
     fs::remove_all(dir);
 }
 
+// What the CLI's `render` needs before and around the EXR: checks of the output and its shape,
+// and previews that replace their old files only after the EXR is written.
+TEST(CApi, OutputChecksAndStagedPreviews) {
+    fs::path dir = tempDir("staged");
+    std::string out = (dir / "out.exr").string();
+    EXPECT_EQ(ss_check_output_path(out.c_str()), SS_OK) << ss_last_error();
+    std::string missing = (dir / "no_such_folder" / "out.exr").string();
+    EXPECT_EQ(ss_check_output_path(missing.c_str()), SS_ERROR_IO);
+    EXPECT_TRUE(errorHas(missing)) << ss_last_error();
+    EXPECT_EQ(ss_check_output_path(dir.string().c_str()), SS_ERROR_IO);  // a folder is not a file
+    EXPECT_EQ(ss_check_exr_shape(out.c_str(), 2, 64), SS_OK) << ss_last_error();
+    EXPECT_EQ(ss_check_exr_shape(out.c_str(), 1000000, 64), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(errorHas("cannot write EXR '" + out + "'")) << ss_last_error();
+    EXPECT_EQ(ss_check_exr_shape(out.c_str(), -1, 64), SS_ERROR_INVALID_ARGUMENT);
+
+    fs::path png = dir / "png";
+    fs::create_directories(png);
+    { std::ofstream(png / "Key_pcss.png") << "old"; }
+    ss_result r;
+    r.light = "Key";
+    r.method = "pcss";
+    r.requested = "auto";
+    r.layers.add("V", ss::Image(6, 4, 0.5f));
+    r.layers.add("mask", ss::Image(6, 4, 1.0f));
+    {
+        // Destroyed before finish: no EXR, the old preview as it was, no temporary file left.
+        ss_exr_writer* w = nullptr;
+        ASSERT_EQ(ss_exr_writer_create(out.c_str(), "ViewLayer", &w), SS_OK) << ss_last_error();
+        ASSERT_EQ(ss_exr_writer_set_preview_folder(w, png.string().c_str()), SS_OK) << ss_last_error();
+        ASSERT_EQ(ss_exr_writer_add(w, &r), SS_OK) << ss_last_error();
+        ss_exr_writer_destroy(w);
+        EXPECT_FALSE(fs::exists(out));
+        EXPECT_EQ(fs::file_size(png / "Key_pcss.png"), 3u);
+        EXPECT_EQ(std::distance(fs::directory_iterator(png), fs::directory_iterator{}), 1);
+    }
+    ss_exr_writer* w = nullptr;
+    ASSERT_EQ(ss_exr_writer_create(out.c_str(), "ViewLayer", &w), SS_OK) << ss_last_error();
+    ASSERT_EQ(ss_exr_writer_set_preview_folder(w, png.string().c_str()), SS_OK) << ss_last_error();
+    ASSERT_EQ(ss_exr_writer_add(w, &r), SS_OK) << ss_last_error();
+    // Another pass name, the same preview file: "Key/" is made "Key_" inside the folder.
+    ss_result slash = r;
+    slash.light = "Key/";
+    EXPECT_EQ(ss_exr_writer_add(w, &slash), SS_OK) << ss_last_error();
+    slash.light = "Key\\";
+    EXPECT_EQ(ss_exr_writer_add(w, &slash), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(errorHas("two passes would share the preview 'Key__pcss.png'")) << ss_last_error();
+    ss_exr_writer_destroy(w);
+    EXPECT_EQ(fs::file_size(png / "Key_pcss.png"), 3u);
+
+    ASSERT_EQ(ss_exr_writer_create(out.c_str(), "ViewLayer", &w), SS_OK) << ss_last_error();
+    ASSERT_EQ(ss_exr_writer_set_preview_folder(w, png.string().c_str()), SS_OK) << ss_last_error();
+    ASSERT_EQ(ss_exr_writer_add(w, &r), SS_OK) << ss_last_error();
+    ASSERT_EQ(ss_exr_writer_finish(w), SS_OK) << ss_last_error();
+    ss_exr_writer_destroy(w);
+    // The EXR names the pass as asked (auto); the previews by the method that ran.
+    EXPECT_TRUE(ss::readMultilayerExr(out).find("Key_auto"));
+    EXPECT_GT(fs::file_size(png / "Key_pcss.png"), 3u);
+    EXPECT_TRUE(fs::exists(png / "Key_pcss_mask.png"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(png), fs::directory_iterator{}), 2);
+    fs::remove_all(dir);
+}
+
 TEST(CApi, RenderArgumentsAreChecked) {
     ss_context* ctx = nullptr;
     ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &ctx), SS_OK);

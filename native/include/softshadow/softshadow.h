@@ -213,6 +213,21 @@ SS_API ss_status ss_exr_writer_create(const char* path, const char* view_layer, 
 SS_API ss_status ss_exr_writer_add(ss_exr_writer* writer, const ss_result* result);
 SS_API ss_status ss_exr_writer_finish(ss_exr_writer* writer);
 SS_API void ss_exr_writer_destroy(ss_exr_writer* writer);
+/* Every layer added after this call also gets an 8-bit grayscale PNG preview in `folder` (which
+ * must exist), named "<light>_<method that ran>[_<layer>].png" with '/', '\\', control
+ * characters and a leading '.' made '_' (so no light name reaches outside the folder). Each
+ * preview is written under a temporary name when its result is added and renamed into place by
+ * ss_exr_writer_finish right after the EXR, so a failure before then leaves every old file as
+ * it was. Adding a layer whose preview would have the name of an earlier one fails. */
+SS_API ss_status ss_exr_writer_set_preview_folder(ss_exr_writer* writer, const char* folder);
+/* Checks, before a long render, what an EXR at `path` could not hold: more than the passes one
+ * EXR may have, or rows of `pass_count` passes `width` pixels wide past the row limit. Fails
+ * with SS_ERROR_INVALID_ARGUMENT naming the path and the limit. */
+SS_API ss_status ss_check_exr_shape(const char* path, int64_t pass_count, int32_t width);
+/* Checks that an output could be written to `path`: it, or the file its symlinks lead to, is a
+ * regular file or a new name, in an existing folder the process may write. Fails naming the
+ * path (SS_ERROR_IO). */
+SS_API ss_status ss_check_output_path(const char* path);
 /* The pass name of one layer: "<light>_<method>[_<layer>]" (dots and spaces become '_'; the
  * layer "V" is the pass itself). Fails naming the size needed when the buffer is too small. */
 SS_API ss_status ss_pass_name(const char* light, const char* method, const char* layer, char* buffer,

@@ -1,5 +1,6 @@
 // How the C API writes render results as one multilayer EXR (at once, or gathered result by
-// result) and PNG previews, names passes and compares visibility EXRs.
+// result, with staged PNG previews), checks outputs before a render, names passes and compares
+// visibility EXRs.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "capi/capi_internal.h"
 #include "core/names.h"
@@ -9,15 +10,40 @@
 #include "io/pass_names.h"
 #include "io/png_preview.h"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <set>
+#include <vector>
+
+#include "io/atomic_file.h"
 
 using namespace ss::capi;
 
 struct ss_exr_writer {
     ss_exr_writer(const std::string& path, const std::string& viewLayer) : spool(path, viewLayer) {}
     ss::ExrSpool spool;
+    std::string previewFolder;               // empty: no previews
+    std::vector<ss::StagedFile> previews;    // renamed into place after the EXR
+    std::set<std::string> previewFiles;      // their file names, which must differ
     bool finished = false;
 };
+
+namespace {
+
+// Stages the PNG preview of one pass in the writer's preview folder.
+void stagePreview(ss_exr_writer& writer, const std::string& pass, const ss::Image& image) {
+    std::string file = ss::previewFileName(pass);
+    if (!writer.previewFiles.insert(file).second)
+        ss::fail(SS_ERROR_INVALID_ARGUMENT, "two passes would share the preview '" + file + "' in '" +
+                                                writer.previewFolder +
+                                                "' (light names that differ only in '/', '.' or control characters)");
+    std::string path = (std::filesystem::path(writer.previewFolder) / file).string();
+    writer.previews.push_back(ss::stagePngPreview(path, image));
+}
+
+}  // namespace
 
 extern "C" {
 
@@ -65,6 +91,9 @@ SS_API ss_status ss_exr_writer_add(ss_exr_writer* writer, const ss_result* resul
         if (writer->finished) ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_exr_writer_add: the writer has finished");
         for (const auto& [name, image] : result->layers.items)
             writer->spool.add(ss::passName(result->light, result->requested, name), image);
+        if (!writer->previewFolder.empty())
+            for (const auto& [name, image] : result->layers.items)
+                stagePreview(*writer, ss::passName(result->light, result->method, name), image);
         writer->spool.noteMethod(ss::passName(result->light, result->requested, "V"), result->method);
         if (std::isfinite(result->estimatedRmse))
             writer->spool.noteEstimate(ss::passName(result->light, result->requested, "V"), result->estimatedRmse);
@@ -76,7 +105,37 @@ SS_API ss_status ss_exr_writer_finish(ss_exr_writer* writer) {
         require(writer, "ss_exr_writer_finish", "writer");
         if (writer->finished) ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_exr_writer_finish: called twice");
         writer->spool.write();
+        for (ss::StagedFile& preview : writer->previews) preview.commit();
         writer->finished = true;
+    });
+}
+
+SS_API ss_status ss_exr_writer_set_preview_folder(ss_exr_writer* writer, const char* folder) {
+    return guarded([&] {
+        require(writer, "ss_exr_writer_set_preview_folder", "writer");
+        require(folder, "ss_exr_writer_set_preview_folder", "folder");
+        if (!*folder) ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_exr_writer_set_preview_folder: folder is empty");
+        writer->previewFolder = folder;
+    });
+}
+
+SS_API ss_status ss_check_exr_shape(const char* path, int64_t pass_count, int32_t width) {
+    return guarded([&] {
+        require(path, "ss_check_exr_shape", "path");
+        if (pass_count < 0 || width < 0)
+            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_check_exr_shape: negative pass count or width");
+        ss::checkExrShape(path, size_t(pass_count), width);
+    });
+}
+
+SS_API ss_status ss_check_output_path(const char* path) {
+    return guarded([&] {
+        require(path, "ss_check_output_path", "path");
+        std::filesystem::path target(ss::resolveOutputPath(path));
+        std::filesystem::path dir = target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
+        if (access(dir.c_str(), W_OK) != 0)
+            ss::fail(SS_ERROR_IO, "cannot write '" + std::string(path) + "': folder '" + dir.string() +
+                                      "' is not writable");
     });
 }
 

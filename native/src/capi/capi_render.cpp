@@ -42,18 +42,14 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         require(context, "ss_render", "context");
         require(scene, "ss_render", "scene");
         require(method, "ss_render", "method");
-        const auto& lights = scene->scene.lights();
-        if (light_index < 0 || size_t(light_index) >= lights.size())
-            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_render: light index " + std::to_string(light_index) +
-                                                    " is out of range (the scene has " +
-                                                    std::to_string(lights.size()) + " lights)");
+        const ss::Light& light = scene->scene.light(light_index, "ss_render");
         ss_render_options defaults;
         ss_render_options_default(&defaults);
         ss::RenderSettings settings = toSettings(options ? *options : defaults);
         ContextUse use(*context);
         settings.cancel = &context->closing;
         auto result = std::make_unique<ss_result>();
-        result->light = lights[size_t(light_index)].name;
+        result->light = light.name;
         result->requested = method;
         result->layers = context->renderer.render(scene->scene, light_index, method, settings, &result->method,
                                                       &result->estimatedRmse);
@@ -87,11 +83,8 @@ SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const c
     return guarded([&] {
         require(result, "ss_result_layer", "result");
         const auto& items = result->layers.items;
-        if (index < 0 || size_t(index) >= items.size())
-            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_result_layer: layer index " + std::to_string(index) +
-                                                    " is out of range (the result has " +
-                                                    std::to_string(items.size()) + " layers)");
-        const auto& [layerName, image] = items[size_t(index)];
+        const auto& [layerName, image] =
+            items[ss::checkedIndex(index, items.size(), "ss_result_layer", "layer", "layers", "result")];
         if (name) *name = layerName.c_str();
         if (pixels) *pixels = image.pixels.data();
         if (width) *width = image.width;

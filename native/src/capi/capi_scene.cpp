@@ -214,12 +214,7 @@ SS_API const char* ss_scene_light_name(const ss_scene* scene, int32_t index) {
     const char* name = nullptr;
     guarded([&] {
         require(scene, "ss_scene_light_name", "scene");
-        const auto& lights = scene->scene.lights();
-        if (index < 0 || size_t(index) >= lights.size())
-            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_scene_light_name: light index " + std::to_string(index) +
-                                                    " is out of range (the scene has " +
-                                                    std::to_string(lights.size()) + " lights)");
-        name = lights[size_t(index)].name.c_str();
+        name = scene->scene.light(index, "ss_scene_light_name").name.c_str();
     });
     return name;
 }
@@ -232,12 +227,7 @@ SS_API ss_status ss_scene_mesh_report(const ss_scene* scene, int32_t mesh, char*
                                       size_t buffer_size) {
     return guarded([&] {
         require(scene, "ss_scene_mesh_report", "scene");
-        const auto& meshes = scene->scene.meshes();
-        if (mesh < 0 || size_t(mesh) >= meshes.size())
-            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_scene_mesh_report: mesh index " + std::to_string(mesh) +
-                                                    " is out of range (the scene has " +
-                                                    std::to_string(meshes.size()) + " meshes)");
-        const ss::Mesh& m = meshes[size_t(mesh)];
+        const ss::Mesh& m = scene->scene.mesh(mesh, "ss_scene_mesh_report");
         copyOut(m.report.toJson(m.name), buffer, buffer_size, "ss_scene_mesh_report");
     });
 }
@@ -250,12 +240,7 @@ SS_API ss_status ss_scene_get_light(const ss_scene* scene, int32_t index, ss_lig
     return guarded([&] {
         require(scene, "ss_scene_get_light", "scene");
         require(out, "ss_scene_get_light", "out");
-        const auto& lights = scene->scene.lights();
-        if (index < 0 || size_t(index) >= lights.size())
-            ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_scene_get_light: light index " + std::to_string(index) +
-                                                    " is out of range (the scene has " +
-                                                    std::to_string(lights.size()) + " lights)");
-        const ss::Light& l = lights[size_t(index)];
+        const ss::Light& l = scene->scene.light(index, "ss_scene_get_light");
         out->name = l.name.c_str();
         out->type = ss_light_type(int(l.type));
         fromMat4(l.lightToWorld, out->light_to_world);

@@ -29,16 +29,12 @@ int Scene::addMesh(Mesh mesh) {
     return int(meshes_.size()) - 1;
 }
 
-const Mesh& Scene::meshAt(int index, const char* what) const {
-    if (index < 0 || size_t(index) >= meshes_.size())
-        fail(SS_ERROR_INVALID_ARGUMENT, std::string(what) + ": mesh index " + std::to_string(index) +
-                                            " is out of range (the scene has " +
-                                            std::to_string(meshes_.size()) + " meshes)");
-    return meshes_[size_t(index)];
+const Mesh& Scene::mesh(int index, const std::string& where) const {
+    return meshes_[checkedIndex(index, meshes_.size(), where, "mesh", "meshes", "scene")];
 }
 
 void Scene::updateMesh(int index, Mesh mesh) {
-    const Mesh& old = meshAt(index, "updating a mesh");
+    const Mesh& old = this->mesh(index, "updating a mesh");
     mesh.name = old.name;
     const glm::mat4 transform = old.objectToWorld;
     mesh.objectToWorld = glm::mat4(1.0f);
@@ -52,7 +48,7 @@ void Scene::updateMesh(int index, Mesh mesh) {
 }
 
 void Scene::setMeshTransform(int index, const glm::mat4& objectToWorld) {
-    meshAt(index, "moving a mesh");
+    (void)this->mesh(index, "moving a mesh");
     Mesh& mesh = meshes_[size_t(index)];
     Mesh moved;  // built aside so a refused transform leaves the mesh as it was
     moved.name = mesh.name;
@@ -71,7 +67,7 @@ void Scene::setMeshTransform(int index, const glm::mat4& objectToWorld) {
 }
 
 void Scene::removeMesh(int index) {
-    meshAt(index, "removing a mesh");
+    (void)mesh(index, "removing a mesh");
     meshes_.erase(meshes_.begin() + index);
     geometryVersion_ = nextVersion();
     ++revision_;
@@ -124,11 +120,8 @@ const Camera& Scene::camera() const {
     return *camera_;
 }
 
-const Light& Scene::light(int index) const {
-    if (index < 0 || size_t(index) >= lights_.size())
-        fail(SS_ERROR_INVALID_ARGUMENT, "light index " + std::to_string(index) + " is out of range (the scene has " +
-                                            std::to_string(lights_.size()) + " lights)");
-    return lights_[size_t(index)];
+const Light& Scene::light(int index, const std::string& where) const {
+    return lights_[checkedIndex(index, lights_.size(), where, "light", "lights", "scene")];
 }
 
 int Scene::findLight(const std::string& name) const {

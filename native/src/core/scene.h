@@ -41,8 +41,10 @@ public:
 
     const std::vector<Mesh>& meshes() const { return meshes_; }
     const std::vector<Light>& lights() const { return lights_; }
-    // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) naming the index and the light count.
-    const Light& light(int index) const;
+    // Throw ss::Error(SS_ERROR_INVALID_ARGUMENT) naming `where` (a C function, an edit), the
+    // index and the count (checkedIndex in core/error.h).
+    const Light& light(int index, const std::string& where = "") const;
+    const Mesh& mesh(int index, const std::string& where = "") const;
     const Camera& camera() const;  // throws when the scene has no camera
     bool hasCamera() const { return camera_.has_value(); }
     const std::string& viewLayer() const { return viewLayer_; }
@@ -68,7 +70,6 @@ private:
     uint64_t geometryVersion_ = nextVersion();
     uint64_t cameraVersion_ = nextVersion();
     static uint64_t nextId();
-    const Mesh& meshAt(int index, const char* what) const;
     // Copying makes a new id; moving hands the id over and gives the emptied source a new one.
     struct Identity {
         uint64_t value = nextId();

@@ -17,20 +17,27 @@ namespace ss::gl {
 
 namespace {
 
+// The EGL entry points we always need: (type, member, EGL name). One list makes both the
+// members of EglApi and their look-ups.
+#define SS_EGL_REQUIRED_FUNCTIONS(X)                                   \
+    X(PFNEGLINITIALIZEPROC, initialize, eglInitialize)                 \
+    X(PFNEGLBINDAPIPROC, bindApi, eglBindAPI)                          \
+    X(PFNEGLCHOOSECONFIGPROC, chooseConfig, eglChooseConfig)           \
+    X(PFNEGLCREATECONTEXTPROC, createContext, eglCreateContext)        \
+    X(PFNEGLDESTROYCONTEXTPROC, destroyContext, eglDestroyContext)     \
+    X(PFNEGLMAKECURRENTPROC, makeCurrent, eglMakeCurrent)              \
+    X(PFNEGLRELEASETHREADPROC, releaseThread, eglReleaseThread)        \
+    X(PFNEGLGETERRORPROC, getError, eglGetError)                       \
+    X(PFNEGLQUERYSTRINGPROC, queryString, eglQueryString)              \
+    X(PFNEGLGETPLATFORMDISPLAYEXTPROC, getPlatformDisplay, eglGetPlatformDisplayEXT)
+
 // The EGL entry points we use, resolved from the dlopen'ed library: linking libEGL would make
 // the whole library unloadable on a machine without it.
 struct EglApi {
     PFNEGLGETPROCADDRESSPROC getProcAddress = nullptr;
-    PFNEGLINITIALIZEPROC initialize = nullptr;
-    PFNEGLBINDAPIPROC bindApi = nullptr;
-    PFNEGLCHOOSECONFIGPROC chooseConfig = nullptr;
-    PFNEGLCREATECONTEXTPROC createContext = nullptr;
-    PFNEGLDESTROYCONTEXTPROC destroyContext = nullptr;
-    PFNEGLMAKECURRENTPROC makeCurrent = nullptr;
-    PFNEGLRELEASETHREADPROC releaseThread = nullptr;
-    PFNEGLGETERRORPROC getError = nullptr;
-    PFNEGLQUERYSTRINGPROC queryString = nullptr;
-    PFNEGLGETPLATFORMDISPLAYEXTPROC getPlatformDisplay = nullptr;
+#define SS_EGL_MEMBER(type, member, name) type member = nullptr;
+    SS_EGL_REQUIRED_FUNCTIONS(SS_EGL_MEMBER)
+#undef SS_EGL_MEMBER
     // Optional (EGL_EXT_device_enumeration / EGL_EXT_device_query): null when absent.
     PFNEGLQUERYDEVICESEXTPROC queryDevices = nullptr;
     PFNEGLQUERYDEVICESTRINGEXTPROC queryDeviceString = nullptr;
@@ -50,16 +57,10 @@ const EglApi& eglApi() {
             if (!fn) fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(a.getProcAddress(name));
             if (!fn) fail(SS_ERROR_GL, std::string("libEGL.so.1 has no ") + name);
         };
-        get(a.initialize, "eglInitialize");
-        get(a.bindApi, "eglBindAPI");
-        get(a.chooseConfig, "eglChooseConfig");
-        get(a.createContext, "eglCreateContext");
-        get(a.destroyContext, "eglDestroyContext");
-        get(a.makeCurrent, "eglMakeCurrent");
-        get(a.releaseThread, "eglReleaseThread");
-        get(a.getError, "eglGetError");
-        get(a.queryString, "eglQueryString");
-        get(a.getPlatformDisplay, "eglGetPlatformDisplayEXT");
+#define SS_EGL_LOOKUP(type, member, name) get(a.member, #name);
+        SS_EGL_REQUIRED_FUNCTIONS(SS_EGL_LOOKUP)
+#undef SS_EGL_LOOKUP
+#undef SS_EGL_REQUIRED_FUNCTIONS
         const char* client = a.queryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
         std::string clientExtensions = client ? client : "";
         if (clientExtensions.find("EGL_EXT_device_enumeration") != std::string::npos ||

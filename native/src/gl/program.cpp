@@ -4,6 +4,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -62,6 +63,20 @@ std::string sourceLegend(const std::string& text) {
     return legend;
 }
 
+// Nothing when the shader's or program's `status` (compile or link) is set; else its info log.
+// Shaders and programs have the same pair of getters, passed in.
+std::optional<std::string> failureLog(GLuint object, GLenum status, PFNGLGETSHADERIVPROC getParameter,
+                                      PFNGLGETSHADERINFOLOGPROC getInfoLog) {
+    GLint ok = 0;
+    getParameter(object, status, &ok);
+    if (ok) return std::nullopt;
+    GLint length = 0;
+    getParameter(object, GL_INFO_LOG_LENGTH, &length);
+    std::string log(size_t(std::max(length, 1)), '\0');
+    getInfoLog(object, length, nullptr, log.data());
+    return std::string(log.c_str());
+}
+
 GLuint compileStage(const Functions& gl, GLenum stage, const std::string& path,
                     const std::vector<std::string>& defines) {
     std::string text = expandShader(path, defines);
@@ -69,15 +84,9 @@ GLuint compileStage(const Functions& gl, GLenum stage, const std::string& path,
     const char* src = text.c_str();
     gl.ShaderSource(shader, 1, &src, nullptr);
     gl.CompileShader(shader);
-    GLint ok = 0;
-    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        gl.GetShaderInfoLog(shader, length, nullptr, log.data());
+    if (std::optional<std::string> log = failureLog(shader, GL_COMPILE_STATUS, gl.GetShaderiv, gl.GetShaderInfoLog)) {
         gl.DeleteShader(shader);
-        fail(SS_ERROR_GL, "shader '" + path + "' does not compile:\n" + log.c_str() + sourceLegend(text));
+        fail(SS_ERROR_GL, "shader '" + path + "' does not compile:\n" + *log + sourceLegend(text));
     }
     return shader;
 }
@@ -125,16 +134,10 @@ Program::Program(const ProgramDesc& desc) {
     for (GLuint s : shaders) gl.AttachShader(id_, s);
     gl.LinkProgram(id_);
     cleanup();
-    GLint ok = 0;
-    gl.GetProgramiv(id_, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        gl.GetProgramiv(id_, GL_INFO_LOG_LENGTH, &length);
-        std::string log(size_t(std::max(length, 1)), '\0');
-        gl.GetProgramInfoLog(id_, length, nullptr, log.data());
+    if (std::optional<std::string> log = failureLog(id_, GL_LINK_STATUS, gl.GetProgramiv, gl.GetProgramInfoLog)) {
         gl.DeleteProgram(id_);
         id_ = 0;
-        fail(SS_ERROR_GL, "program " + desc.key() + " does not link:\n" + log.c_str());
+        fail(SS_ERROR_GL, "program " + desc.key() + " does not link:\n" + *log);
     }
 }
 

@@ -35,4 +35,14 @@ StagedFile stagePngPreview(const std::string& path, const Image& image) {
     });
 }
 
+std::string previewFileName(const std::string& pass) {
+    std::string name = pass;
+    for (char& c : name) {
+        unsigned char u = (unsigned char)c;
+        if (c == '/' || c == '\\' || u < 0x20 || u == 0x7F) c = '_';
+    }
+    if (!name.empty() && name[0] == '.') name[0] = '_';
+    return name + ".png";
+}
+
 }  // namespace ss

@@ -15,4 +15,8 @@ void writePngPreview(const std::string& path, const Image& image);
 // outputs either all replace their old files or all leave them as they were.
 StagedFile stagePngPreview(const std::string& path, const Image& image);
 
+// A pass name as a file name inside a preview folder: path separators, control characters and
+// a leading dot become "_", so no light name reaches outside the folder or hides a file.
+std::string previewFileName(const std::string& pass);
+
 }  // namespace ss

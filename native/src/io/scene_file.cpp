@@ -305,6 +305,17 @@ void addWithPath(const JsonNode& n, F&& add) {
     }
 }
 
+// Calls `read` on each element of the optional array `key` of `n`, refusing one of more than
+// `most` elements before any is read.
+template <class F>
+void forEachElement(const JsonNode& n, const char* key, size_t most, F&& read) {
+    if (!n.has(key)) return;
+    JsonNode items = n.at(key);
+    if (items.size() > most)
+        items.fail("has " + std::to_string(items.size()) + " " + key + " (at most " + std::to_string(most) + ")");
+    for (size_t i = 0; i < items.size(); ++i) read(items.at(i));
+}
+
 }  // namespace
 
 Scene parseSceneText(const std::string& text, const std::string& baseDir, const std::string& shownName) {
@@ -331,26 +342,14 @@ Scene parseSceneText(const std::string& text, const std::string& baseDir, const 
         Camera cam = readCamera(c);
         addWithPath(c, [&] { scene.setCamera(cam); });
     }
-    if (r.has("lights")) {
-        JsonNode lights = r.at("lights");
-        if (lights.size() > kMaxLights)
-            lights.fail("has " + std::to_string(lights.size()) + " lights (at most " + std::to_string(kMaxLights) + ")");
-        for (size_t i = 0; i < lights.size(); ++i) {
-            JsonNode l = lights.at(i);
-            Light light = readLight(l);
-            addWithPath(l, [&] { scene.addLight(std::move(light)); });
-        }
-    }
-    if (r.has("meshes")) {
-        JsonNode meshes = r.at("meshes");
-        if (meshes.size() > kMaxMeshes)
-            meshes.fail("has " + std::to_string(meshes.size()) + " meshes (at most " + std::to_string(kMaxMeshes) + ")");
-        for (size_t i = 0; i < meshes.size(); ++i) {
-            JsonNode m = meshes.at(i);
-            Mesh mesh = readMesh(m, baseDir);
-            addWithPath(m, [&] { scene.addMesh(std::move(mesh)); });
-        }
-    }
+    forEachElement(r, "lights", kMaxLights, [&](const JsonNode& l) {
+        Light light = readLight(l);
+        addWithPath(l, [&] { scene.addLight(std::move(light)); });
+    });
+    forEachElement(r, "meshes", kMaxMeshes, [&](const JsonNode& m) {
+        Mesh mesh = readMesh(m, baseDir);
+        addWithPath(m, [&] { scene.addMesh(std::move(mesh)); });
+    });
     return scene;
 }
 

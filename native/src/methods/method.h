@@ -3,6 +3,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/image.h"
@@ -15,15 +16,20 @@ namespace ss {
 
 class Frame;  // frame/frame.h: the scene plus the GL passes shared by every method
 
+// Where a method's render() runs: on the caller's thread, or on the library's GL render thread.
+enum class MethodDevice { Cpu, Gl };
+
 class Method {
 public:
+    // `name`: the contract name (core/method_names.h). `settingKeys`: every key of
+    // RenderSettings::options the method reads; any other key is refused before the method runs
+    // (RenderSettings::requireKnownKeys).
+    Method(std::string name, MethodDevice device, std::vector<std::string> settingKeys)
+        : name_(std::move(name)), device_(device), settingKeys_(std::move(settingKeys)) {}
     virtual ~Method() = default;
-    virtual const char* name() const = 0;
-    // True when render() needs the GL device (then it runs on the library's render thread).
-    virtual bool needsGl() const = 0;
-    // Every key of RenderSettings::options the method reads; any other key is refused before
-    // the method runs (RenderSettings::requireKnownKeys).
-    virtual std::vector<std::string> settingKeys() const = 0;
+    const char* name() const { return name_.c_str(); }
+    bool needsGl() const { return device_ == MethodDevice::Gl; }
+    const std::vector<std::string>& settingKeys() const { return settingKeys_; }
     // CPU geometry that depends only on the scene and the light. Default: nothing.
     virtual void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) {
         (void)frame, (void)lightIndex, (void)settings;
@@ -32,6 +38,11 @@ public:
     // (never "umbra"/"penumbra": the renderer adds those, core/visibility_classes.h). Every
     // layer: camera resolution, row 0 = top.
     virtual Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) = 0;
+
+private:
+    std::string name_;
+    MethodDevice device_;
+    std::vector<std::string> settingKeys_;
 };
 
 // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) for an unknown name; "auto" is not accepted here.

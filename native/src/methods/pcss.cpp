@@ -18,9 +18,9 @@ namespace {
 
 class PcssMethod final : public Method {
 public:
-    const char* name() const override { return "pcss"; }
-    bool needsGl() const override { return true; }
-    std::vector<std::string> settingKeys() const override { return {"blocker_samples", "pcf_samples", "shadow_map_size", "max_search"}; }
+    PcssMethod()
+        : Method("pcss", MethodDevice::Gl,
+                 {"blocker_samples", "pcf_samples", "shadow_map_size", "max_search"}) {}
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);

@@ -63,11 +63,9 @@ struct GpuConesSheets {
 
 class PenumbraMapMethod final : public Method {
 public:
-    const char* name() const override { return "penumbra_map"; }
-    bool needsGl() const override { return true; }
-    std::vector<std::string> settingKeys() const override {
-        return {"shadow_map_size", "cone_segments", "intensity", "finish_stages"};
-    }
+    PenumbraMapMethod()
+        : Method("penumbra_map", MethodDevice::Gl,
+                 {"shadow_map_size", "cone_segments", "intensity", "finish_stages"}) {}
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);

@@ -14,9 +14,7 @@ namespace {
 // rendering every light of an unchanged scene builds the BVH once.
 class ReferenceMethod final : public Method {
 public:
-    const char* name() const override { return "reference"; }
-    bool needsGl() const override { return false; }
-    std::vector<std::string> settingKeys() const override { return referenceSettingKeys(); }
+    ReferenceMethod() : Method("reference", MethodDevice::Cpu, referenceSettingKeys()) {}
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         return renderReference(frame.scene(), lightIndex, settings, &frame.traceScenes());
     }

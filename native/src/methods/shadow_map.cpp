@@ -24,9 +24,7 @@ constexpr float kSlopeBias = 1.0f;
 
 class ShadowMapMethod final : public Method {
 public:
-    const char* name() const override { return "shadow_map"; }
-    bool needsGl() const override { return true; }
-    std::vector<std::string> settingKeys() const override { return {"shadow_map_size", "bias", "slope_bias"}; }
+    ShadowMapMethod() : Method("shadow_map", MethodDevice::Gl, {"shadow_map_size", "bias", "slope_bias"}) {}
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const gl::Functions& g = frame.gl();

@@ -22,9 +22,7 @@ struct SparseCheck;  // methods/sparse_check.h
 class Renderer {
 public:
     explicit Renderer(ss_backend backend);
-    ~Renderer();
-    Renderer(const Renderer&) = delete;
-    Renderer& operator=(const Renderer&) = delete;
+    ~Renderer();  // not copyable: it owns a GL thread and caches through impl_
 
     // Starts GL if needed; throws ss::Error(SS_ERROR_GL) naming every backend tried.
     // JSON: {"backend", "renderer", "vendor", "version", "limits": {...}}.

@@ -77,12 +77,10 @@ void draw(const GpuSoup& s) {
 
 class DbufferMethod final : public Method {
 public:
-    const char* name() const override { return "dbuffer"; }
-    bool needsGl() const override { return true; }
-    std::vector<std::string> settingKeys() const override {
-        return {"shadow_map_size", "umbra_rule", "small_occluders", "profile", "bias_texels", "formula",
-                "raw_layers", "finish_stages"};
-    }
+    DbufferMethod()
+        : Method("dbuffer", MethodDevice::Gl,
+                 {"shadow_map_size", "umbra_rule", "small_occluders", "profile", "bias_texels", "formula",
+                  "raw_layers", "finish_stages"}) {}
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         settings.report(0.0f, "silhouettes and volumes");

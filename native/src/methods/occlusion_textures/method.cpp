@@ -15,12 +15,10 @@ namespace {
 
 class OcclusionTexturesMethod final : public Method {
 public:
-    const char* name() const override { return "occlusion_textures"; }
-    bool needsGl() const override { return true; }
-    std::vector<std::string> settingKeys() const override {
-        return {"slices", "resolution", "filter", "thin_fix", "fade", "finish_stages", "skip_empty_slices",
-                "slicing"};
-    }
+    OcclusionTexturesMethod()
+        : Method("occlusion_textures", MethodDevice::Gl,
+                 {"slices", "resolution", "filter", "thin_fix", "fade", "finish_stages", "skip_empty_slices",
+                  "slicing"}) {}
 
     // Settings: slices (1..16, default 8), resolution (long side of the occlusion textures,
     // default 512), filter (mipmap | nbuffer | sat, default sat: exact and the fastest on llvmpipe), thin_fix (on: every

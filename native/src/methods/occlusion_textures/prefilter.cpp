@@ -8,30 +8,41 @@
 
 namespace ss::occlusion {
 
+namespace {
+
+// Each filter once: its setting name, the program define that picks its boxFilter() in the
+// shaders, the target of its filtered textures and the stage that fills them.
+struct FilterKind {
+    Filter filter;
+    const char* name;
+    const char* define;
+    GLenum target;
+    void (*run)(const SliceTextures&, FilteredSlices&);
+};
+constexpr FilterKind kFilterKinds[] = {
+    {Filter::Mipmap, "mipmap", "FILTER_MIPMAP", GL_TEXTURE_2D, prefilterMipmap},
+    {Filter::NBuffer, "nbuffer", "FILTER_NBUFFER", GL_TEXTURE_2D_ARRAY, prefilterNBuffer},
+    {Filter::Sat, "sat", "FILTER_SAT", GL_TEXTURE_2D_ARRAY, prefilterSat},
+};
+
+const FilterKind& kindOf(Filter filter) {
+    for (const FilterKind& k : kFilterKinds)
+        if (k.filter == filter) return k;
+    fail(SS_ERROR_INTERNAL, "occlusion_textures: a filter without its table entry");
+}
+
+}  // namespace
+
 Filter parseFilter(const std::string& name) {
-    if (name == "mipmap") return Filter::Mipmap;
-    if (name == "nbuffer") return Filter::NBuffer;
-    if (name == "sat") return Filter::Sat;
-    fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: filter = '" + name + "' (known: mipmap, nbuffer, sat)");
+    std::string known;
+    for (const FilterKind& k : kFilterKinds) {
+        if (name == k.name) return k.filter;
+        known += std::string(known.empty() ? "" : ", ") + k.name;
+    }
+    fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: filter = '" + name + "' (known: " + known + ")");
 }
 
-const char* filterName(Filter filter) {
-    switch (filter) {
-        case Filter::Mipmap: return "mipmap";
-        case Filter::NBuffer: return "nbuffer";
-        case Filter::Sat: return "sat";
-    }
-    return "?";
-}
-
-const char* filterDefine(Filter filter) {
-    switch (filter) {
-        case Filter::Mipmap: return "FILTER_MIPMAP";
-        case Filter::NBuffer: return "FILTER_NBUFFER";
-        case Filter::Sat: return "FILTER_SAT";
-    }
-    return "FILTER_NBUFFER";
-}
+const char* filterDefine(Filter filter) { return kindOf(filter).define; }
 
 SliceTextures makeSliceTextures(int width, int height, int count, bool withMipmaps) {
     const gl::Functions& gl = gl::api();
@@ -59,9 +70,14 @@ SliceTextures makeSliceTextures(int width, int height, int count, bool withMipma
 }
 
 FilteredSlices prefilter(Filter filter, const SliceTextures& slices) {
-    if (filter == Filter::Sat) return prefilterSat(slices);  // its row pass finds the bounds
-    FilteredSlices f = filter == Filter::Mipmap ? prefilterMipmap(slices) : prefilterNBuffer(slices);
-    f.bounds = findSliceBounds(slices);
+    const FilterKind& kind = kindOf(filter);
+    FilteredSlices f;
+    f.filter = filter;
+    f.target = kind.target;
+    f.width = slices.width;
+    f.height = slices.height;
+    kind.run(slices, f);
+    if (filter != Filter::Sat) f.bounds = findSliceBounds(slices);  // SAT's row pass finds them
     return f;
 }
 

@@ -16,7 +16,6 @@ namespace ss::occlusion {
 enum class Filter { Mipmap, NBuffer, Sat };
 // "mipmap", "nbuffer", "sat"; throws ss::Error(SS_ERROR_INVALID_ARGUMENT) otherwise.
 Filter parseFilter(const std::string& name);
-const char* filterName(Filter filter);
 // The program define that picks the filter's boxFilter() in the shaders.
 const char* filterDefine(Filter filter);
 
@@ -52,10 +51,12 @@ gl::BufferHandle makeSliceBoundsBuffer(int count);
 std::vector<glm::vec4> readSliceBounds(const gl::BufferHandle& buffer, int count);
 std::vector<glm::vec4> findSliceBounds(const SliceTextures& slices);
 
-FilteredSlices prefilterMipmap(const SliceTextures& slices);
-FilteredSlices prefilterSat(const SliceTextures& slices);
-FilteredSlices prefilterNBuffer(const SliceTextures& slices);
+// The pre-filter `filter` over the slices, with every slice's occupied bounds.
 FilteredSlices prefilter(Filter filter, const SliceTextures& slices);
+// The stages prefilter() runs: each fills `f` (filter, target and size already set).
+void prefilterMipmap(const SliceTextures& slices, FilteredSlices& f);
+void prefilterSat(const SliceTextures& slices, FilteredSlices& f);
+void prefilterNBuffer(const SliceTextures& slices, FilteredSlices& f);
 
 // Points `filtered[0..3]` of `program` at the groups (units firstUnit..firstUnit+3; unused
 // entries repeat group 0 so every sampler is valid), or for SAT `satTables` at the table array

@@ -6,17 +6,13 @@
 
 namespace ss::occlusion {
 
-FilteredSlices prefilterMipmap(const SliceTextures& slices) {
+void prefilterMipmap(const SliceTextures& slices, FilteredSlices& f) {
     const gl::Functions& gl = gl::api();
-    FilteredSlices f;
-    f.filter = Filter::Mipmap;
-    f.target = GL_TEXTURE_2D;
     for (const TextureHandle& t : slices.groups) {
         gl.GenerateTextureMipmap(t.id());
         f.textures.push_back(t.id());
     }
     gl.check("building occlusion texture mipmaps");
-    return f;
 }
 
 }  // namespace ss::occlusion

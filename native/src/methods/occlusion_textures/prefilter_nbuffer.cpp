@@ -8,11 +8,8 @@
 
 namespace ss::occlusion {
 
-FilteredSlices prefilterNBuffer(const SliceTextures& slices) {
+void prefilterNBuffer(const SliceTextures& slices, FilteredSlices& f) {
     const gl::Functions& gl = gl::api();
-    FilteredSlices f;
-    f.filter = Filter::NBuffer;
-    f.target = GL_TEXTURE_2D_ARRAY;
     gl::ProgramDesc desc;
     desc.compute = "occlusion_textures/prefilter_nbuffer_level.comp.glsl";
     const gl::Program& level = gl::program(desc);
@@ -45,7 +42,6 @@ FilteredSlices prefilterNBuffer(const SliceTextures& slices) {
     }
     gl.BindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
     gl.check("building N-Buffers");
-    return f;
 }
 
 }  // namespace ss::occlusion

@@ -8,13 +8,8 @@
 
 namespace ss::occlusion {
 
-FilteredSlices prefilterSat(const SliceTextures& slices) {
+void prefilterSat(const SliceTextures& slices, FilteredSlices& f) {
     const gl::Functions& gl = gl::api();
-    FilteredSlices f;
-    f.filter = Filter::Sat;
-    f.target = GL_TEXTURE_2D_ARRAY;
-    f.width = slices.width;
-    f.height = slices.height;
     gl::ProgramDesc rowsDesc, columnsDesc;
     rowsDesc.compute = "occlusion_textures/prefilter_sat_rows.comp.glsl";
     columnsDesc.compute = "occlusion_textures/prefilter_sat_columns.comp.glsl";
@@ -54,7 +49,6 @@ FilteredSlices prefilterSat(const SliceTextures& slices) {
     // read a per-pixel gather on llvmpipe); shading waits for these passes anyway.
     f.bounds = readSliceBounds(bounds, layers);
     gl.check("building summed-area tables");
-    return f;
 }
 
 }  // namespace ss::occlusion

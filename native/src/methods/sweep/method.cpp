@@ -21,10 +21,8 @@ namespace {
 
 class SweepMethod final : public Method {
 public:
-    const char* name() const override { return "sweep"; }
     // GL for the shared camera pass and for drawing the shadow mesh; the mesh is CPU geometry.
-    bool needsGl() const override { return true; }
-    std::vector<std::string> settingKeys() const override { return sweepSettingKeys(); }
+    SweepMethod() : Method("sweep", MethodDevice::Gl, sweepSettingKeys()) {}
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         shadowFor(frame.scene(), lightIndex, settings);
