@@ -103,8 +103,10 @@ def bench_rows(path):
     return [b for b in data.get("benchmarks", []) if b.get("run_type", "iteration") == "iteration"]
 
 
-def error_of(work, scene, key):
-    rows = load(os.path.join(work, "errors", scene, key + ".json"))
+def error_of(work, scene, key, region=""):
+    """The V pass's error row against the truth: over all surfaces (region "") or, with region
+    "receivers", over the receiver objects' pixels the light reaches (bench/scenes.py RECEIVERS)."""
+    rows = load(os.path.join(work, "errors", scene, key + (".%s" % region if region else "") + ".json"))
     if not rows:
         return None
     for r in rows:  # the V pass (not mask/umbra/penumbra)
@@ -113,13 +115,14 @@ def error_of(work, scene, key):
     return rows[0]
 
 
-def cli_seconds(path):
+def cli_seconds(path, method="reference"):
+    """The render report's seconds for the row that asked for `method`."""
     try:
         for line in open(path):
             parts = line.split()
-            if len(parts) >= 4 and parts[1] == "reference" and parts[2] == "reference":
+            if len(parts) >= 4 and parts[1] == method:
                 return float(parts[3])
-    except OSError:
+    except (OSError, ValueError):
         pass
     return None
 
@@ -151,18 +154,37 @@ def collect(work, out):
             if scene == name:
                 rows.append({"key": method, "kind": "ours", "ms": b["real_time"],
                              "stages": {k: b.get(k) for k, _ in STAGES}, "err": error_of(work, name, method)})
-        sec, took, estimate = cli_auto(os.path.join(work, "ours", name, "auto.txt"))
+        ours_dir = os.path.join(work, "ours", name)
+        traced = load(os.path.join(ours_dir, "traced.json"), {}) or {}
+        sec, took, estimate = cli_auto(os.path.join(ours_dir, "auto.txt"))
         if sec is not None:
+            picked = cli_seconds(os.path.join(ours_dir, "picked.txt"), took)
             rows.append({"key": "auto", "kind": "ours-auto", "ms": sec * 1000, "stages": None, "took": took,
-                         "estimate": estimate, "err": error_of(work, name, "auto")})
+                         "estimate": estimate, "picked_ms": picked * 1000 if picked else None,
+                         "err": error_of(work, name, "auto")})
+        sec, took, estimate = cli_auto(os.path.join(ours_dir, "auto-refine.txt"))
+        if sec is not None:
+            rows.append({"key": "auto-refine", "kind": "ours-refine", "ms": sec * 1000, "stages": None, "took": took,
+                         "estimate": estimate, "traced": traced.get("auto-refine"),
+                         "err": error_of(work, name, "auto-refine")})
         s = cli_seconds(os.path.join(d, "reference.txt"))
         rows.append({"key": "reference", "kind": "ours-cpu", "ms": s * 1000 if s else None, "stages": None,
                      "err": error_of(work, name, "reference")})
+        s = cli_seconds(os.path.join(ours_dir, "reference-adaptive.txt"))
+        if s is not None:
+            rows.append({"key": "reference-adaptive", "kind": "ours-adaptive", "ms": s * 1000, "stages": None,
+                         "traced": traced.get("reference-adaptive"),
+                         "err": error_of(work, name, "reference-adaptive")})
         for key, sec in sorted(info.get("renders", {}).items(),
                                key=lambda kv: (kv[0].split("_")[0], int(kv[0].split("_")[1]))):
             rows.append({"key": key.replace("_", "-"), "kind": key.split("_")[0], "ms": sec * 1000.0,
                          "stages": None, "err": error_of(work, name, key)})
-        scenes.append({"name": name, "triangles": info.get("triangles"), "rows": rows})
+        for r in rows:
+            r["err_recv"] = error_of(work, name, r["key"].replace("-", "_") if r["kind"] in ("eevee", "cycles")
+                                     else r["key"], "receivers")
+        scenes.append({"name": name, "triangles": info.get("triangles"), "rows": rows,
+                       "size": "%sx%s" % (info.get("width"), info.get("height")),
+                       "receiver_pixels": info.get("receiver_pixels")})
     return scenes
 
 
@@ -171,42 +193,93 @@ def fmt(v, spec="%.4f"):
 
 
 # ---------------------------------------------------------------- headline
+def rmse(r, region):
+    e = r.get("err_recv" if region == "receivers" else "err") if r else None
+    return e["rmse"] if e else None
+
+
+def verdict(mine, theirs):
+    if mine is None or theirs is None:
+        return "—"
+    return ("%.4f ≤ %.4f" if mine <= theirs else "**%.4f > %.4f**") % (mine, theirs)
+
+
 def headline(scene):
+    """auto (what users get) against EEVEE-64 and Cycles-16/64, on receivers and all surfaces."""
     rows = scene["rows"]
-    gl = [r for r in rows if r["kind"] == "ours" and r["err"] and r["ms"]]
-    ee = next((r for r in rows if r["key"] == "eevee-64" and r["err"]), None)
-    cyc = sorted([r for r in rows if r["kind"] == "cycles" and r["err"]], key=lambda r: int(r["key"].split("-")[1]))
+    by = {r["key"]: r for r in rows}
+    auto, ee = by.get("auto"), by.get("eevee-64")
+    gl = [r for r in rows if r["kind"] == "ours" and r["err"] and r["ms"] and "-" not in r["key"]]
     parts = []
-    auto = next((r for r in rows if r["kind"] == "ours-auto" and r["err"]), None)
-    if auto:
-        verdict = ""
-        if ee:
-            verdict = (", at or below EEVEE-64 (%.4f)" if auto["err"]["rmse"] <= ee["err"]["rmse"]
-                       else ", **above** EEVEE-64 (%.4f)") % ee["err"]["rmse"]
-        parts.append("**auto** took %s: RMSE %.4f (its estimate %s) in %.0f ms (CLI, whole process)%s"
-                     % (auto.get("took"), auto["err"]["rmse"], fmt(auto.get("estimate")), auto["ms"], verdict))
-    if ee and gl:
-        within = [r for r in gl if r["err"]["rmse"] <= ee["err"]["rmse"]]
-        if within:
-            f = min(within, key=lambda r: r["ms"])
-            parts.append("fastest of ours within EEVEE-64's error (RMSE %.4f): **%s** %.4f in %.0f ms, "
-                         "%.1fx faster than EEVEE-64 (%.0f ms)" % (ee["err"]["rmse"], f["key"], f["err"]["rmse"],
-                                                                   f["ms"], ee["ms"] / f["ms"], ee["ms"]))
-        else:
-            b = min(gl, key=lambda r: r["err"]["rmse"])
-            parts.append("none of ours within EEVEE-64's error (RMSE %.4f; our best %s %.4f)"
-                         % (ee["err"]["rmse"], b["key"], b["err"]["rmse"]))
-    if gl and cyc:
+    if not auto or not auto["err"]:
+        return "- **%s**: auto has no result (see the run's log)" % scene["name"]
+    parts.append("**auto** took %s in %.0f ms (CLI, fresh process%s)" % (
+        auto.get("took"), auto["ms"], ", %.1f× the %.0f ms of %s alone" % (auto["ms"] / auto["picked_ms"], auto["picked_ms"],
+                                                                            auto.get("took")) if auto.get("picked_ms") else ""))
+    parts.append("receivers %s, all surfaces %s against EEVEE-64" % (verdict(rmse(auto, "receivers"), rmse(ee, "receivers")),
+                                                                     verdict(rmse(auto, "all"), rmse(ee, "all"))))
+    parts.append("estimate %s beside measured %.4f (all surfaces)" % (fmt(auto.get("estimate")), rmse(auto, "all")))
+    cyc = ["Cycles-%s %s / %s" % (k.split("-")[1], fmt(rmse(by[k], "receivers")), fmt(rmse(by[k], "all")))
+           for k in ("cycles-16", "cycles-64") if k in by]
+    if cyc:
+        parts.append("receivers / all: " + ", ".join(["EEVEE-64 %s / %s" % (fmt(rmse(ee, "receivers")), fmt(rmse(ee, "all")))]
+                                                     + cyc))
+    if gl:
         best = min(gl, key=lambda r: r["err"]["rmse"])
-        reach = next((r for r in cyc if r["err"]["rmse"] <= best["err"]["rmse"]), None)
-        if reach:
-            parts.append("Cycles needs **%s spp** (%.0f ms) to reach our best (%s, RMSE %.4f, %.0f ms)"
-                         % (reach["key"].split("-")[1], reach["ms"], best["key"], best["err"]["rmse"], best["ms"]))
-        else:
-            top = cyc[-1]
-            parts.append("Cycles does not reach our best (%s, RMSE %.4f) within %s spp (RMSE %.4f, %.0f ms)"
-                         % (best["key"], best["err"]["rmse"], top["key"].split("-")[1], top["err"]["rmse"], top["ms"]))
-    return "- **%s** (%s triangles): %s" % (scene["name"], scene["triangles"], "; ".join(parts) or "no data")
+        ratio = rmse(auto, "all") / best["err"]["rmse"] if best["err"]["rmse"] > 0 else float("inf")
+        parts.append("best of our methods at their defaults %s %.4f: auto %.2f× it%s" % (best["key"], best["err"]["rmse"], ratio,
+                                                               "" if ratio <= 1.25 else " (**above the 1.25× target**)"))
+    return "- **%s** (%s, %s triangles): %s" % (scene["name"], scene.get("size"), scene["triangles"], "; ".join(parts))
+
+
+def headline_exact(scene):
+    """Issue 18: the adaptive reference and auto with refine=on against Cycles-64, same run."""
+    by = {r["key"]: r for r in scene["rows"]}
+    c64 = by.get("cycles-64")
+    parts = []
+    for key, label in (("reference-adaptive", "adaptive reference"), ("auto-refine", "auto refine=on")):
+        r = by.get(key)
+        if not r or not r["err"] or not r["ms"]:
+            continue
+        traced = r.get("traced") or {}
+        share = ("%.0f %% of mask pixels traced, " % (100 * traced["traced_share"]) if "traced_share" in traced else "")
+        rays = "%.0f rays per mask pixel" % traced["rays_per_mask_pixel"] if "rays_per_mask_pixel" in traced else ""
+        vs = ""
+        if c64 and c64["err"]:
+            vs = "; Cycles-64 %.4f in %.0f ms: %s its error in %.2f× its time" % (
+                c64["err"]["rmse"], c64["ms"], "at or below" if r["err"]["rmse"] <= c64["err"]["rmse"] else "**above**",
+                r["ms"] / c64["ms"])
+        parts.append("%s %.4f (receivers %s) in %.0f ms (%s%s)%s" % (label, r["err"]["rmse"], fmt(rmse(r, "receivers")),
+                                                                   r["ms"], share, rays, vs))
+    return "- **%s**: %s" % (scene["name"], "; ".join(parts)) if parts else None
+
+
+def summary(scenes):
+    """How many scenes meet issue 17's targets for auto, said plainly."""
+    n = len(scenes)
+    counts = {"receivers": 0, "all": 0, "best": 0, "time": 0}
+    missed = {"receivers": [], "all": [], "best": [], "time": []}
+    for sc in scenes:
+        by = {r["key"]: r for r in sc["rows"]}
+        auto, ee = by.get("auto"), by.get("eevee-64")
+        gl = [r for r in sc["rows"] if r["kind"] == "ours" and r["err"] and "-" not in r["key"]]
+        checks = {
+            "receivers": rmse(auto, "receivers") is not None and rmse(ee, "receivers") is not None
+            and rmse(auto, "receivers") <= rmse(ee, "receivers"),
+            "all": rmse(auto, "all") is not None and rmse(ee, "all") is not None and rmse(auto, "all") <= rmse(ee, "all"),
+            "best": bool(gl) and rmse(auto, "all") is not None
+            and rmse(auto, "all") <= 1.25 * min(r["err"]["rmse"] for r in gl),
+            "time": bool(auto and auto.get("picked_ms")) and auto["ms"] <= 2.0 * auto["picked_ms"],
+        }
+        for k, ok in checks.items():
+            counts[k] += ok
+            if not ok:
+                missed[k].append(sc["name"])
+    text = {"receivers": "at or below EEVEE-64 on receivers", "all": "at or below EEVEE-64 on all surfaces",
+            "best": "within 1.25× of our best method at its defaults (all surfaces)", "time": "in at most twice the time of the method it took"}
+    return ["- `auto` is %s on **%d of %d** scenes%s." % (text[k], counts[k], n,
+                                                         "; not on " + ", ".join(missed[k]) if missed[k] else "")
+            for k in ("receivers", "all", "best", "time")]
 
 
 # ---------------------------------------------------------------- foundation.md
@@ -265,9 +338,9 @@ def open_casters(scene_json):
 def reading_notes(work, scenes):
     """What a reader must know to compare the rows fairly."""
     md = ["## Reading the tables", "",
-          "- `sweep` shades the receiver plane only (its mask is the plane: here the ground); its errors are "
-          "over those pixels, the other methods' over every surface the light reaches, occluders included, "
-          "where self-shadowing near terminators costs them.",
+          "- `sweep` shades the receiver plane only (its mask is the plane: here the ground) and leaves every "
+          "other surface at V = 1: the casters' own shadows, and where a receiver is not one plane (`stepped`, "
+          "`curved_receiver`) the rest of it. Both columns count those pixels, as `auto`'s estimate does.",
           "- `penumbra_map` draws the whole penumbra outside the hard shadow (its umbra is the hard shadow, "
           "too big by construction); by default it shades it with the share of the light disk seen past the "
           "edge, and `penumbra_map-paper` with the paper's 3I² − 2I³, which is too dark: its RMSE is above "
@@ -313,18 +386,42 @@ def main():
     md.append("Machine: %s. **All figures below come from one run of `make bench`** (bench/run.sh)%s." %
               (machine(), " in BENCH_QUICK mode (a tiny subset)" if quick == "1" else ""))
     md.append("")
-    md.append("## Headlines (per scene)")
+    md.append("## Headline: `auto` (what users get) against EEVEE-64, per scene")
+    md.append("")
+    md.append("Issue 17's targets, RMSE against the truth on the receivers and over all surfaces:")
+    md.append("")
+    md += summary(scenes)
     md.append("")
     md += [headline(s) for s in scenes]
+    exact = [h for h in (headline_exact(s) for s in scenes) if h]
+    if exact:
+        md += ["", "## Exact penumbrae (issue 18): adaptive reference and refine against Cycles-64, per scene", ""]
+        md += exact
     md += ["", "## How it was measured", "",
            "- Scenes built by `bench/scenes.py` in Blender 3.4 (nothing downloaded), exported with the add-on's "
-           "exporter; every renderer sees the same scene, camera and resolution: **%sx%s**." % (width, height),
+           "exporter; every renderer sees the same scene, camera and resolution: **%sx%s** (the triangle-count "
+           "series `scaled_*` at %s, its job being time against triangles). `concave` and `scaled_*` are Blender's "
+           "own Suzanne (`primitive_monkey_add`, open: its eyes are separate shells), subdivided; `stepped` is a "
+           "four-step receiver. One light per scene. The full run renders concave, foliage, curved_receiver and "
+           "stepped (bench/scenes.py FULL_SCENES, to fit in about 20 minutes on 2 cores); the others with "
+           "BENCH_SCENES." % (width, height, "256x192" if quick != "1" else "the same size"),
            "- Truth: `reference` (Embree) at **%s light samples per pixel**. Errors: `softshadow compare --json` "
-           "over the pixels both masks keep: RMSE, 99th-percentile absolute error, umbra IoU (V<0.05), lit IoU (V>0.95)."
+           "over every pixel the light reaches (`--mask <light>_reference_mask`, the truth's mask) whatever the "
+           "method's own mask, since a composite multiplies by V everywhere (V = 1 outside a method's mask): RMSE, 99th-percentile absolute error, umbra IoU (V<0.05), lit IoU (V>0.95)."
            % truth,
-           "- EEVEE (soft shadows, 16/64 samples) and Cycles (CPU, 1-256 spp, no denoising, no adaptive sampling, "
+           "- **Receivers**: the pixels whose centre sees a receiver object (the ground, the curved receiver, the "
+           "steps: `RECEIVERS` in bench/scenes.py), taken from Cycles' object-index pass at one sample with a "
+           "0.01 px filter, and which the light reaches (the truth's mask). run.sh adds that mask to a copy of the "
+           "truth as the pass `receivers` and compares with `softshadow compare --mask receivers`. \"All surfaces\" "
+           "adds the casters themselves, where self-shadowing near terminators costs every method.",
+           "- `auto`: `softshadow render -m auto` (a fresh process: GL start, the sparse check and the candidates "
+           "it renders), and the method it took alone through the same command, for the time ratio. Its estimate is "
+           "the CLI's `est.rmse`, over all surfaces.",
+           "- EEVEE (soft shadows, 64 samples, 2048 shadow cube, no pixel filter; at 512² on llvmpipe it takes about "
+           "1.4 s per sample, so EEVEE-16 is left out) and Cycles (CPU, 16/64 spp, no denoising, no adaptive sampling, "
            "direct light only, 0.01 px filter): V = Diffuse Direct with shadows / Diffuse Direct with the light's "
-           "shadows off (same samples and seed), mask where the unshadowed pass > 0. Time = the shadowed render "
+           "shadows off (Cycles: same samples and seed; EEVEE: one sample, its unshadowed area light being analytic), "
+           "mask where the unshadowed pass > 0. Time = the shadowed render "
            "inside Blender (`bpy.ops.render.render`, Blender start-up and scene build excluded); the unshadowed "
            "render is not counted.",
            "- Ours (GL methods): per-frame time of a cold frame (meshes uploaded, camera pass and shadow map drawn, "
@@ -335,15 +432,17 @@ def main():
     md += ["## Tables", ""]
     for s in scenes:
         md += ["### %s (%s triangles)" % (s["name"], s["triangles"]), "",
-               "| method / setting | ms per frame | RMSE | p99 | umbra IoU | lit IoU | stages (ms): upload / camera / "
-               "shadow map / prepare / render |", "|---|---|---|---|---|---|---|"]
+               "| method / setting | ms per frame | RMSE receivers | RMSE all | p99 | umbra IoU | lit IoU | "
+               "stages (ms): upload / camera / shadow map / prepare / render |", "|---|---|---|---|---|---|---|---|"]
         for r in s["rows"]:
             e = r["err"] or {}
             st = r["stages"]
             stages = " / ".join("%.1f" % (st.get(k) or 0.0) for k, _ in STAGES[:5]) if st else ""
-            md.append("| %s | %s | %s | %s | %s | %s | %s |" % (
-                r["key"], fmt(r["ms"], "%.1f"), fmt(e.get("rmse")), fmt(e.get("p99")), fmt(e.get("umbra_iou"), "%.3f"),
-                fmt(e.get("lit_iou"), "%.3f"), stages))
+            if r.get("took"):
+                stages = "took %s, estimate %s" % (r["took"], fmt(r.get("estimate")))
+            md.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                r["key"], fmt(r["ms"], "%.1f"), fmt(rmse(r, "receivers")), fmt(e.get("rmse")), fmt(e.get("p99")),
+                fmt(e.get("umbra_iou"), "%.3f"), fmt(e.get("lit_iou"), "%.3f"), stages))
         md.append("")
 
     # Plots: error vs time per scene, time vs triangles, time vs resolution.
@@ -385,13 +484,14 @@ def main():
     md += ["Per-stage native timings at 512² and 1024²: [foundation.md](foundation.md)."]
     with open(os.path.join(out, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")
-    summary = {"scenes": [{"name": s["name"], "triangles": s["triangles"],
-                           "rows": [{k: r.get(k) for k in ("key", "kind", "ms", "err", "stages", "took", "estimate")}
+    results = {"scenes": [{"name": s["name"], "triangles": s["triangles"], "size": s.get("size"),
+                           "rows": [{k: r.get(k) for k in ("key", "kind", "ms", "err", "err_recv", "stages", "took",
+                                                           "estimate", "picked_ms", "traced")}
                                     for r in s["rows"]]}
                           for s in scenes]}
     with open(os.path.join(out, "results.json"), "w") as f:
-        json.dump(summary, f, indent=1)
-    print("\n".join(md[:6 + len(scenes)]))
+        json.dump(results, f, indent=1)
+    print("\n".join(md[:md.index("## How it was measured")]))
 
 
 main()

@@ -56,15 +56,12 @@ def build_native_scene(exported):
 
 class LiveScene:
     """One native scene kept alive across renders and fed only what changed, so that the
-    library's caches (per mesh: GPU buffers; per light: shadow maps) survive from call to call.
+    library's caches (per mesh shape: GPU buffers; per light: shadow maps) survive from call to
+    call. Meshes are sent in object space with their matrix, so a move sends 16 floats and the
+    library draws the mesh it has with the new matrix; a scene built afresh from the same export
+    renders the same numbers. A failed edit drops the scene: the next sync rebuilds it."""
 
-    with_transforms: meshes are sent in object space with their matrix, so a move sends 16 floats
-    (the preview); otherwise in world space as build_native_scene sends them (render_passes, whose
-    numbers must equal a freshly built scene's). A failed edit drops the scene: the next sync
-    rebuilds it."""
-
-    def __init__(self, with_transforms=False):
-        self.with_transforms = with_transforms
+    def __init__(self):
         self.lock = threading.Lock()
         self.scene = None
         self.meshes = []      # mesh dicts as sent, in native index order
@@ -80,17 +77,13 @@ class LiveScene:
     def light_indices(self):
         return {light["name"]: i for i, light in enumerate(self.lights)}
 
-    def _coordinates(self, mesh):
-        return mesh["local"] if self.with_transforms else mesh["vertices"]
-
     def _add_mesh(self, mesh):
-        index = self.scene.add_mesh(mesh["name"], self._coordinates(mesh), mesh["triangles"], mesh["flags"])
-        if self.with_transforms:
-            try:
-                self.scene.set_mesh_transform(index, mesh["matrix"])
-            except native.SoftShadowError:
-                self.scene.remove_mesh(index)  # keeps the native indices equal to self.meshes'
-                raise
+        index = self.scene.add_mesh(mesh["name"], mesh["local"], mesh["triangles"], mesh["flags"])
+        try:
+            self.scene.set_mesh_transform(index, mesh["matrix"])
+        except native.SoftShadowError:
+            self.scene.remove_mesh(index)  # keeps the native indices equal to self.meshes'
+            raise
         self.meshes.append(mesh)
 
     def _add_light(self, light):
@@ -120,10 +113,10 @@ class LiveScene:
     def _replace_mesh(self, index, mesh):
         old = self.meshes[index]
         same_geometry = (old["flags"] == mesh["flags"] and np.array_equal(old["triangles"], mesh["triangles"])
-                         and np.array_equal(self._coordinates(old), self._coordinates(mesh)))
+                         and np.array_equal(old["local"], mesh["local"]))
         if not same_geometry:
-            self.scene.update_mesh(index, self._coordinates(mesh), mesh["triangles"], mesh["flags"])
-        if self.with_transforms and not np.array_equal(old["matrix"], mesh["matrix"]):
+            self.scene.update_mesh(index, mesh["local"], mesh["triangles"], mesh["flags"])
+        if not np.array_equal(old["matrix"], mesh["matrix"]):
             self.scene.set_mesh_transform(index, mesh["matrix"])
         self.meshes[index] = mesh
 

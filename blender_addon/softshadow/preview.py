@@ -32,7 +32,7 @@ class _State:
         self.request = None         # (generation, key, camera)
         self.done = {}              # key -> (generation, rgba float32 (h, w, 4))
         self.edits = []             # exports not yet applied to `live`, oldest first (under lock)
-        self.live = passes.LiveScene(with_transforms=True)  # the worker's scene
+        self.live = passes.LiveScene()  # the worker's scene
         self.full = True            # the next edit is a full export (object set changed, start)
         self.changed = set()        # objects an update touched since the last export
         self.geometry = set()       # of those, the ones whose mesh data changed

@@ -170,7 +170,8 @@ int runRender(const std::vector<std::string>& argv) {
             for (int32_t i = 0; i < ss_result_layer_count(raw); ++i) {
                 const char* name;
                 check(ss_result_layer(raw, i, &name, nullptr, &width, &height));
-                std::string pass = passName(ss_result_light(raw), ss_result_method(raw), name);
+                // Named by the method asked for, as the EXR names it (`auto` stays `auto`).
+                std::string pass = passName(ss_result_light(raw), method.c_str(), name);
                 row.passes += (row.passes.empty() ? "" : " ") + pass;
                 ++passCount;
             }

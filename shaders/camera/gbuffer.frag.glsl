@@ -1,6 +1,8 @@
 // What the camera pass writes per pixel: world position + view depth, facing normal + receive
 // flag, mesh and triangle ids (the layout is documented at ss::CameraPass).
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "common/mesh_placement.glsl"
+
 in vec3 vWorld;
 
 layout(std430, binding = 0) readonly buffer FaceNormals { vec4 faceNormal[]; };
@@ -18,7 +20,7 @@ layout(location = 2) out vec4 oIds;
 
 void main() {
     // The face normal from the mesh (exact), not from derivatives (noisy at grazing angles).
-    vec3 n = faceNormal[gl_PrimitiveID].xyz;
+    vec3 n = meshNormalToWorld(faceNormal[gl_PrimitiveID].xyz);
     vec3 toEye = uOrthographic != 0 ? -uCameraForward : uCameraPosition - vWorld;
     if (dot(n, toEye) < 0.0) n = -n;
     float viewDepth = -(uWorldToView * vec4(vWorld, 1.0)).z;

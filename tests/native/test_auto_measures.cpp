@@ -14,18 +14,18 @@
 #include "io/scene_file.h"
 #include "methods/method.h"
 #include "methods/sparse_check.h"
+#include "reference/render_reference.h"
+#include "reference/trace_pixels.h"
 #include "renderer/renderer.h"
 #include "test_scenes.h"
 
 namespace ss {
 namespace {
 
-// RMSE of V over the pixels both masks hold: what `compare` measures and what auto estimates.
+// RMSE of V over every pixel the light reaches (the reference's mask), whatever the method's
+// mask: what a composite multiplies by V, and what auto estimates.
 double fullRmse(const Layers& method, const Layers& reference) {
-    Image both = *reference.find("mask");
-    const Image& mine = *method.find("mask");
-    for (size_t i = 0; i < both.pixels.size(); ++i) both.pixels[i] = both.pixels[i] > 0.5f && mine.pixels[i] > 0.5f;
-    return compareVisibility(*method.find("V"), *reference.find("V"), &both).rmse;
+    return compareVisibility(*method.find("V"), *reference.find("V"), reference.find("mask")).rmse;
 }
 
 struct Case {
@@ -215,11 +215,60 @@ TEST(SparseCheck, EqualsTheReferenceImageAtItsPixels) {
     settings.seed = 5;
     const Layers reference = renderer.render(scene, 0, "reference", settings, nullptr);
     TraceScene trace(scene);
-    SparseCheck check = runSparseCheck(trace, scene, 0, 500, 0, 5);
-    ASSERT_GT(check.maskedPixels(), 300u);
-    for (const PixelVisibility& px : check.truth) {
+    const auto pixels = sparseCheckPixels(96, 72, 500, 5);
+    // At the reference's fixed sample count: the reference image itself at those pixels.
+    const auto exact = tracePixels(trace, scene, 0, pixels, kReferenceDefaultSamples, 5);
+    for (const PixelVisibility& px : exact) {
         ASSERT_EQ(px.inMask, reference.find("mask")->at(px.x, px.y) > 0.5f) << px.x << "," << px.y;
         if (px.inMask) ASSERT_EQ(px.visibility, reference.find("V")->at(px.x, px.y)) << px.x << "," << px.y;
+    }
+    // The check traces adaptively: the same mask, the reference's V within its noise, and the
+    // same V exactly wherever the first 16 rays did not agree and the pixel took every sample.
+    SparseCheck check = runSparseCheck(trace, scene, 0, 500, 0, 5);
+    ASSERT_GT(check.maskedPixels(), 300u);
+    double sum = 0.0;
+    int n = 0, umbraOrLit = 0;
+    for (const PixelVisibility& px : check.truth) {
+        ASSERT_EQ(px.inMask, reference.find("mask")->at(px.x, px.y) > 0.5f) << px.x << "," << px.y;
+        if (!px.inMask) continue;
+        const double d = px.visibility - reference.find("V")->at(px.x, px.y);
+        EXPECT_LE(std::abs(d), 0.1) << px.x << "," << px.y;
+        sum += d * d, ++n;
+        umbraOrLit += px.visibility == 0.0f || px.visibility == 1.0f;
+    }
+    EXPECT_LE(std::sqrt(sum / n), 0.01);
+    EXPECT_GT(umbraOrLit, n / 2);  // most checked pixels are decided by the first round
+}
+
+// The check's lower bounds hold for the two methods they describe, and auto renders at most
+// three candidates at full size on the test scenes (its prior and the bounds leave out the rest).
+TEST(AutoMeasures, RendersAtMostThreeCandidatesAndTheBoundsHold) {
+    for (Case& c : cases()) {
+        Renderer renderer(SS_BACKEND_AUTO);
+        const Camera& cam = c.scene.camera();
+        TraceScene trace(c.scene);
+        const SparseCheck check =
+            runSparseCheck(trace, c.scene, 0, sparseCheckDefaultPixels(cam.width, cam.height), 0, RenderSettings{}.seed);
+        for (const char* bounded : {"shadow_map", "penumbra_map"}) {
+            RenderSettings withEstimate;
+            withEstimate.options["estimate_rmse"] = "1";
+            double estimate = 0.0;
+            renderer.render(c.scene, 0, bounded, withEstimate, nullptr, &estimate);
+            const double bound = errorLowerBound(check, bounded);
+            EXPECT_GT(bound, 0.0) << c.name << " " << bounded;
+            EXPECT_LE(bound, estimate * 1.02 + 0.001) << c.name << " " << bounded;
+        }
+        EXPECT_EQ(errorLowerBound(check, "pcss"), 0.0);
+        Renderer fresh(SS_BACKEND_AUTO);
+        std::string used;
+        Renderer::AutoTrials trials;
+        fresh.render(c.scene, 0, "auto", RenderSettings{}, &used, nullptr, &trials);
+        EXPECT_LE(trials.rendered.size(), 3u) << c.name;
+        EXPECT_NE(std::find(trials.rendered.begin(), trials.rendered.end(), used), trials.rendered.end());
+        const size_t considered =
+            trials.rendered.size() + trials.skippedByPrior.size() + trials.skippedByBound.size();
+        EXPECT_LE(considered, autoCandidates(c.scene, 0).size()) << c.name;
+        EXPECT_GE(considered + 1, autoCandidates(c.scene, 0).size()) << c.name;  // sweep may refuse a scene
     }
 }
 

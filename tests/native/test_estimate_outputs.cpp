@@ -1,10 +1,13 @@
 // Checks that a result's error estimate reaches the user: the C API, the CLI's render report and
 // the EXR header.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -47,6 +50,21 @@ TEST(ErrorEstimate, CApiGivesItForAutoAndOnRequestForAMethod) {
     const double pcss = estimate("pcss", "estimate_rmse=1");
     EXPECT_TRUE(std::isfinite(pcss) && pcss >= autoEstimate) << pcss << " vs auto " << autoEstimate;
     EXPECT_TRUE(std::isnan(ss_result_estimated_rmse(nullptr)));
+    // auto renders at most three candidates at full size here (pcss, dbuffer, sweep under the
+    // demo's disk light; shadow_map, penumbra_map and occlusion_textures are left out).
+    auto rendered = [&](const char* method) {
+        options.settings = nullptr;
+        ss_result* result = nullptr;
+        EXPECT_EQ(ss_render(context, scene, 0, method, &options, &result), SS_OK) << ss_last_error();
+        const int32_t n = ss_result_methods_rendered(result);
+        ss_result_destroy(result);
+        return n;
+    };
+    const int32_t autoRendered = rendered("auto");
+    EXPECT_GE(autoRendered, 1);
+    EXPECT_LE(autoRendered, 3);
+    EXPECT_EQ(rendered("pcss"), 1);
+    EXPECT_EQ(ss_result_methods_rendered(nullptr), 0);
     ss_context_destroy(context);
     ss_scene_destroy(scene);
 }
@@ -61,7 +79,32 @@ TEST(ErrorEstimate, CliPrintsItAndTheExrHeaderKeepsIt) {
     auto in = OIIO::ImageInput::open(out);
     ASSERT_TRUE(in);
     const std::string estimates = in->spec().get_string_attribute(ss::kExrEstimatesAttribute);
+    const std::vector<std::string> channels = in->spec().channelnames;
     in->close();
+    // The report's passes are the EXR's own: auto's row names `Area_auto...`, beside the method
+    // that ran; every pass it lists is a channel of the file.
+    std::istringstream report(r.out);
+    std::string line;
+    bool sawAutoRow = false;
+    while (std::getline(report, line)) {
+        std::istringstream row(line);
+        std::string light, asked, used, seconds, estimate, pass;
+        if (!(row >> light >> asked >> used >> seconds >> estimate) || light != "Area") continue;
+        std::vector<std::string> passes;
+        while (row >> pass) passes.push_back(pass);
+        if (asked == "auto") {
+            sawAutoRow = true;
+            EXPECT_NE(used, "auto") << line;
+            ASSERT_GE(passes.size(), 2u) << line;
+            EXPECT_EQ(passes[0], "Area_auto") << line;
+            EXPECT_EQ(passes[1], "Area_auto_mask") << line;
+            for (const std::string& p : passes) EXPECT_EQ(p.rfind("Area_auto", 0), 0u) << line;
+        }
+        for (const std::string& p : passes)
+            EXPECT_NE(std::find(channels.begin(), channels.end(), "ViewLayer." + p + ".V"), channels.end())
+                << p << " is printed but not in the EXR";
+    }
+    EXPECT_TRUE(sawAutoRow) << r.out;
     const double autoEstimate = estimateOf(estimates, "Area_auto");
     ASSERT_TRUE(std::isfinite(autoEstimate)) << estimates;
     EXPECT_TRUE(std::isnan(estimateOf(estimates, "Area_shadow_map"))) << estimates;  // none was asked for

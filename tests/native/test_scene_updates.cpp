@@ -114,11 +114,16 @@ TEST(SceneUpdates, AMovedMeshCostsAMatrixAndRendersAsTheMovedGeometry) {
     Layers before = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
     const size_t edgesBefore = scene.meshes()[1].adjacency.edges.size();
 
-    glm::mat4 move = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.4f, 0.6f, 0.1f)), 0.3f,
+    glm::mat4 move = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.4f, 0.6f, 0.0f)), 0.3f,
                                  glm::vec3(0, 0, 1));
     scene.setMeshTransform(1, move);
     Layers moved = renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
-    EXPECT_EQ(renderer.cacheStats().meshUploads, 4);
+    EXPECT_EQ(renderer.cacheStats().meshUploads, 3);  // the moved mesh is drawn with its matrix
+    EXPECT_EQ(renderer.cacheStats().cameraPasses, 2);
+    EXPECT_EQ(renderer.cacheStats().shadowMaps, 2);
+    // Redrawn only where the box was and is (the scene bounds, so the map's fit, are the ground's).
+    EXPECT_EQ(renderer.cacheStats().cameraPassesPatched, 1);
+    EXPECT_EQ(renderer.cacheStats().shadowMapsPatched, 1);
     EXPECT_EQ(scene.meshes()[1].adjacency.edges.size(), edgesBefore);
     EXPECT_NE(before.find("V")->pixels, moved.find("V")->pixels);  // the shadow moved
 
@@ -136,6 +141,63 @@ TEST(SceneUpdates, AMovedMeshCostsAMatrixAndRendersAsTheMovedGeometry) {
     // A second move starts from the coordinates as given, not from the last placement.
     scene.setMeshTransform(1, glm::mat4(1.0f));
     EXPECT_EQ(scene.meshes()[1].positions, boxA().positions);
+
+    // A move that raises the scene's top changes every map's fit: the maps are redrawn whole,
+    // the camera pass is still patched, and the result is still a fresh scene's.
+    const Renderer::CacheStats settled = renderer.cacheStats();
+    const glm::mat4 raise = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 0.5f));
+    scene.setMeshTransform(1, raise);
+    renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
+    EXPECT_EQ(renderer.cacheStats().shadowMapsPatched, settled.shadowMapsPatched);
+    EXPECT_EQ(renderer.cacheStats().shadowMaps, settled.shadowMaps + 1);
+    EXPECT_EQ(renderer.cacheStats().cameraPassesPatched, settled.cameraPassesPatched + 1);
+    Mesh raised = boxA();
+    for (glm::vec3& p : raised.positions) p = glm::vec3(raise * glm::vec4(p, 1.0f));
+    Scene fresh2;
+    fresh2.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+    fresh2.addMesh(raised);
+    fresh2.addMesh(boxB());
+    fresh2.addLight(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f, "A"));
+    fresh2.addLight(test::makeDiskLight({-1.0f, 0.5f, 3.0f}, 0.5f, "B"));
+    fresh2.setCamera(test::makeTopCamera(64, 48));
+    expectSameAsFresh(renderer, scene, fresh2);
+}
+
+// Where the shadow of a point on the ground plane z = 0 falls in the image: V at that pixel.
+float vAtShadowOf(const Layers& layers, const Scene& scene, const glm::vec3& light, const glm::vec3& point) {
+    glm::vec3 onGround = light + (point - light) * (light.z / (light.z - point.z));
+    glm::vec4 clip = scene.camera().worldToClip() * glm::vec4(onGround, 1.0f);
+    const Image& v = *layers.find("V");
+    int x = int((clip.x / clip.w * 0.5f + 0.5f) * float(v.width));
+    int y = int((0.5f - clip.y / clip.w * 0.5f) * float(v.height));
+    return v.pixels[size_t(y) * size_t(v.width) + size_t(x)];
+}
+
+// Every GL method on the second frame of an animation: the moved box is not uploaded again (nor
+// is anything else), and its shadow leaves the old place for the new one.
+TEST(SceneUpdates, EveryGlMethodDrawsAMovedMeshWithItsMatrixAndTheShadowFollows) {
+    const glm::vec3 light(2.5f, 0.0f, 4.0f), centre(-0.6f, 0.0f, 0.8f), shift(1.2f, 0.0f, 0.0f);
+    for (const std::string& method : glMethods()) {
+        Scene scene;
+        scene.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+        scene.addMesh(test::makeBox(centre - glm::vec3(0.3f, 0.3f, 0.2f), centre + glm::vec3(0.3f, 0.3f, 0.2f), kBoth));
+        scene.addLight(test::makeDiskLight(light, 0.2f, "Key"));
+        scene.setCamera(test::makeTopCamera(96, 72));
+        Renderer renderer(SS_BACKEND_AUTO);
+        Layers before = renderer.render(scene, 0, method, RenderSettings{}, nullptr);
+        ASSERT_EQ(renderer.cacheStats().meshUploads, 2) << method;
+
+        scene.setMeshTransform(1, glm::translate(glm::mat4(1.0f), shift));
+        Layers after = renderer.render(scene, 0, method, RenderSettings{}, nullptr);
+        Renderer::CacheStats s = renderer.cacheStats();
+        EXPECT_EQ(s.meshUploads, 2) << method << ": a move uploads nothing";
+        EXPECT_EQ(s.cameraPasses, 2) << method;
+        EXPECT_EQ(s.cameraPassesPatched, 1) << method << ": redrawn only where the box was and is";
+        EXPECT_LT(vAtShadowOf(before, scene, light, centre), 0.1f) << method;
+        EXPECT_GT(vAtShadowOf(before, scene, light, centre + shift), 0.9f) << method;
+        EXPECT_GT(vAtShadowOf(after, scene, light, centre), 0.9f) << method << ": the old shadow is gone";
+        EXPECT_LT(vAtShadowOf(after, scene, light, centre + shift), 0.1f) << method << ": the shadow moved";
+    }
 }
 
 TEST(SceneUpdates, ACameraChangeKeepsTheShadowMapsAndTheMeshes) {
@@ -305,8 +367,22 @@ TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
     ss_cache_stats stats{};
     ASSERT_EQ(ss_context_cache_stats(context, &stats), SS_OK);
     EXPECT_EQ(stats.frames, 1);
-    EXPECT_EQ(stats.mesh_uploads, 4);
+    EXPECT_EQ(stats.mesh_uploads, 3);  // a move sends a matrix, no vertex
     EXPECT_EQ(stats.shadow_maps, 2);
+    std::vector<float> xyz;
+    for (const glm::vec3& p : boxBEdited().positions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    ASSERT_EQ(ss_scene_update_mesh(scene, 2, xyz.data(), uint32_t(xyz.size() / 3), &boxBEdited().triangles[0][0],
+                                   uint32_t(boxBEdited().triangles.size()), kBoth),
+              SS_OK);
+    ASSERT_EQ(ss_render(context, scene, 0, "shadow_map", nullptr, &result), SS_OK);
+    ss_result_destroy(result);
+    ASSERT_EQ(ss_context_cache_stats(context, &stats), SS_OK);
+    EXPECT_EQ(stats.mesh_uploads, 4);  // new geometry is uploaded, the other meshes are not
+    // The stage times: each shared pass drawn took time, and the method runs contain them.
+    EXPECT_GT(stats.camera_pass_ms, 0.0);
+    EXPECT_GT(stats.shadow_map_ms, 0.0);
+    EXPECT_GT(stats.upload_ms, 0.0);
+    EXPECT_GE(stats.method_ms, stats.camera_pass_ms + stats.shadow_map_ms + stats.upload_ms);
     EXPECT_EQ(stats.trace_scene_builds, 0);  // GL methods alone trace nothing
     ss_render_options options;
     ss_render_options_default(&options);

@@ -124,10 +124,14 @@ SS_API ss_status ss_context_create(ss_backend backend, ss_context** out);
 SS_API void ss_context_destroy(ss_context* context);
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size);
 /* What the context's caches did over its life: frames made (one per scene), meshes uploaded to
-   the GPU, camera passes and light shadow maps drawn, and Embree BVHs built (one per scene and
+   the GPU, camera passes and light shadow maps drawn; the milliseconds spent uploading
+   meshes, drawing camera passes and shadow maps (each until the GL finished it), and running GL
+   methods (the shared passes they drew included); and Embree BVHs built (one per scene and
    geometry edit, shared by reference, refine=on and auto's check). For tests and the benchmark. */
 typedef struct ss_cache_stats {
-    int32_t frames, mesh_uploads, camera_passes, shadow_maps, trace_scene_builds;
+    int32_t frames, mesh_uploads, camera_passes, shadow_maps;
+    double upload_ms, camera_pass_ms, shadow_map_ms, method_ms;
+    int32_t trace_scene_builds;
 } ss_cache_stats;
 SS_API ss_status ss_context_cache_stats(const ss_context* context, ss_cache_stats* out);
 /* Joins every render thread the library started. Call from the host before it exits. */
@@ -186,11 +190,16 @@ SS_API const char* ss_result_method(const ss_result* result);
 SS_API const char* ss_result_light(const ss_result* result);
 /* The result's expected RMSE of V against the reference (the `reference` method at its default
  * samples and the same seed), from a sparse exact check: the reference's ray tracer on one
- * pixel in 16 (4096 to 65536) spread over the image, over the pixels both masks hold. Made for every "auto"
+ * pixel in 16 (4096 to 65536) spread over the image, over every checked pixel the light reaches
+ * (V = 1 outside the method's own mask, as a composite uses it). Made for every "auto"
  * render (it is how auto chooses) and for a GL method whose settings hold "estimate_rmse=1";
  * NaN when none was made. Written to the EXR header attribute "softshadow/estimated_rmse"
  * ("<pass>=<rmse>;..."). */
 SS_API double ss_result_estimated_rmse(const ss_result* result);
+/* How many methods the render ran at full size: 1 for a named method; for "auto" the candidates
+ * it rendered and scored (its prior and the sparse check's lower bounds leave the others out;
+ * 1 where the check could not be made). 0 for a null result. */
+SS_API int32_t ss_result_methods_rendered(const ss_result* result);
 SS_API int32_t ss_result_layer_count(const ss_result* result);
 /* Layer names: "V" (visibility), "mask", "umbra", "penumbra", and method debug layers. */
 SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const char** name,

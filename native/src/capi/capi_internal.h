@@ -37,6 +37,7 @@ struct ss_result {
     std::string requested;  // the method asked for: it names the EXR pass, so `auto` stays stable
     std::string light;   // the light's real name
     double estimatedRmse = std::numeric_limits<double>::quiet_NaN();  // from the sparse exact check; NaN where none was made
+    int32_t methodsRendered = 1;  // auto: the candidates it rendered at full size
 };
 
 namespace ss::capi {

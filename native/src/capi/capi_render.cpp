@@ -51,8 +51,10 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         auto result = std::make_unique<ss_result>();
         result->light = light.name;
         result->requested = method;
+        ss::Renderer::AutoTrials trials;
         result->layers = context->renderer.render(scene->scene, light_index, method, settings, &result->method,
-                                                      &result->estimatedRmse);
+                                                      &result->estimatedRmse, &trials);
+        if (!trials.rendered.empty()) result->methodsRendered = int32_t(trials.rendered.size());
         if (result->method.empty()) result->method = method;
         *out = result.release();
     });
@@ -68,6 +70,10 @@ SS_API const char* ss_result_method(const ss_result* result) {
 
 SS_API double ss_result_estimated_rmse(const ss_result* result) {
     return result ? result->estimatedRmse : std::numeric_limits<double>::quiet_NaN();
+}
+
+SS_API int32_t ss_result_methods_rendered(const ss_result* result) {
+    return result ? result->methodsRendered : 0;
 }
 
 SS_API const char* ss_result_light(const ss_result* result) {

@@ -53,6 +53,9 @@ struct Mesh {
     // Unique over the process for each content the mesh has had (set by the Scene): GPU
     // buffers are cached by it, so an unchanged mesh is never uploaded again.
     uint64_t version = 0;
+    // Unique for each shape the mesh has had (coordinates as given, triangles, flags; set by the
+    // Scene): a move keeps it, so GPU buffers keyed by it are kept and drawn with the new matrix.
+    uint64_t shapeVersion = 0;
 
     EdgeAdjacency adjacency;  // filled by finalize()
     MeshReport report;        // filled by finalize()

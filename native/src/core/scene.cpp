@@ -23,6 +23,7 @@ int Scene::addMesh(Mesh mesh) {
     checkName("mesh", mesh.name);
     mesh.finalize();
     mesh.version = nextVersion();
+    mesh.shapeVersion = mesh.version;
     meshes_.push_back(std::move(mesh));
     geometryVersion_ = nextVersion();
     ++revision_;
@@ -42,6 +43,7 @@ void Scene::updateMesh(int index, Mesh mesh) {
     mesh.finalize();  // validates the coordinates as given and builds the adjacency
     if (transform != glm::mat4(1.0f)) mesh.setTransform(transform);
     mesh.version = nextVersion();
+    mesh.shapeVersion = mesh.version;
     meshes_[size_t(index)] = std::move(mesh);
     geometryVersion_ = nextVersion();
     ++revision_;

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "gl/render_state.h"
 
 namespace ss {
@@ -116,6 +117,45 @@ ShadowMap fitShadowMap(const Light& light, const Bounds& sceneBounds, int size) 
     return m;
 }
 
+std::optional<std::vector<Bounds>> movedBoxes(const std::vector<MeshPlacement>& drawn,
+                                              const std::vector<MeshPlacement>& now) {
+    if (drawn.size() != now.size()) return std::nullopt;
+    std::vector<Bounds> boxes;
+    for (size_t i = 0; i < now.size(); ++i) {
+        if (drawn[i].shapeVersion != now[i].shapeVersion) return std::nullopt;
+        if (drawn[i].objectToWorld == now[i].objectToWorld) continue;
+        if (!drawn[i].bounds.empty()) boxes.push_back(drawn[i].bounds);
+        if (!now[i].bounds.empty()) boxes.push_back(now[i].bounds);
+    }
+    return boxes;
+}
+
+std::optional<PixelRect> boxesOnScreen(const std::vector<Bounds>& boxes, const glm::mat4& worldToClip, int width,
+                                       int height) {
+    // Two pixels beyond the projected corners: the GPU places the vertices with its own
+    // float arithmetic (and the coverage rules round), never a pixel further.
+    constexpr int kMargin = 2;
+    PixelRect rect{width, height, 0, 0};
+    for (const Bounds& b : boxes)
+        for (const glm::vec3& c : corners(b)) {
+            glm::vec4 clip = worldToClip * glm::vec4(c, 1.0f);
+            if (!(clip.w > 1e-6f * (std::abs(clip.x) + std::abs(clip.y) + std::abs(clip.z)))) return std::nullopt;
+            const float px = (clip.x / clip.w * 0.5f + 0.5f) * float(width);
+            const float py = (clip.y / clip.w * 0.5f + 0.5f) * float(height);
+            if (!std::isfinite(px) || !std::isfinite(py)) return std::nullopt;
+            const float lo = -float(kMargin + 1), hiX = float(width + kMargin + 1), hiY = float(height + kMargin + 1);
+            rect.x0 = std::min(rect.x0, int(std::floor(std::clamp(px, lo, hiX))) - kMargin);
+            rect.y0 = std::min(rect.y0, int(std::floor(std::clamp(py, lo, hiY))) - kMargin);
+            rect.x1 = std::max(rect.x1, int(std::ceil(std::clamp(px, lo, hiX))) + kMargin);
+            rect.y1 = std::max(rect.y1, int(std::ceil(std::clamp(py, lo, hiY))) + kMargin);
+        }
+    rect.x0 = std::max(rect.x0, 0);
+    rect.y0 = std::max(rect.y0, 0);
+    rect.x1 = std::min(rect.x1, width);
+    rect.y1 = std::min(rect.y1, height);
+    return rect;
+}
+
 Frame::Frame(const Scene& scene) : scene_(&scene) {}
 Frame::~Frame() = default;
 
@@ -123,46 +163,101 @@ const Light& Frame::light(int index) const { return scene_->light(index); }
 
 const gl::Functions& Frame::gl() const { return gl::api(); }
 
+std::vector<MeshPlacement> Frame::placements() const {
+    std::vector<MeshPlacement> out;
+    for (const Mesh& m : scene_->meshes()) {
+        MeshPlacement p;
+        p.shapeVersion = m.shapeVersion;
+        p.objectToWorld = m.objectToWorld;
+        for (const glm::vec3& v : m.positions) p.bounds.extend(v);
+        out.push_back(p);
+    }
+    return out;
+}
+
 void Frame::dropStalePasses() {
     const uint64_t geometry = scene_->geometryVersion();
-    if (camera_ && (cameraPassCamera_ != scene_->cameraVersion() || cameraPassGeometry_ != geometry)) {
-        camera_.reset();
-        cameraImages_.reset();
-    }
+    if (camera_ && cameraPassCamera_ != scene_->cameraVersion()) camera_.reset();
+    if (camera_ && cameraPassGeometry_ != geometry) cameraImages_.reset();  // cameraPass() patches the pass
+    if (!camera_) cameraImages_.reset();
     if (shadowMapsGeometry_ != geometry) {
-        for (auto& entry : shadowMaps_) stats_.shadowMapBytes -= entry.second.bytes;
-        shadowMaps_.clear();
+        std::vector<MeshPlacement> now = placements();
+        const Bounds bounds = scene_->bounds();
+        std::optional<std::vector<Bounds>> moved = movedBoxes(shadowMapPlacements_, now);
+        // A map is fit to the scene bounds: when they change, so does every map's frustum.
+        const bool sameFit = bounds.lo == shadowMapBounds_.lo && bounds.hi == shadowMapBounds_.hi;
+        if (moved && sameFit) {
+            for (auto& entry : shadowMaps_)
+                entry.second.pending.insert(entry.second.pending.end(), moved->begin(), moved->end());
+        } else {
+            for (auto& entry : shadowMaps_) stats_.shadowMapBytes -= entry.second.bytes;
+            shadowMaps_.clear();
+        }
+        shadowMapPlacements_ = std::move(now);
+        shadowMapBounds_ = bounds;
         shadowMapsGeometry_ = geometry;
     }
 }
 
+namespace {
+
+// Unit face normals of the mesh's coordinates as given (the world normals when it has no
+// transform), zero for degenerate faces, as vec4 for the SSBO.
+std::vector<glm::vec4> objectFaceNormals(const Mesh& mesh) {
+    std::vector<glm::vec4> normals(mesh.triangles.size(), glm::vec4(0.0f));
+    if (mesh.objectPositions.empty()) {
+        for (size_t f = 0; f < mesh.faceNormals.size() && f < normals.size(); ++f)
+            normals[f] = glm::vec4(mesh.faceNormals[f], 0.0f);
+        return normals;
+    }
+    const auto& p = mesh.objectPositions;
+    for (size_t f = 0; f < normals.size(); ++f) {
+        const glm::uvec3& t = mesh.triangles[f];
+        glm::vec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
+        float len = glm::length(n);
+        if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2] && len > 0.0f && std::isfinite(len))
+            normals[f] = glm::vec4(n / len, 0.0f);
+    }
+    return normals;
+}
+
+void place(GpuMesh& gm, const Mesh& mesh) {
+    gm.objectToWorld = mesh.objectToWorld;
+    gm.transformed = !mesh.objectPositions.empty() && mesh.objectToWorld != glm::mat4(1.0f);
+    gm.normalToWorld = glm::mat4(glm::transpose(glm::inverse(glm::mat3(mesh.objectToWorld))));
+}
+
+}  // namespace
+
 const std::vector<GpuMesh>& Frame::meshes() {
     if (meshesGeometryVersion_ == scene_->geometryVersion()) return meshes_;
+    const auto start = Clock::now();
     const gl::Functions& g = gl();
     const auto& src = scene_->meshes();
     std::map<uint64_t, GpuMesh> uploaded;
-    for (GpuMesh& gm : meshes_) uploaded.emplace(gm.version, std::move(gm));
+    for (GpuMesh& gm : meshes_) uploaded.emplace(gm.shapeVersion, std::move(gm));
     meshes_.clear();
     meshes_.reserve(src.size());
     for (size_t i = 0; i < src.size(); ++i) {
         const Mesh& mesh = src[i];
-        auto kept = uploaded.find(mesh.version);
+        auto kept = uploaded.find(mesh.shapeVersion);
         if (kept != uploaded.end()) {
             kept->second.meshIndex = int(i);
+            place(kept->second, mesh);
             meshes_.push_back(std::move(kept->second));
             uploaded.erase(kept);
             continue;
         }
+        const std::vector<glm::vec3>& positions = mesh.objectPositions.empty() ? mesh.positions : mesh.objectPositions;
         GpuMesh gm;
         gm.meshIndex = int(i);
-        gm.version = mesh.version;
+        gm.shapeVersion = mesh.shapeVersion;
         gm.flags = mesh.flags;
         gm.indexCount = GLsizei(mesh.triangles.size() * 3);
-        gm.positions = gl::makeBuffer(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
+        place(gm, mesh);
+        gm.positions = gl::makeBuffer(positions.data(), positions.size() * sizeof(glm::vec3));
         gm.indices = gl::makeBuffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
-        std::vector<glm::vec4> normals(mesh.triangles.size(), glm::vec4(0.0f));
-        for (size_t f = 0; f < mesh.faceNormals.size() && f < normals.size(); ++f)
-            normals[f] = glm::vec4(mesh.faceNormals[f], 0.0f);
+        std::vector<glm::vec4> normals = objectFaceNormals(mesh);
         gm.faceNormals = gl::makeBuffer(normals.data(), normals.size() * sizeof(glm::vec4));
         GLuint vao = 0;
         g.CreateVertexArrays(1, &vao);
@@ -176,14 +271,27 @@ const std::vector<GpuMesh>& Frame::meshes() {
         ++stats_.meshUploads;
     }
     g.check("uploading the scene meshes");
+    g.Finish();
+    stats_.uploadMs += msSince(start);
     meshesGeometryVersion_ = scene_->geometryVersion();
     return meshes_;
 }
 
-void Frame::drawMeshes(uint32_t requiredFlags, const std::function<void(const GpuMesh&)>& before) {
+void Frame::drawMeshes(const gl::Program& program, uint32_t requiredFlags,
+                       const std::function<void(const GpuMesh&)>& before) {
+    drawMeshesWhere(program, requiredFlags, {}, before);
+}
+
+void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
+                            const std::function<bool(const GpuMesh&)>& include,
+                            const std::function<void(const GpuMesh&)>& before) {
     const gl::Functions& g = gl();
     for (const GpuMesh& m : meshes()) {
         if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0) continue;
+        if (include && !include(m)) continue;
+        program.set("uTransformed", m.transformed ? 1 : 0);
+        program.set("uObjectToWorld", m.objectToWorld);
+        program.set("uNormalToWorld", m.normalToWorld);
         if (before) before(m);
         g.BindVertexArray(m.vao.id());
         g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.faceNormals.id());
@@ -204,18 +312,36 @@ void Frame::drawFullscreen() {
     g.BindVertexArray(0);
 }
 
-const CameraPass& Frame::cameraPass() {
-    dropStalePasses();
-    if (camera_) return *camera_;
+namespace {
+
+// Confines what follows to `rect` (clears included) when there is one.
+void scissor(const gl::Functions& g, const std::optional<PixelRect>& rect) {
+    if (!rect) return;
+    g.Enable(GL_SCISSOR_TEST);
+    g.Scissor(rect->x0, rect->y0, rect->x1 - rect->x0, rect->y1 - rect->y0);
+}
+
+// Whether a mesh placed as `placement` may cover a pixel of `rect` (always without a rectangle:
+// a whole pass draws everything).
+std::function<bool(const GpuMesh&)> touching(const std::optional<PixelRect>& rect,
+                                             const std::vector<MeshPlacement>& now, const glm::mat4& worldToClip,
+                                             int width, int height) {
+    if (!rect) return {};
+    return [=, &now](const GpuMesh& m) {
+        std::optional<PixelRect> r = boxesOnScreen({now.at(size_t(m.meshIndex)).bounds}, worldToClip, width, height);
+        return !r || (r->x0 < rect->x1 && rect->x0 < r->x1 && r->y0 < rect->y1 && rect->y0 < r->y1);
+    };
+}
+
+}  // namespace
+
+void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect,
+                           const std::vector<MeshPlacement>& now) {
     const gl::Functions& g = gl();
     const Camera& cam = camera();
-    auto pass = std::make_unique<CameraPass>();
-    pass->width = cam.width;
-    pass->height = cam.height;
-    pass->framebuffer = gl::Framebuffer(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F},
-                                        GL_DEPTH_COMPONENT32F);
-    const gl::Framebuffer& fb = pass->framebuffer;
+    const gl::Framebuffer& fb = pass.framebuffer;
     fb.bind();
+    scissor(g, rect);
     fb.clearColor(0, glm::vec4(0.0f));
     fb.clearColor(1, glm::vec4(0.0f));
     fb.clearColor(2, glm::vec4(-1.0f, -1.0f, 0.0f, 0.0f));
@@ -230,14 +356,46 @@ const CameraPass& Frame::cameraPass() {
     prog.set("uCameraPosition", glm::vec3(cameraToWorld[3]));
     prog.set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
     prog.set("uOrthographic", cam.isOrthographic() ? 1 : 0);
-    drawMeshes(0, [&](const GpuMesh& m) {
+    drawMeshesWhere(prog, 0, touching(rect, now, cam.worldToClip(), pass.width, pass.height), [&](const GpuMesh& m) {
         prog.set("uMeshIndex", m.meshIndex);
         prog.set("uReceives", m.receives() ? 1.0f : 0.0f);
     });
+    g.Disable(GL_SCISSOR_TEST);
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing the camera pass");
+}
+
+const CameraPass& Frame::cameraPass() {
+    dropStalePasses();
+    if (camera_ && cameraPassGeometry_ == scene_->geometryVersion()) return *camera_;
+    meshes();  // uploads timed apart
+    const auto start = Clock::now();
+    std::vector<MeshPlacement> now = placements();
+    if (camera_) {
+        // Only moves since it was drawn: redrawn where the moved meshes were and are.
+        std::optional<std::vector<Bounds>> moved = movedBoxes(cameraPlacements_, now);
+        std::optional<PixelRect> rect;
+        if (moved) rect = boxesOnScreen(*moved, camera().worldToClip(), camera_->width, camera_->height);
+        if (rect) {
+            if (!rect->empty()) drawCameraPass(*camera_, rect, now);
+            ++stats_.cameraPassesPatched;
+        } else {
+            drawCameraPass(*camera_, std::nullopt, now);
+        }
+    } else {
+        const Camera& cam = camera();
+        auto pass = std::make_unique<CameraPass>();
+        pass->width = cam.width;
+        pass->height = cam.height;
+        pass->framebuffer = gl::Framebuffer(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F},
+                                            GL_DEPTH_COMPONENT32F);
+        drawCameraPass(*pass, std::nullopt, now);
+        camera_ = std::move(pass);
+    }
+    gl().Finish();
+    stats_.cameraPassMs += msSince(start);
     ++stats_.cameraPasses;
-    camera_ = std::move(pass);
+    cameraPlacements_ = std::move(now);
     cameraPassCamera_ = scene_->cameraVersion();
     cameraPassGeometry_ = scene_->geometryVersion();
     return *camera_;
@@ -258,34 +416,59 @@ const CameraImages& Frame::cameraImages() {
     return *cameraImages_;
 }
 
+void Frame::drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect,
+                          const std::vector<MeshPlacement>& now) {
+    const gl::Functions& g = gl();
+    gl::Framebuffer fb(map.size, map.size, {});
+    fb.attachColor(0, map.distance.id());
+    fb.attachDepth(map.depth.id());
+    fb.bind();
+    scissor(g, rect);
+    fb.clearColor(0, glm::vec4(ShadowMap::kEmpty));
+    fb.clearDepth(1.0f);
+    gl::apply(gl::states::opaque);
+    const gl::Program& prog = gl::program("common/mesh.vert.glsl", "shadow_map/distance.frag.glsl");
+    prog.use();
+    prog.set("uWorldToClip", map.worldToClip());
+    bindShadowMapUniforms(prog, map);
+    drawMeshesWhere(prog, SS_MESH_CAST, touching(rect, now, map.worldToClip(), map.size, map.size), {});
+    g.Disable(GL_SCISSOR_TEST);
+    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    g.check("drawing a shadow map");
+}
+
 const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     if (size <= 0) size = kDefaultShadowMapSize;
     dropStalePasses();
     auto key = std::make_pair(light(lightIndex).version, size);
     auto it = shadowMaps_.find(key);
     if (it != shadowMaps_.end()) {
-        it->second.lastUse = ++useClock_;
-        return *it->second.map;
+        CachedShadowMap& entry = it->second;
+        entry.lastUse = ++useClock_;
+        if (!entry.pending.empty()) {
+            // Moves since it was drawn (the fit is the same: dropStalePasses checked the bounds).
+            meshes();
+            const auto start = Clock::now();
+            ShadowMap& map = *entry.map;
+            std::optional<PixelRect> rect = boxesOnScreen(entry.pending, map.worldToClip(), map.size, map.size);
+            if (!rect || !rect->empty()) drawShadowMap(map, rect, shadowMapPlacements_);
+            if (rect) ++stats_.shadowMapsPatched;
+            entry.pending.clear();
+            gl().Finish();
+            stats_.shadowMapMs += msSince(start);
+            ++stats_.shadowMaps;
+        }
+        return *entry.map;
     }
     const Light& L = light(lightIndex);
-    const gl::Functions& g = gl();
-    auto map = std::make_unique<ShadowMap>(fitShadowMap(L, scene_->bounds(), size));
+    meshes();  // uploads timed apart
+    const auto start = Clock::now();
+    auto map = std::make_unique<ShadowMap>(fitShadowMap(L, shadowMapBounds_, size));
     map->distance = gl::Texture(size, size, GL_R32F, GL_NEAREST);
     map->depth = gl::Texture(size, size, GL_DEPTH_COMPONENT32F, GL_NEAREST);
-    gl::Framebuffer fb(size, size, {});
-    fb.attachColor(0, map->distance.id());
-    fb.attachDepth(map->depth.id());
-    fb.bind();
-    fb.clearColor(0, glm::vec4(ShadowMap::kEmpty));
-    fb.clearDepth(1.0f);
-    gl::apply(gl::states::opaque);
-    const gl::Program& prog = gl::program("common/mesh.vert.glsl", "shadow_map/distance.frag.glsl");
-    prog.use();
-    prog.set("uWorldToClip", map->worldToClip());
-    bindShadowMapUniforms(prog, *map);
-    drawMeshes(SS_MESH_CAST);
-    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    g.check("drawing a shadow map");
+    drawShadowMap(*map, std::nullopt, shadowMapPlacements_);
+    gl().Finish();
+    stats_.shadowMapMs += msSince(start);
     ++stats_.shadowMaps;
     CachedShadowMap entry;
     entry.map = std::move(map);

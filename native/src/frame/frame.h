@@ -21,16 +21,23 @@
 
 namespace ss {
 
-// One scene mesh on the GPU. Vertex attribute 0 = world position (vec3); indexed triangles.
+// One scene mesh on the GPU, in its object space (the coordinates as given) with its matrix: a
+// moved mesh keeps its buffers. Vertex attribute 0 = object position (vec3); indexed triangles.
+// Vertex shaders take world = uObjectToWorld * position where uTransformed is 1 and the position
+// itself where it is 0 (so meshes without a transform draw exactly their world coordinates);
+// face normals go to world space with mat3(uNormalToWorld) (see "common/mesh.vert.glsl").
 struct GpuMesh {
     int meshIndex = 0;  // into scene.meshes()
-    uint64_t version = 0;  // the Mesh::version these buffers hold
+    uint64_t shapeVersion = 0;  // the Mesh::shapeVersion these buffers hold
     uint32_t flags = 0;
     GLsizei indexCount = 0;
+    bool transformed = false;           // objectToWorld is not the identity
+    glm::mat4 objectToWorld{1.0f};      // the mesh's current placement
+    glm::mat4 normalToWorld{1.0f};      // inverse transpose of its 3x3 part
     gl::VertexArrayHandle vao;
-    gl::BufferHandle positions;    // vec3 per vertex
+    gl::BufferHandle positions;    // vec3 per vertex, object space
     gl::BufferHandle indices;      // uint32 x3 per triangle
-    gl::BufferHandle faceNormals;  // SSBO, vec4 per triangle (xyz unit, 0 for degenerate)
+    gl::BufferHandle faceNormals;  // SSBO, vec4 per triangle (xyz unit in object space, 0 for degenerate)
     bool casts() const;
     bool receives() const;
 };
@@ -97,12 +104,41 @@ struct ShadowMap {
 ShadowMap fitShadowMap(const Light& light, const Bounds& bounds, int size);
 
 struct FrameStats {
-    // meshUploads counts meshes uploaded (one per mesh content), shadowMaps and cameraPasses
-    // the passes drawn.
+    // meshUploads counts meshes uploaded (one per mesh shape: a move uploads nothing),
+    // shadowMaps and cameraPasses the passes drawn.
     int meshUploads = 0, cameraPasses = 0, shadowMaps = 0, cameraReadbacks = 0;
     int shadowMapsEvicted = 0;
     size_t shadowMapBytes = 0, shadowMapBytesPeak = 0;  // held now / the most ever held
+    // Milliseconds spent in each shared pass, until the GL finished it (the benchmark's
+    // per-stage picture; the passes end with glFinish so their work is not billed to the next).
+    double uploadMs = 0.0, cameraPassMs = 0.0, shadowMapMs = 0.0;
+    // Of cameraPasses and shadowMaps: those redrawn only inside the screen rectangle that moved
+    // meshes touched (the rest of the pass kept).
+    int cameraPassesPatched = 0, shadowMapsPatched = 0;
 };
+
+// Where each mesh was when a pass was drawn: a pass drawn with `drawn` needs redrawing only
+// where the moved meshes were and are, as long as no mesh changed shape, came or went.
+struct MeshPlacement {
+    uint64_t shapeVersion = 0;
+    glm::mat4 objectToWorld{1.0f};
+    Bounds bounds;  // world
+};
+
+// A window rectangle of a pass (GL orientation: y up), half-open.
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+};
+
+// The world boxes the moves from `drawn` to `now` touched (old and new place of each moved
+// mesh), or nothing when more than moves happened (a mesh added, removed or reshaped).
+std::optional<std::vector<Bounds>> movedBoxes(const std::vector<MeshPlacement>& drawn,
+                                              const std::vector<MeshPlacement>& now);
+// The pixels of a width x height pass drawn with `worldToClip` that the boxes may cover, grown
+// by a margin for rasterisation; nothing when a box reaches behind the eye (redraw it all).
+std::optional<PixelRect> boxesOnScreen(const std::vector<Bounds>& boxes, const glm::mat4& worldToClip, int width,
+                                       int height);
 
 class Frame {
 public:
@@ -151,10 +187,12 @@ public:
     const TraceSceneCache& traceScenes() const { return traceScenes_; }
 
     // ---- helpers ----
-    // Draws every mesh whose flags contain all of `requiredFlags` with the bound program and
-    // framebuffer; `before` runs for each mesh first (e.g. to set a per-mesh uniform). Binds
-    // each mesh's face normals to SSBO binding 0.
-    void drawMeshes(uint32_t requiredFlags, const std::function<void(const GpuMesh&)>& before = {});
+    // Draws every mesh whose flags contain all of `requiredFlags` with `program` (in use) and the
+    // bound framebuffer, setting its uObjectToWorld, uNormalToWorld and uTransformed; `before`
+    // runs for each mesh first (e.g. to set a per-mesh uniform). Binds each mesh's face normals
+    // to SSBO binding 0.
+    void drawMeshes(const gl::Program& program, uint32_t requiredFlags,
+                    const std::function<void(const GpuMesh&)>& before = {});
     // Draws one triangle covering the viewport (vertex shader "common/fullscreen.vert.glsl").
     void drawFullscreen();
     // Binds the camera pass textures to units firstUnit.. and sets the samplers of
@@ -170,19 +208,34 @@ public:
 
 private:
     void bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const;
-    // Drops the camera pass and shadow maps whose inputs changed since they were drawn.
+    // Drops the camera pass and shadow maps whose inputs changed since they were drawn; after
+    // moves alone the passes are kept and patched where the moved meshes were and are.
     void dropStalePasses();
+    std::vector<MeshPlacement> placements() const;  // of the scene's meshes now
+    // Draws the camera pass (or the shadow map) into its own targets, inside `rect` only when
+    // one is given.
+    // With a rectangle, meshes whose bounds in `now` fall outside it are not drawn.
+    void drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect,
+                        const std::vector<MeshPlacement>& now);
+    void drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect, const std::vector<MeshPlacement>& now);
+    void drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
+                         const std::function<bool(const GpuMesh&)>& include,
+                         const std::function<void(const GpuMesh&)>& before);
     const Scene* scene_;
     std::vector<GpuMesh> meshes_;
     uint64_t meshesGeometryVersion_ = 0;  // 0: never uploaded
     std::unique_ptr<CameraPass> camera_;
     std::unique_ptr<CameraImages> cameraImages_;
     uint64_t cameraPassCamera_ = 0, cameraPassGeometry_ = 0;  // versions the camera pass shows
+    std::vector<MeshPlacement> cameraPlacements_;            // what the camera pass shows
     uint64_t shadowMapsGeometry_ = 0;                         // the geometry the maps show
+    std::vector<MeshPlacement> shadowMapPlacements_;          // (with their pending boxes)
+    Bounds shadowMapBounds_;                                  // the scene bounds the maps are fit to
     struct CachedShadowMap {
         std::unique_ptr<ShadowMap> map;
         uint64_t lastUse = 0;
         size_t bytes = 0;
+        std::vector<Bounds> pending;  // world boxes moved meshes touched since it was drawn
     };
     std::map<std::pair<uint64_t, int>, CachedShadowMap> shadowMaps_;  // (Light::version, size)
     uint64_t useClock_ = 0;

@@ -50,6 +50,11 @@ std::unique_ptr<Method> createMethod(const std::string& name);
 // The methods `auto` renders and scores against the sparse check (methods/sparse_check.h), in
 // the order of their cost (cheapest first): the GL methods whose assumptions the scene keeps.
 std::vector<std::string> autoCandidates(const Scene& scene, int lightIndex);
+// `auto`'s prior, which of the candidates are worth rendering at all: the general methods, and the
+// one whose paper models the light's shape (dbuffer for disk, ellipse, point and spot lights,
+// occlusion_textures for square and rectangular ones); each of the two is left out under the
+// other shapes, where it models a light it is not given (docs/methods/README.md).
+bool autoPriorKeeps(const Scene& scene, int lightIndex, const std::string& method);
 // `auto`'s fallback where the sparse check cannot run: a method by the light's shape
 // (docs/methods/README.md).
 std::string chooseAutoMethodByShape(const Scene& scene, int lightIndex);

@@ -71,6 +71,16 @@ std::vector<std::string> autoCandidates(const Scene& scene, int lightIndex) {
     return out;
 }
 
+bool autoPriorKeeps(const Scene& scene, int lightIndex, const std::string& method) {
+    const LightType type = scene.light(lightIndex).type;
+    const bool rectangular = type == LightType::Square || type == LightType::Rectangle;
+    const bool round = type == LightType::Disk || type == LightType::Ellipse || type == LightType::Point ||
+                       type == LightType::Spot;
+    if (method == "dbuffer") return round;
+    if (method == "occlusion_textures") return rectangular;
+    return true;
+}
+
 std::string chooseAutoMethodByShape(const Scene& scene, int lightIndex) {
     // Used only where the sparse check cannot run (docs/methods/README.md): each light gets the
     // method whose paper models its shape, unless the scene breaks that method's assumptions.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "reference/adaptive_sampling.h"
 #include "reference/render_reference.h"
 #include "reference/sample_sequence.h"
 
@@ -46,19 +47,36 @@ SparseCheck runSparseCheck(const TraceScene& trace, const Scene& scene, int ligh
                            int samples, uint32_t seed) {
     const Camera& camera = scene.camera();
     SparseCheck check;
+    AdaptiveSampling adaptive;
+    adaptive.maxSamples = samples > 0 ? samples : kReferenceDefaultSamples;
+    adaptive.minSamples = std::min(adaptive.minSamples, adaptive.maxSamples);
     check.truth = tracePixels(trace, scene, lightIndex, sparseCheckPixels(camera.width, camera.height, pixelCount, seed),
-                              samples > 0 ? samples : kReferenceDefaultSamples, seed);
+                              adaptive.maxSamples, seed, &adaptive);
     return check;
+}
+
+double errorLowerBound(const SparseCheck& check, const std::string& method) {
+    const bool binary = method == "shadow_map", centreUmbra = method == "penumbra_map";
+    if (!binary && !centreUmbra) return 0.0;
+    double sum = 0.0;
+    size_t n = 0;
+    for (const PixelVisibility& p : check.truth) {
+        if (!p.inMask) continue;
+        ++n;
+        const double v = p.visibility;
+        const double d = binary ? std::min(v, 1.0 - v) : (p.centreVisible ? 0.0 : v);
+        sum += d * d;
+    }
+    return n ? std::sqrt(sum / double(n)) : 0.0;
 }
 
 double estimatedRmse(const SparseCheck& check, const Layers& layers) {
     const Image* v = layers.find("V");
-    const Image* mask = layers.find("mask");
     if (!v) return std::numeric_limits<double>::quiet_NaN();
     double sum = 0.0;
     size_t n = 0;
     for (const PixelVisibility& p : check.truth) {
-        if (!p.inMask || (mask && mask->at(p.x, p.y) <= 0.5f)) continue;
+        if (!p.inMask) continue;
         const float value = v->at(p.x, p.y);
         const double d = std::isfinite(value) ? double(value) - double(p.visibility) : 1.0;
         sum += d * d;

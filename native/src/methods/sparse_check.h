@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/image.h"
@@ -20,8 +21,11 @@ int sparseCheckDefaultPixels(int width, int height);
 
 // The reference's V at about `pixelCount` pixels, one per cell of a grid over the image at a
 // place drawn from (seed, cell): stratified, so the sample follows the image's area, and the same
-// for the same seed. Traced with the reference's own samples (kReferenceDefaultSamples unless
-// `samples` > 0) and seed, so on these pixels it equals the reference image of that seed.
+// for the same seed. Traced with the reference's own sample sequence and seed, adaptively
+// (tracePixels with AdaptiveSampling, at most kReferenceDefaultSamples unless `samples` > 0):
+// most checked pixels are fully lit or in umbra and are decided by the first 16 rays, which
+// makes the check several times cheaper than at a fixed count; where a pixel took every sample it
+// equals the reference image of that seed, elsewhere it is within the adaptive error target.
 struct SparseCheck {
     std::vector<PixelVisibility> truth;
     size_t maskedPixels() const;
@@ -30,8 +34,18 @@ std::vector<std::pair<int, int>> sparseCheckPixels(int width, int height, int pi
 SparseCheck runSparseCheck(const TraceScene& trace, const Scene& scene, int lightIndex, int pixelCount,
                            int samples, uint32_t seed);
 
-// The RMSE of layers' V against the check over the pixels both masks hold (as `compare` measures
-// by default); NaN when no checked pixel is in both masks.
+// What the check says about a method's estimate before it renders: a lower bound for the two
+// methods whose output is constrained, 0 for the others. shadow_map's V is 0 or 1, so each
+// checked pixel is off by at least min(V, 1 - V) of the truth; penumbra_map's V is 0 wherever the
+// light centre is hidden (its umbra is the centre's hard shadow), so it is off by the truth's V
+// there. Over the check's own mask; the GL shadow map and the traced centre ray may disagree
+// along the hard edge, so the bound is exact up to that thin band.
+double errorLowerBound(const SparseCheck& check, const std::string& method);
+
+// The RMSE of layers' V against the check over every checked pixel the light reaches (the
+// check's mask), whatever the method's own mask: outside it a method's V is 1 by the contract,
+// and that is what a composite multiplies there (sweep leaves every surface but its plane at
+// 1). As `compare --mask <light>_reference_mask` measures. NaN when the check's mask is empty.
 double estimatedRmse(const SparseCheck& check, const Layers& layers);
 
 }  // namespace ss

@@ -258,7 +258,10 @@ bool walkStrip(const LabelledBoundary& lb, int k, int n, bool umbra, ShadowMesh*
         auto addPerimeter = [&](const Chain& c) {
             for (size_t i = 0; i < c.size(); ++i) {
                 const IPoint &a = c[i], &b = c[(i + 1) % c.size()];
-                perimeter += std::hypot(double(b.x - a.x), double(b.y - a.y));
+                // sqrt, not std::hypot: glibc 2.35 re-versioned hypot, and the zip must load on
+                // older systems (tests/blender/test_package.py); grid coordinates cannot overflow.
+                const double dx = double(b.x - a.x), dy = double(b.y - a.y);
+                perimeter += std::sqrt(dx * dx + dy * dy);
             }
         };
         addPerimeter(outers[o]);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 
 #include "core/error.h"
 #include "reference/camera_rays.h"
@@ -46,14 +47,14 @@ struct Tracer {
     }
 };
 
-// Rounds after the first until the pixel is decided; `sums` holds the first round's samples.
-void continueRounds(const Tracer& t, const AdaptiveSampling& a, float pixelTarget, const SurfaceHit& hit,
-                    int x, int y, SampleSums* sums) {
+// Rounds after the first until the point is decided; `sums` holds the first round's samples.
+void continueRounds(const std::function<void(uint32_t, uint32_t, SampleSums*)>& add, const AdaptiveSampling& a,
+                    float pixelTarget, SampleSums* sums) {
     int n = a.minSamples, passed = 0;
     while (n < a.maxSamples) {
         const int next = std::min(2 * n, a.maxSamples);
         const SampleSums before = *sums;
-        t.add(hit, x, y, uint32_t(n), uint32_t(next), sums);
+        add(uint32_t(n), uint32_t(next), sums);
         n = next;
         const double roundWeight = sums->weight - before.weight;
         if (!(before.weight > 0.0) || !(roundWeight > 0.0)) continue;
@@ -70,6 +71,18 @@ float pixelErrorTarget(const AdaptiveSampling& a, size_t maskPixels, size_t unde
     if (undecidedPixels == 0) return a.errorTarget;
     const double spread = std::sqrt(double(maskPixels) / double(undecidedPixels));
     return std::max(a.errorTarget, std::min(float(a.errorTarget * spread), AdaptiveSampling::kMaxPixelError));
+}
+
+void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, const SurfaceHit& hit,
+                      const SampleSequence& sequence, bool castShadows, const AdaptiveSampling& sampling,
+                      SampleSums* sums) {
+    auto add = [&](uint32_t begin, uint32_t end, SampleSums* into) {
+        addSamples(trace, sampler, hit, sequence, begin, end, castShadows, into);
+    };
+    add(0, uint32_t(sampling.minSamples), sums);
+    if (!(sums->weight > 0.0) || decidedByAgreement(*sums, sampling)) return;
+    // An isolated point has no image to share the error with: it keeps the target itself.
+    continueRounds(add, sampling, sampling.errorTarget, sums);
 }
 
 std::vector<std::string> adaptiveSamplingKeys() { return {"error_target", "guard_band"}; }
@@ -134,7 +147,8 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
             if (state[i] == PixelState::Undecided) {
                 SurfaceHit hit;
                 t.surface(x, y, &hit);  // the same deterministic hit as the first round's
-                continueRounds(t, sampling, pixelTarget, hit, x, y, &sums[i]);
+                continueRounds([&](uint32_t begin, uint32_t end, SampleSums* into) { t.add(hit, x, y, begin, end, into); },
+                               sampling, pixelTarget, &sums[i]);
             }
             if (rays) rays->at(x, y) = float(sums[i].rays);
             if (!(sums[i].weight > 0.0)) continue;

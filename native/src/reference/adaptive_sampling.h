@@ -8,7 +8,10 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/settings.h"
+#include "reference/light_sampler.h"
+#include "reference/sample_sequence.h"
 #include "reference/trace_scene.h"
+#include "reference/visibility_estimator.h"
 
 namespace ss {
 
@@ -37,6 +40,12 @@ struct AdaptiveSampling {
 
 // The error each undecided pixel may keep so that the mask's RMSE meets the target.
 float pixelErrorTarget(const AdaptiveSampling& sampling, size_t maskPixels, size_t undecidedPixels);
+
+// One point on its own, without the guard band (no neighbours to consult: the sparse check's
+// isolated pixels): the first round, then further rounds unless the first agrees. Adds to *sums.
+void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, const SurfaceHit& hit,
+                      const SampleSequence& sequence, bool castShadows, const AdaptiveSampling& sampling,
+                      SampleSums* sums);
 
 // The keys the adaptive sampling reads: "error_target" (0.0001..0.5, default 0.005) and
 // "guard_band" (pixels, 0..16, default 2); `maxSamples` is the render's sample count.

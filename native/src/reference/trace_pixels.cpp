@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "reference/adaptive_sampling.h"
 #include "reference/camera_rays.h"
 #include "reference/light_sampler.h"
 #include "reference/visibility_estimator.h"
@@ -17,7 +18,7 @@ namespace ss {
 
 std::vector<PixelVisibility> tracePixels(const TraceScene& trace, const Scene& scene, int lightIndex,
                                          const std::vector<std::pair<int, int>>& pixels, int samples,
-                                         uint32_t seed) {
+                                         uint32_t seed, const AdaptiveSampling* adaptive) {
     const Light& light = scene.light(lightIndex);
     const Camera& camera = scene.camera();
     const CameraRays rays(camera);
@@ -39,6 +40,15 @@ std::vector<PixelVisibility> tracePixels(const TraceScene& trace, const Scene& s
             SurfaceHit hit = trace.intersect(ray, tNear, tFar);
             if (!hit.hit || !scene.meshes()[hit.mesh].receives()) continue;
             SampleSequence sequence(seed, uint32_t(out[i].x), uint32_t(out[i].y));
+            out[i].centreVisible = lightCentreVisible(trace, sampler, hit, light.castShadows);
+            if (adaptive) {
+                SampleSums sums;
+                sampleAdaptively(trace, sampler, hit, sequence, light.castShadows, *adaptive, &sums);
+                if (!(sums.weight > 0.0)) continue;
+                out[i].visibility = float(sums.visibility());
+                out[i].inMask = true;
+                continue;
+            }
             PointVisibility pv = estimateVisibility(trace, sampler, hit, sequence, samples, light.castShadows);
             if (!pv.reached) continue;
             out[i].visibility = pv.visibility;

@@ -12,6 +12,42 @@ float shadowRayOffset(const SurfaceHit& hit, float sceneExtent) {
     return 4.0f * glm::dot(glm::abs(hit.normal), hit.pointError) + 1e-6f * sceneExtent;
 }
 
+namespace {
+
+// The shadow ray from `origin` (the hit pushed off its surface) towards sample `s`: false when
+// the sample is below the horizon, sends nothing or coincides with the origin.
+bool shadowRay(const SurfaceHit& hit, const glm::vec3& origin, const ShadowRay& s, glm::vec3* dir, float* tFar,
+               double* weight) {
+    const float cosSurface = glm::dot(hit.normal, s.toLight);
+    if (!(cosSurface > 0.0f) || !(s.weight > 0.0f)) return false;  // below the horizon / dark
+    *dir = s.toLight;
+    *tFar = s.distance;
+    if (std::isfinite(s.distance)) {
+        // Aim from the offset origin at the very sample point; stop just short of it so a
+        // mesh the light lies on does not shadow it.
+        const glm::vec3 v = hit.point + s.distance * s.toLight - origin;
+        const float len = glm::length(v);
+        if (!(len > 0.0f)) return false;
+        *dir = v / len;
+        *tFar = len * (1.0f - 1e-5f);
+    }
+    *weight = double(s.weight) * double(cosSurface);
+    return true;
+}
+
+}  // namespace
+
+bool lightCentreVisible(const TraceScene& scene, const LightSampler& light, const SurfaceHit& hit,
+                        bool castShadows) {
+    const glm::vec3 origin = hit.point + shadowRayOffset(hit, scene.extent()) * hit.normal;
+    glm::vec3 dir;
+    float tFar;
+    double weight;
+    if (!castShadows || !shadowRay(hit, origin, light.sample(hit.point, glm::vec2(0.5f)), &dir, &tFar, &weight))
+        return true;
+    return !scene.occluded(origin, dir, tFar, hit.mesh, hit.triangle);
+}
+
 void addSamples(const TraceScene& scene, const LightSampler& light, const SurfaceHit& hit,
                 const SampleSequence& sequence, uint32_t begin, uint32_t end, bool castShadows,
                 SampleSums* sums) {
@@ -23,23 +59,13 @@ void addSamples(const TraceScene& scene, const LightSampler& light, const Surfac
     thread_local std::vector<uint8_t> hidden;
     dirs.clear(), tFars.clear(), weights.clear();
     for (uint32_t i = begin; i < end; ++i) {
-        ShadowRay s = light.sample(hit.point, sequence.point(i));
-        float cosSurface = glm::dot(hit.normal, s.toLight);
-        if (!(cosSurface > 0.0f) || !(s.weight > 0.0f)) continue;  // below the horizon / dark
-        glm::vec3 dir = s.toLight;
-        float tFar = s.distance;
-        if (std::isfinite(s.distance)) {
-            // Aim from the offset origin at the very sample point; stop just short of it so a
-            // mesh the light lies on does not shadow it.
-            glm::vec3 v = hit.point + s.distance * s.toLight - origin;
-            float len = glm::length(v);
-            if (!(len > 0.0f)) continue;
-            dir = v / len;
-            tFar = len * (1.0f - 1e-5f);
-        }
+        glm::vec3 dir;
+        float tFar;
+        double weight;
+        if (!shadowRay(hit, origin, light.sample(hit.point, sequence.point(i)), &dir, &tFar, &weight)) continue;
         dirs.push_back(dir);
         tFars.push_back(tFar);
-        weights.push_back(double(s.weight) * double(cosSurface));
+        weights.push_back(weight);
     }
     hidden.assign(weights.size(), 0);
     if (castShadows && !weights.empty()) {

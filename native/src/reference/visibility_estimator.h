@@ -37,6 +37,13 @@ PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& 
                                    const SurfaceHit& hit, const SampleSequence& sequence,
                                    int samples, bool castShadows = true);
 
+// Whether the light's centre (the sample at u = (0.5, 0.5): the middle of an area light or of a
+// sphere light's disk, a sun's central direction) is unblocked from `hit`, with the same ray
+// set-up as the samples: the hard shadow a light-centre shadow map approximates. True where the
+// centre is below the horizon or sends nothing (no shadow to speak of there).
+bool lightCentreVisible(const TraceScene& scene, const LightSampler& light, const SurfaceHit& hit,
+                        bool castShadows);
+
 // The distance a shadow ray's origin is moved along the normal: the projected rounding error
 // of the point, 4x for safety, plus 1e-6 of the scene extent for the traversal's own error.
 float shadowRayOffset(const SurfaceHit& hit, float sceneExtent);

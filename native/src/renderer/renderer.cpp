@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "core/visibility_classes.h"
 #include "gl/capabilities.h"
 #include "gl/context.h"
@@ -38,7 +39,7 @@ struct Renderer::Impl {
     // its render_passes scene (one context) do not evict each other.
     static constexpr size_t kKeptScenes = 2;
     std::vector<std::unique_ptr<Cached>> caches;
-    CacheStats finished;  // of frames already dropped
+    CacheStats finished;  // of frames already dropped (and every method run's time)
     size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
 
     void count(const Frame& f, CacheStats& into) const {
@@ -47,6 +48,11 @@ struct Renderer::Impl {
         into.shadowMaps += f.stats().shadowMaps;
         into.shadowMapsEvicted += f.stats().shadowMapsEvicted;
         into.shadowMapBytesPeak = std::max(into.shadowMapBytesPeak, f.stats().shadowMapBytesPeak);
+        into.cameraPassesPatched += f.stats().cameraPassesPatched;
+        into.shadowMapsPatched += f.stats().shadowMapsPatched;
+        into.uploadMs += f.stats().uploadMs;
+        into.cameraPassMs += f.stats().cameraPassMs;
+        into.shadowMapMs += f.stats().shadowMapMs;
         into.traceSceneBuilds += f.traceScenes().builds();
     }
 
@@ -247,8 +253,10 @@ Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::str
     } else {
         impl_->glThread().run([&] {
             impl_->trimCaches(frame);
+            const auto start = Clock::now();
             m.prepare(frame, lightIndex, settings);
             layers = m.render(frame, lightIndex, settings);
+            impl_->finished.methodMs += msSince(start);
         });
     }
     checkLayers(layers, scene.camera(), name);
@@ -272,7 +280,8 @@ bool Renderer::sparseCheck(const Scene& scene, int lightIndex, int pixels, int s
 }
 
 Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& method,
-                        const RenderSettings& settings, std::string* methodUsed, double* estimateOut) {
+                        const RenderSettings& settings, std::string* methodUsed, double* estimateOut,
+                        AutoTrials* trialsOut) {
     std::lock_guard lock(impl_->m);
     const Camera& camera = scene.camera();  // throws when the scene has no camera
     (void)scene.light(lightIndex);  // throws for an index out of range, before any work
@@ -288,6 +297,7 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
         const int pixels = settings.integer("check_pixels", sparseCheckDefaultPixels(camera.width, camera.height), 0,
                                             1 << 24);
         const int samples = settings.integer("check_samples", 0, 0, 1 << 16);
+        AutoTrials trials;
         RenderSettings candidateSettings = settings;  // each candidate with its own defaults
         candidateSettings.options.clear();
         SparseCheck check;
@@ -295,9 +305,20 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
         if (!sparseCheck(scene, lightIndex, pixels, samples, settings.seed, &check)) {
             name = chooseAutoMethodByShape(scene, lightIndex);
             layers = renderMethod(scene, lightIndex, name, candidateSettings);
+            trials.rendered.push_back(name);
         } else {
-            name.clear();
-            for (const std::string& candidate : autoCandidates(scene, lightIndex)) {
+            // The candidates the prior keeps render first; a method whose lower bound on the
+            // check is above zero waits until the others set the score it must beat.
+            const std::vector<std::string> candidates = autoCandidates(scene, lightIndex);
+            std::vector<std::string> first, bounded;
+            for (const std::string& candidate : candidates) {
+                if (!autoPriorKeeps(scene, lightIndex, candidate)) trials.skippedByPrior.push_back(candidate);
+                else if (errorLowerBound(check, candidate) > 0.0) bounded.push_back(candidate);
+                else first.push_back(candidate);
+            }
+            std::map<std::string, std::pair<double, Layers>> scored;
+            double best = std::numeric_limits<double>::infinity();
+            auto attempt = [&](const std::string& candidate) {
                 settings.report(0.0f, ("auto: trying " + candidate).c_str());
                 Layers tried;
                 try {
@@ -305,15 +326,31 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
                 } catch (const Error& e) {
                     // A method that cannot take this scene (sweep without a planar receiver,
                     // penumbra_map with the light on the receiver) is not a candidate here.
-                    if (e.status() == SS_ERROR_UNSUPPORTED) continue;
+                    if (e.status() == SS_ERROR_UNSUPPORTED) return;
                     throw;
                 }
+                trials.rendered.push_back(candidate);
                 const double e = estimatedRmse(check, tried);
-                if (!std::isfinite(e)) continue;
-                if (name.empty() || clearlyBetter(e, estimate)) {
-                    name = candidate, estimate = e, layers = std::move(tried);
-                }
+                if (!std::isfinite(e)) return;
+                best = std::min(best, e);
+                scored.emplace(candidate, std::make_pair(e, std::move(tried)));
+            };
+            for (const std::string& candidate : first) attempt(candidate);
+            for (const std::string& candidate : bounded) {
+                // It could still win: its score may be at the bound, and a cheaper candidate
+                // keeps a tie (clearlyBetter).
+                if (!std::isfinite(best) || !clearlyBetter(best, errorLowerBound(check, candidate))) attempt(candidate);
+                else trials.skippedByBound.push_back(candidate);
             }
+            // The choice over what rendered, in the candidates' order of cost: the lowest
+            // estimate, the cheaper on a tie.
+            name.clear();
+            for (const std::string& candidate : candidates) {
+                auto it = scored.find(candidate);
+                if (it == scored.end()) continue;
+                if (name.empty() || clearlyBetter(it->second.first, estimate)) name = candidate, estimate = it->second.first;
+            }
+            if (!name.empty()) layers = std::move(scored.at(name).second);
             if (name.empty()) fail(SS_ERROR_UNSUPPORTED, "auto: no method can render light '" +
                                                              scene.light(lightIndex).name + "' in this scene");
         }
@@ -321,6 +358,7 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
             refineUncertainPixels(scene, lightIndex, settings, impl_->cacheFor(scene).frame->traceScenes(), layers);
             if (std::isfinite(estimate)) estimate = estimatedRmse(check, layers);
         }
+        if (trialsOut) *trialsOut = std::move(trials);
     } else {
         RenderSettings own = settings;
         const bool wantEstimate = own.flag(kEstimateKey, false);

@@ -4,6 +4,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "core/scene.h"
@@ -28,14 +29,22 @@ public:
     // JSON: {"backend", "renderer", "vendor", "version", "limits": {...}}.
     std::string info();
 
+    // What `auto` did for one render: the candidates it rendered (each at full size, in the order
+    // rendered), those its prior left out (autoPriorKeeps) and those whose lower bound on the
+    // check (errorLowerBound) already lost to a rendered one. Empty for any other method.
+    struct AutoTrials {
+        std::vector<std::string> rendered, skippedByPrior, skippedByBound;
+    };
+
     // `method` may be "auto"; *methodUsed receives the method that ran. *estimatedRmse (may be
     // null) receives the result's expected RMSE against the reference from the sparse exact
     // check (methods/sparse_check.h), or NaN where none was made: `auto` always makes one, any
-    // other GL method when the setting "estimate_rmse=1" asks for it (a CPU method: never). "auto" renders every
-    // candidate and keeps the one whose estimate is lowest (the cheaper on a tie).
+    // other GL method when the setting "estimate_rmse=1" asks for it (a CPU method: never).
+    // "auto" renders the candidates its prior keeps, then those whose lower bound leaves them a
+    // chance, and keeps the one whose estimate is lowest (the cheaper on a tie).
     Layers render(const Scene& scene, int lightIndex, const std::string& method,
                   const RenderSettings& settings, std::string* methodUsed,
-                  double* estimatedRmse = nullptr);
+                  double* estimatedRmse = nullptr, AutoTrials* trials = nullptr);
 
     // How many frames were made (one per scene id) and how often their shared passes were
     // drawn (meshUploads: meshes uploaded; traceSceneBuilds: Embree BVHs built for the
@@ -43,8 +52,12 @@ public:
     // the frame cache; the benchmark's stage counts).
     struct CacheStats {
         int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0, shadowMapsEvicted = 0;
+        int cameraPassesPatched = 0, shadowMapsPatched = 0;  // of those: redrawn where meshes moved only
         int traceSceneBuilds = 0;
         size_t shadowMapBytesPeak = 0;  // the most the cached shadow maps of one frame held
+        // Milliseconds: mesh uploads, camera passes and shadow maps drawn (until the GL finished
+        // them), and whole GL method runs (prepare + render, the shared passes they drew included).
+        double uploadMs = 0.0, cameraPassMs = 0.0, shadowMapMs = 0.0, methodMs = 0.0;
     };
     CacheStats cacheStats() const;
 

@@ -37,7 +37,7 @@ SliceTextures renderSlices(Frame& frame, const SliceSetup& setup, Filter filter,
     // Every face counts (an occluder blocks light whichever way it faces), no depth test: a
     // texel of a slice is occluded when anything of that slice projects onto it.
     gl::apply(gl::states::maximum);
-    frame.drawMeshes(SS_MESH_CAST, [&](const GpuMesh& mesh) {
+    frame.drawMeshes(program, SS_MESH_CAST, [&](const GpuMesh& mesh) {
         program.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
     });
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
