@@ -2,12 +2,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "core/error.h"
 #include "core/scene.h"
+#include "reference/adaptive_sampling.h"
 #include "reference/render_reference.h"
 #include "reference/trace_scene_cache.h"
 #include "renderer/renderer.h"
@@ -107,11 +109,27 @@ TEST(ReferenceAdaptive, TracesFarFewerRaysWhereMostPixelsAreLitOrInUmbra) {
     // A lit pixel in the corner, far from the shadow, is decided by the first round.
     EXPECT_EQ(rays.at(2, 2), 16.0f);
     EXPECT_EQ(layer(adaptive, "V").at(2, 2), 1.0f);
-    // Some pixel, at the shadow's edge, needed more than the fixed count.
-    float most = 0.0f;
-    for (float r : rays.pixels) most = std::max(most, r);
-    EXPECT_GT(most, 256.0f);
-    EXPECT_LE(most, 1024.0f);
+    // Pixels at the shadow's edge took further rounds; with a tight target some needed more than
+    // the fixed count, and none more than the cap.
+    auto most = [](const Image& r) { return *std::max_element(r.pixels.begin(), r.pixels.end()); };
+    EXPECT_GT(most(rays), 32.0f);
+    const Layers tight = renderReference(scene, 0, adaptiveSettings("0.0005"), &cache);
+    EXPECT_GT(most(layer(tight, "rays")), 256.0f);
+    EXPECT_LE(most(layer(tight, "rays")), 1024.0f);
+    EXPECT_LE(compare(tight, truth).rmse, c.rmse);
+}
+
+// The target is the mask's RMSE: the undecided pixels share it, each allowed more error the
+// fewer they are, within [target, kMaxPixelError].
+TEST(ReferenceAdaptive, ThePixelTargetSpreadsTheMasksErrorOverTheUndecidedPixels) {
+    AdaptiveSampling a;
+    a.errorTarget = 0.005f;
+    EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 1000), 0.005f);
+    EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 250), 0.01f);
+    EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000000, 1), AdaptiveSampling::kMaxPixelError);
+    EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 0), 0.005f);
+    a.errorTarget = 0.2f;
+    EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 10), 0.2f);
 }
 
 TEST(ReferenceAdaptive, DeterministicForASeedWhateverTheThreadCount) {

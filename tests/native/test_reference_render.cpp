@@ -299,10 +299,13 @@ TEST(ReferenceRender, ProgressIsReportedAndCanCancel) {
     }
 }
 
-TEST(ReferenceRender, EmbreeSceneIsBuiltOncePerRevision) {
+TEST(ReferenceRender, EmbreeSceneIsBuiltOncePerGeometry) {
     Scene scene = test::sceneBox({1.5f, 4.0f, 0.0f, 16, 12});
     TraceSceneCache cache;
     renderReference(scene, 0, withSamples(4), &cache);
+    renderReference(scene, 0, withSamples(4), &cache);
+    EXPECT_EQ(cache.builds(), 1);
+    scene.updateLight(0, scene.lights()[0]);  // a light edit: the BVH holds meshes only
     renderReference(scene, 0, withSamples(4), &cache);
     EXPECT_EQ(cache.builds(), 1);
     scene.addMesh(test::makeBox({2.0f, 2.0f, 0.5f}, {2.5f, 2.5f, 1.0f}, SS_MESH_CAST));

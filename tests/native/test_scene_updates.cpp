@@ -279,6 +279,56 @@ TEST(SceneUpdates, ARefusedEditLeavesTheSceneAsItWas) {
     EXPECT_EQ(scene.lights()[1].name, "B");
 }
 
+// One Embree BVH per scene geometry: the reference, refine=on and the sparse check share it, a
+// light or camera edit keeps it, a mesh edit rebuilds it once.
+TEST(SceneUpdates, OneBvhServesReferenceRefineAndTheCheckUntilAMeshEdit) {
+    Scene scene = threeMeshTwoLights();
+    Renderer renderer(SS_BACKEND_AUTO);
+    RenderSettings fixed;
+    fixed.samples = 4;
+    RenderSettings adaptive = fixed;
+    adaptive.options["adaptive"] = "on";
+    RenderSettings refine;
+    refine.options["refine"] = "on";
+    refine.options["refine_samples"] = "16";
+    RenderSettings estimate;
+    estimate.options["estimate_rmse"] = "1";
+    EXPECT_EQ(renderer.cacheStats().traceSceneBuilds, 0);
+    renderer.render(scene, 0, "reference", fixed, nullptr);
+    EXPECT_EQ(renderer.cacheStats().traceSceneBuilds, 1);
+    renderer.render(scene, 1, "reference", adaptive, nullptr);
+    Layers refined = renderer.render(scene, 0, "pcss", refine, nullptr);
+    double rmse = 0.0;
+    renderer.render(scene, 0, "shadow_map", estimate, nullptr, &rmse);
+    EXPECT_TRUE(std::isfinite(rmse));  // the sparse check ran, on the same BVH
+    EXPECT_EQ(renderer.cacheStats().traceSceneBuilds, 1);
+
+    scene.updateLight(1, test::makeDiskLight({-0.6f, 0.9f, 3.2f}, 0.7f, "B"));
+    scene.setCamera(test::makeTopCamera(64, 48));
+    renderer.render(scene, 1, "reference", fixed, nullptr);
+    renderer.render(scene, 0, "pcss", refine, nullptr);
+    EXPECT_EQ(renderer.cacheStats().traceSceneBuilds, 1);  // lights and camera are not in the BVH
+
+    scene.updateMesh(2, boxBEdited());
+    Layers edited = renderer.render(scene, 0, "pcss", refine, nullptr);
+    renderer.render(scene, 0, "reference", fixed, nullptr);
+    renderer.render(scene, 0, "shadow_map", estimate, nullptr, &rmse);
+    EXPECT_EQ(renderer.cacheStats().traceSceneBuilds, 2);
+
+    // The rebuilt BVH traces the edited geometry: refine matches a fresh renderer's on a scene
+    // built with the edit.
+    Scene fresh;
+    fresh.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+    fresh.addMesh(boxA());
+    fresh.addMesh(boxBEdited());
+    fresh.addLight(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f, "A"));
+    fresh.addLight(test::makeDiskLight({-0.6f, 0.9f, 3.2f}, 0.7f, "B"));
+    fresh.setCamera(test::makeTopCamera(64, 48));
+    Renderer cold(SS_BACKEND_AUTO);
+    EXPECT_EQ(edited.find("V")->pixels, cold.render(fresh, 0, "pcss", refine, nullptr).find("V")->pixels);
+    EXPECT_NE(edited.find("V")->pixels, refined.find("V")->pixels);
+}
+
 // The same through the C API, counted by ss_context_cache_stats.
 TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
     ss_scene* scene = nullptr;
@@ -337,6 +387,24 @@ TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
     EXPECT_GT(stats.shadow_map_ms, 0.0);
     EXPECT_GT(stats.upload_ms, 0.0);
     EXPECT_GE(stats.method_ms, stats.camera_pass_ms + stats.shadow_map_ms + stats.upload_ms);
+    EXPECT_EQ(stats.trace_scene_builds, 0);  // GL methods alone trace nothing
+    ss_render_options options;
+    ss_render_options_default(&options);
+    options.samples = 4;
+    for (int i = 0; i < 2; ++i) {
+        ASSERT_EQ(ss_render(context, scene, 0, "reference", &options, &result), SS_OK);
+        ss_result_destroy(result);
+    }
+    options.settings = "refine=on;refine_samples=16";
+    ASSERT_EQ(ss_render(context, scene, 0, "pcss", &options, &result), SS_OK);
+    ss_result_destroy(result);
+    ASSERT_EQ(ss_context_cache_stats(context, &stats), SS_OK);
+    EXPECT_EQ(stats.trace_scene_builds, 1);
+    ASSERT_EQ(ss_scene_set_mesh_transform(scene, 1, move), SS_OK);
+    ASSERT_EQ(ss_render(context, scene, 0, "pcss", &options, &result), SS_OK);
+    ss_result_destroy(result);
+    ASSERT_EQ(ss_context_cache_stats(context, &stats), SS_OK);
+    EXPECT_EQ(stats.trace_scene_builds, 2);
     EXPECT_EQ(ss_scene_update_light(scene, 1, &light), SS_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(ss_last_error()).find("light index 1"), std::string::npos);
     EXPECT_EQ(ss_scene_remove_mesh(scene, 3), SS_ERROR_INVALID_ARGUMENT);

@@ -342,6 +342,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
 
 void Frame::dropStale() {
     dropStalePasses();
+    traceScenes_.dropStale(*scene_);
     // Maps of lights edited or removed since are never asked for again.
     for (auto it = shadowMaps_.begin(); it != shadowMaps_.end();) {
         bool current = false;

@@ -1,6 +1,6 @@
-// What every method shares for one scene: the scene, GL meshes, the camera G-buffer and one
-// light-centre shadow map per light, each computed once and kept while what it depends on is
-// unchanged (per-mesh, per-light, camera and geometry versions of the Scene).
+// What every method shares for one scene: the scene, GL meshes, the camera G-buffer, one
+// light-centre shadow map per light and the Embree BVH, each computed once and kept while what
+// it depends on is unchanged (per-mesh, per-light, camera and geometry versions of the Scene).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
@@ -18,6 +18,7 @@
 #include "gl/gl_functions.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "reference/trace_scene_cache.h"
 
 namespace ss {
 
@@ -156,6 +157,13 @@ public:
     void dropStale();
     size_t shadowMapBytes() const { return stats_.shadowMapBytes; }
 
+    // ---- the ray tracer's scene (no GL; any thread) ----
+    // The one Embree BVH of this scene's geometry: the reference, refine=on and the sparse check
+    // all trace it. Built on first use, rebuilt after a mesh edit (not a light or camera edit);
+    // builds() counts the builds.
+    TraceSceneCache& traceScenes() { return traceScenes_; }
+    const TraceSceneCache& traceScenes() const { return traceScenes_; }
+
     // ---- helpers ----
     // Draws every mesh whose flags contain all of `requiredFlags` with `program` (in use) and the
     // bound framebuffer, setting its uObjectToWorld, uNormalToWorld and uTransformed; `before`
@@ -211,6 +219,7 @@ private:
     uint64_t useClock_ = 0;
     gl::VertexArrayHandle emptyVao_;
     FrameStats stats_;
+    TraceSceneCache traceScenes_;
 };
 
 }  // namespace ss

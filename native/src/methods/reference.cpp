@@ -5,23 +5,19 @@
 #include "methods/method.h"
 #include "frame/frame.h"
 #include "reference/render_reference.h"
-#include "reference/trace_scene_cache.h"
 
 namespace ss {
 namespace {
 
-// CPU only: needs no GL, reads nothing from the frame but its scene. The Embree scene is cached
-// inside the method object per (scene id, revision), so rendering every light of an unchanged
-// scene builds the BVH once.
+// CPU only: needs no GL, reads nothing from the frame but its scene and the frame's Embree BVH
+// (kept per scene id and geometry version, shared with refine=on and the sparse check), so
+// rendering every light of an unchanged scene builds the BVH once.
 class ReferenceMethod final : public Method {
 public:
     ReferenceMethod() : Method("reference", MethodDevice::Cpu, referenceSettingKeys()) {}
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        return renderReference(frame.scene(), lightIndex, settings, &cache_);
+        return renderReference(frame.scene(), lightIndex, settings, &frame.traceScenes());
     }
-
-private:
-    TraceSceneCache cache_;
 };
 
 }  // namespace

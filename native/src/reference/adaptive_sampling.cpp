@@ -49,7 +49,7 @@ struct Tracer {
 
 // Rounds after the first until the point is decided; `sums` holds the first round's samples.
 void continueRounds(const std::function<void(uint32_t, uint32_t, SampleSums*)>& add, const AdaptiveSampling& a,
-                    SampleSums* sums) {
+                    float pixelTarget, SampleSums* sums) {
     int n = a.minSamples, passed = 0;
     while (n < a.maxSamples) {
         const int next = std::min(2 * n, a.maxSamples);
@@ -60,12 +60,18 @@ void continueRounds(const std::function<void(uint32_t, uint32_t, SampleSums*)>& 
         if (!(before.weight > 0.0) || !(roundWeight > 0.0)) continue;
         const double roundV = (sums->visible - before.visible) / roundWeight;
         const double error = 0.5 * std::abs(before.visibility() - roundV);
-        passed = error <= a.errorTarget ? passed + 1 : 0;
+        passed = error <= pixelTarget ? passed + 1 : 0;
         if (passed >= (decidedByAgreement(*sums, a) ? 1 : 2)) break;
     }
 }
 
 }  // namespace
+
+float pixelErrorTarget(const AdaptiveSampling& a, size_t maskPixels, size_t undecidedPixels) {
+    if (undecidedPixels == 0) return a.errorTarget;
+    const double spread = std::sqrt(double(maskPixels) / double(undecidedPixels));
+    return std::max(a.errorTarget, std::min(float(a.errorTarget * spread), AdaptiveSampling::kMaxPixelError));
+}
 
 void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, const SurfaceHit& hit,
                       const SampleSequence& sequence, bool castShadows, const AdaptiveSampling& sampling,
@@ -75,7 +81,8 @@ void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, cons
     };
     add(0, uint32_t(sampling.minSamples), sums);
     if (!(sums->weight > 0.0) || decidedByAgreement(*sums, sampling)) return;
-    continueRounds(add, sampling, sums);
+    // An isolated point has no image to share the error with: it keeps the target itself.
+    continueRounds(add, sampling, sampling.errorTarget, sums);
 }
 
 std::vector<std::string> adaptiveSamplingKeys() { return {"error_target", "guard_band"}; }
@@ -126,6 +133,12 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
                 }
         }
     state.swap(next);
+    size_t maskPixels = sampling.untracedMaskPixels, undecided = 0;
+    for (size_t i = 0; i < count; ++i) {
+        if (state[i] == PixelState::Undecided) ++undecided;
+        if (state[i] != PixelState::Skipped && sums[i].weight > 0.0) ++maskPixels;
+    }
+    const float pixelTarget = pixelErrorTarget(sampling, maskPixels, undecided);
 
     forEachRow(settings, height, "tracing shadow rays (adaptive rounds)", 0.3f, 1.0f, [&](int y) {
         for (int x = 0; x < width; ++x) {
@@ -135,7 +148,7 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
                 SurfaceHit hit;
                 t.surface(x, y, &hit);  // the same deterministic hit as the first round's
                 continueRounds([&](uint32_t begin, uint32_t end, SampleSums* into) { t.add(hit, x, y, begin, end, into); },
-                               sampling, &sums[i]);
+                               sampling, pixelTarget, &sums[i]);
             }
             if (rays) rays->at(x, y) = float(sums[i].rays);
             if (!(sums[i].weight > 0.0)) continue;

@@ -1,6 +1,7 @@
 // How the reference spends its light samples where they matter: rounds per pixel, stopped when decided.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,16 +20,26 @@ namespace ss {
 // - A pixel whose first round agrees (all blocked or all visible, at least minSamples / 2 rays
 //   above the horizon) or carries no weight at all is decided, unless a pixel
 //   within `guardBand` pixels disagrees: thin casters and shadow edges hide between samples.
-// - Every other pixel stops when its estimated error is at most `errorTarget` twice in a row
+// - Every other pixel stops when its estimated error is at most the pixel target twice in a row
 //   (once when every sample so far agrees) or at `maxSamples`. The estimate of a round is half
 //   the difference between V of the samples before it and V of the round's own samples (each a
 //   power-of-two prefix or block of a (0,2)-sequence, so both are stratified estimates).
+// - `errorTarget` is the RMSE over the mask the rounds aim at: decided pixels are exact, so the
+//   u undecided pixels of m mask pixels may each err by errorTarget * sqrt(m / u), at most
+//   kMaxPixelError (and never less than errorTarget).
 struct AdaptiveSampling {
+    static constexpr float kMaxPixelError = 0.05f;
     int minSamples = 16;
     int maxSamples = 1024;
     float errorTarget = 0.005f;
     int guardBand = 2;
+    // Mask pixels the caller keeps without tracing (refine: where the GL pass was certain);
+    // they count in m above.
+    size_t untracedMaskPixels = 0;
 };
+
+// The error each undecided pixel may keep so that the mask's RMSE meets the target.
+float pixelErrorTarget(const AdaptiveSampling& sampling, size_t maskPixels, size_t undecidedPixels);
 
 // One point on its own, without the guard band (no neighbours to consult: the sparse check's
 // isolated pixels): the first round, then further rounds unless the first agrees. Adds to *sums.

@@ -127,7 +127,7 @@ struct TraceScene::Impl {
 };
 
 TraceScene::TraceScene(const Scene& scene)
-    : impl_(std::make_unique<Impl>()), sceneId_(scene.id()), revision_(scene.revision()) {
+    : impl_(std::make_unique<Impl>()), sceneId_(scene.id()), geometryVersion_(scene.geometryVersion()) {
     Impl& m = *impl_;
     m.device = sharedDevice();
     m.filterSupported = rtcGetDeviceProperty(m.device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED) != 0;

@@ -22,8 +22,9 @@ struct SurfaceHit {
 };
 
 // Immutable once built, safe to query from many threads. Holds a reference to nothing in the
-// source Scene except what it copies, so the Scene may change afterwards (the cache key then
-// differs and a new TraceScene is built).
+// source Scene except what it copies, so the Scene may change afterwards (the cache key, the
+// scene id and geometry version, then differs and a new TraceScene is built). It holds meshes
+// only: a light or camera edit leaves it valid.
 class TraceScene {
 public:
     explicit TraceScene(const Scene& scene);
@@ -32,7 +33,7 @@ public:
     TraceScene& operator=(const TraceScene&) = delete;
 
     uint64_t sceneId() const { return sceneId_; }
-    uint64_t revision() const { return revision_; }
+    uint64_t geometryVersion() const { return geometryVersion_; }
     // Largest absolute coordinate of any vertex: the scale robust offsets are measured against.
     float extent() const { return extent_; }
 
@@ -50,7 +51,7 @@ public:
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
-    uint64_t sceneId_ = 0, revision_ = 0;
+    uint64_t sceneId_ = 0, geometryVersion_ = 0;
     float extent_ = 0.0f;
 };
 

@@ -1,4 +1,4 @@
-// Which Embree scene to reuse: one TraceScene kept per (scene id, revision), rebuilt on change.
+// Which Embree scene to reuse: one TraceScene kept per (scene id, geometry version), rebuilt on change.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <memory>
@@ -8,15 +8,18 @@
 
 namespace ss {
 
-// Holds the most recent TraceScene. A render keeps its shared_ptr alive, so a rebuild for a
-// newer revision never pulls the scene out from under a render still running.
+// Holds the most recent TraceScene. A render keeps its shared_ptr alive, so a rebuild for newer
+// geometry never pulls the scene out from under a render still running. Keyed by the geometry
+// version, not the revision: a light or camera edit keeps the BVH.
 class TraceSceneCache {
 public:
     std::shared_ptr<const TraceScene> get(const Scene& scene);
-    int builds() const { return builds_; }  // how many TraceScenes were built (for tests)
+    // Lets go of a TraceScene that no longer shows `scene`'s geometry (its memory is the BVH's).
+    void dropStale(const Scene& scene);
+    int builds() const;  // how many TraceScenes were built
 
 private:
-    std::mutex mutex_;
+    mutable std::mutex mutex_;
     std::shared_ptr<const TraceScene> current_;
     int builds_ = 0;
 };

@@ -49,13 +49,15 @@ void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSetti
                            TraceSceneCache& cache, Layers& layers) {
     const int margin = settings.integer("refine_margin", 3, 0, 32);
     const int samples = settings.integer("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16);
-    const AdaptiveSampling sampling = adaptiveSampling(settings, samples);
+    AdaptiveSampling sampling = adaptiveSampling(settings, samples);
     Image* visibility = nullptr;
     for (auto& [name, image] : layers.items)
         if (name == "V") visibility = &image;
     const Image* mask = layers.find("mask");
     if (!visibility || !mask) fail(SS_ERROR_INTERNAL, "refine: the method made no V or mask layer");
     Image select = uncertainPixels(*visibility, *mask, margin);
+    for (size_t i = 0; i < mask->pixels.size(); ++i)
+        if (mask->pixels[i] != 0.0f && select.pixels[i] == 0.0f) ++sampling.untracedMaskPixels;
 
     settings.report(0.0f, "building the ray-tracing scene");
     std::shared_ptr<const TraceScene> trace = cache.get(scene);

@@ -17,7 +17,6 @@
 #include "gl/render_thread.h"
 #include "frame/frame.h"
 #include "methods/sparse_check.h"
-#include "reference/trace_scene_cache.h"
 #include "renderer/refinement.h"
 
 namespace ss {
@@ -35,7 +34,6 @@ struct Renderer::Impl {
         uint64_t sceneId = 0, revision = 0;
         std::unique_ptr<Frame> frame;
         std::map<std::string, std::unique_ptr<Method>> methods;
-        TraceSceneCache refineTrace;  // the BVH of "refine=on", built at its first use
     };
     // The scenes rendered last, least recent first: three, so that the add-on's two preview
     // scenes (coarse and full size, each with its own camera pass) and its render_passes scene
@@ -43,7 +41,6 @@ struct Renderer::Impl {
     static constexpr size_t kKeptScenes = 3;
     std::vector<std::unique_ptr<Cached>> caches;
     CacheStats finished;  // of frames already dropped (and every method run's time)
-    TraceSceneCache traceCache;  // the Embree scene of the sparse checks
     size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
 
     void count(const Frame& f, CacheStats& into) const {
@@ -57,6 +54,7 @@ struct Renderer::Impl {
         into.uploadMs += f.stats().uploadMs;
         into.cameraPassMs += f.stats().cameraPassMs;
         into.shadowMapMs += f.stats().shadowMapMs;
+        into.traceSceneBuilds += f.traceScenes().builds();
     }
 
     // ss_shutdown() stopped the thread: everything GL died with its context, so the frame
@@ -265,7 +263,7 @@ Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::str
     checkLayers(layers, scene.camera(), name);
     // Refinement traces on the caller's thread (progress may call Python); the reference is
     // exact already, so it has nothing to refine.
-    if (refine && m.needsGl()) refineUncertainPixels(scene, lightIndex, settings, cached.refineTrace, layers);
+    if (refine && m.needsGl()) refineUncertainPixels(scene, lightIndex, settings, frame.traceScenes(), layers);
     return layers;
 }
 
@@ -273,7 +271,7 @@ bool Renderer::sparseCheck(const Scene& scene, int lightIndex, int pixels, int s
                            SparseCheck* out) {
     if (pixels <= 0) return false;
     try {
-        std::shared_ptr<const TraceScene> trace = impl_->traceCache.get(scene);
+        std::shared_ptr<const TraceScene> trace = impl_->cacheFor(scene).frame->traceScenes().get(scene);
         *out = runSparseCheck(*trace, scene, lightIndex, pixels, samples, seed);
     } catch (const Error& e) {
         if (e.status() == SS_ERROR_CANCELLED) throw;
@@ -358,7 +356,7 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
                                                              scene.light(lightIndex).name + "' in this scene");
         }
         if (refine && impl_->cacheFor(scene).methods.at(name)->needsGl()) {
-            refineUncertainPixels(scene, lightIndex, settings, impl_->cacheFor(scene).refineTrace, layers);
+            refineUncertainPixels(scene, lightIndex, settings, impl_->cacheFor(scene).frame->traceScenes(), layers);
             if (std::isfinite(estimate)) estimate = estimatedRmse(check, layers);
         }
         if (trialsOut) *trialsOut = std::move(trials);
