@@ -130,6 +130,10 @@ SOFTSHADOW_ADDON_PATH="$ROOT/blender_addon" "$BLENDER" --background --factory-st
 grep -q BENCH-WARM-OK "$WORK/warm.log" || { tail -n 40 "$WORK/warm.log"; exit 1; }
 cat "$OUT/warm_render_passes.md"
 
+# 4d. Exact penumbrae (adaptive reference, pcss refine=on) against Cycles-64 at 512² and on the
+#     large suzannes at 1024²: its own script and table (bench/results/exact_penumbrae.md).
+[ "$QUICK" = 1 ] || { log "exact penumbrae against Cycles-64"; bash "$HERE/exact_penumbrae.sh" "$BUILD_DIR"; }
+
 # 5. Errors against the truth, and image strips (method | truth | 4 x |error|).
 log "errors and image strips"
 for dir in "$WORK"/scenes/*/; do
