@@ -10,46 +10,35 @@ import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def load_scenes_module():
-    """bench/scenes.py's builders and renderer, without running its main() (it has no
-    __name__ guard)."""
-    path = os.path.join(HERE, "scenes.py")
-    with open(path) as f:
-        lines = f.read().splitlines()
-    body = "\n".join(line for line in lines if line.strip() != "main()")
-    namespace = {"__file__": path, "__name__": "bench_scenes"}
-    exec(compile(body, path, "exec"), namespace)
-    return namespace
+sys.path.insert(0, HERE)
+import scenes as s  # noqa: E402  bench/scenes.py: its builders, light, camera and Cycles settings
 
 
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:]
     out_root, size, samples, names = argv[0], int(argv[1]), int(argv[2]), argv[3].split(",")
-    s = load_scenes_module()
-    known = {entry[0]: entry for entry in s["SCENES"]}
+    known = {entry[0]: entry for entry in s.SCENES}
     unknown = [n for n in names if n not in known]
     if unknown:
         raise SystemExit("exact_penumbrae: no scene %s in bench/scenes.py (it has %s)" %
                          (", ".join(unknown), ", ".join(known)))
     for name in names:
         _, build, light_kw = known[name]
-        scene = s["reset"]()
+        scene = s.reset()
         build()
-        s["area_light"](**light_kw)
-        s["camera"]()
+        s.area_light(**light_kw)
+        s.camera()
         scene.render.resolution_x = scene.render.resolution_y = size
         scene.render.resolution_percentage = 100
         scene.render.filter_size = 0.0
         out_dir = os.path.join(out_root, name)
         os.makedirs(out_dir, exist_ok=True)
-        problems = s["api"].export_scene_file(scene, os.path.join(out_dir, "scene.json"))
+        problems = s.api.export_scene_file(scene, os.path.join(out_dir, "scene.json"))
         scene.softshadow.enabled = False  # the add-on's passes must not ride on Cycles' time
-        s["setup_compositor"](scene)
-        seconds = s["render_engine"](scene, "cycles", samples, out_dir, "cycles_%d" % samples)
+        s.setup_compositor(scene)
+        seconds = s.render_engine(scene, "cycles", samples, out_dir, "cycles_%d" % samples)
         info = {"scene": name, "size": size, "samples": samples, "seconds": seconds,
-                "triangles": s["triangle_count"](scene), "problems": problems}
+                "triangles": s.triangle_count(scene), "problems": problems}
         with open(os.path.join(out_dir, "cycles.json"), "w") as f:
             json.dump(info, f, indent=1)
         print("EXACT %s cycles %d at %d: %.2f s, %d triangles" % (name, samples, size, seconds, info["triangles"]),

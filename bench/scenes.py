@@ -391,4 +391,5 @@ def main():
     print("BENCH-SCENES-OK", flush=True)
 
 
-main()
+if __name__ == "__main__":  # Blender runs --python scripts as __main__
+    main()
