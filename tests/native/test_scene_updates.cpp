@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -410,6 +411,52 @@ TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
     EXPECT_EQ(ss_scene_remove_mesh(scene, 3), SS_ERROR_INVALID_ARGUMENT);
     ss_context_destroy(context);
     ss_scene_destroy(scene);
+}
+
+
+// A method's prepared geometry (sweep's shadow mesh, penumbra_map's cones and sheets) depends on
+// the meshes and its light only: a camera edit and another light's edit keep it, a move rebuilds
+// it, and what is rendered with the kept geometry equals a fresh renderer's image.
+TEST(SceneUpdates, PreparedGeometrySurvivesCameraAndOtherLightEdits) {
+    const std::pair<const char*, const char*> cases[] = {{"sweep", "sweep: geometry"},
+                                                         {"penumbra_map", "penumbra_map cones and sheets"}};
+    for (const auto& [method, stage] : cases) {
+        SCOPED_TRACE(method);
+        Scene scene = threeMeshTwoLights();
+        Renderer renderer(SS_BACKEND_AUTO);
+        int builds = 0;
+        RenderSettings settings;
+        settings.progress = [&, stage = std::string(stage)](float, const char* s) {
+            if (stage == s) ++builds;
+            return true;
+        };
+        renderer.render(scene, 0, method, settings, nullptr);
+        EXPECT_EQ(builds, 1);
+
+        scene.setCamera(test::makeTopCamera(80, 60));
+        Layers afterCamera = renderer.render(scene, 0, method, settings, nullptr);
+        EXPECT_EQ(builds, 1) << "a camera edit rebuilt the geometry";
+        Renderer fresh(SS_BACKEND_AUTO);
+        EXPECT_EQ(afterCamera.find("V")->pixels, fresh.render(scene, 0, method, RenderSettings{}, nullptr).find("V")->pixels);
+
+        Light other = scene.light(1);
+        other.size *= 1.5f;
+        scene.updateLight(1, other);
+        renderer.render(scene, 0, method, settings, nullptr);
+        EXPECT_EQ(builds, 1) << "another light's edit rebuilt the geometry";
+
+        Light own = scene.light(0);
+        own.size *= 1.5f;
+        scene.updateLight(0, own);
+        renderer.render(scene, 0, method, settings, nullptr);
+        EXPECT_EQ(builds, 2) << "the light's own edit kept stale geometry";
+
+        scene.setMeshTransform(1, glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.2f, 0.0f)));
+        Layers afterMove = renderer.render(scene, 0, method, settings, nullptr);
+        EXPECT_EQ(builds, 3) << "a move kept stale geometry";
+        Renderer fresh2(SS_BACKEND_AUTO);
+        EXPECT_EQ(afterMove.find("V")->pixels, fresh2.render(scene, 0, method, RenderSettings{}, nullptr).find("V")->pixels);
+    }
 }
 
 }  // namespace

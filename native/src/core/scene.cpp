@@ -126,6 +126,10 @@ const Light& Scene::light(int index, const std::string& where) const {
     return lights_[checkedIndex(index, lights_.size(), where, "light", "lights", "scene")];
 }
 
+Scene::LightGeometryKey Scene::lightGeometryKey(int lightIndex) const {
+    return {id(), geometryVersion_, light(lightIndex, "lightGeometryKey").version, lightIndex};
+}
+
 int Scene::findLight(const std::string& name) const {
     for (size_t i = 0; i < lights_.size(); ++i)
         if (lights_[i].name == name) return int(i);

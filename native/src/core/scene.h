@@ -56,14 +56,23 @@ public:
     const std::string& viewLayer() const { return viewLayer_; }
     int findLight(const std::string& name) const;  // -1 when absent
     Bounds bounds() const;                         // of all meshes
-    // Changes whenever the scene changes: caches key on (scene id, revision). A copy is another
-    // scene (the two may diverge with equal revisions), so it gets an id of its own.
+    // Changes whenever the scene changes (caches key on the finer versions below, with the id).
+    // A copy is another scene (the two may diverge with equal versions), so it gets an id of its own.
     uint64_t revision() const { return revision_; }
     uint64_t id() const { return id_.value; }
     // Change with any mesh edit (what the camera pass and every shadow map depend on) and with
     // any camera edit, respectively; unique over the process like the mesh and light versions.
     uint64_t geometryVersion() const { return geometryVersion_; }
     uint64_t cameraVersion() const { return cameraVersion_; }
+    // What a light's CPU geometry (silhouettes, volumes, cones and sheets, sweeps) depends on.
+    struct LightGeometryKey {
+        uint64_t sceneId = 0, geometryVersion = 0, lightVersion = 0;
+        int lightIndex = -1;
+        bool operator==(const LightGeometryKey&) const = default;
+    };
+    // The key methods keep their prepared geometry under: a camera edit, or another light's,
+    // keeps it; a mesh edit (a move included) or this light's edit changes it.
+    LightGeometryKey lightGeometryKey(int lightIndex) const;
     // A fresh version stamp (process-wide counter).
     static uint64_t nextVersion();
 

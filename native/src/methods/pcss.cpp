@@ -49,8 +49,6 @@ public:
         return readReceiverPlaneLayers(out, settings.extraLayers, {{"blocker_distance", 2}, {"kernel_texels", 3}});
     }
 
-private:
-    // The output target, kept between renders of the same frame.
 };
 
 }  // namespace

@@ -47,11 +47,10 @@ PenumbraIntensity intensityRule(const RenderSettings& settings) {
 
 namespace {
 
-// Cones and sheets on the GPU, kept while the light index and its parameters stay the same
-// and the scene (id, revision) is the one they were built for.
+// Cones and sheets on the GPU, kept while the light's geometry key (Scene::lightGeometryKey)
+// and the parameters stay the same: a camera edit keeps them.
 struct GpuConesSheets {
-    uint64_t sceneId = 0, revision = 0;
-    int lightIndex = -1;
+    Scene::LightGeometryKey key;
     float radius = -1.0f;
     int mapSize = 0;
     int coneSegments = 0;
@@ -79,17 +78,14 @@ public:
         const float radius = penumbraMapLightRadius(light);
         GpuConesSheets& g = geometry_;
         const Scene& scene = frame.scene();
-        if (g.sceneId == scene.id() && g.revision == scene.revision() && g.lightIndex == lightIndex &&
-            g.radius == radius && g.mapSize == mapSize && g.coneSegments == cs.coneSegments)
+        if (g.key == scene.lightGeometryKey(lightIndex) && g.radius == radius && g.mapSize == mapSize && g.coneSegments == cs.coneSegments)
             return;
         const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
         settings.report(0.1f, "penumbra_map cones and sheets");
         ConesSheets cpu = buildPenumbraGeometry(frame.scene(), map, radius, cs);
         const gl::Functions& api = frame.gl();
         g = GpuConesSheets{};
-        g.sceneId = scene.id();
-        g.revision = scene.revision();
-        g.lightIndex = lightIndex;
+        g.key = scene.lightGeometryKey(lightIndex);
         g.radius = radius;
         g.mapSize = mapSize;
         g.coneSegments = cs.coneSegments;
@@ -156,7 +152,6 @@ public:
 
 private:
     GpuConesSheets geometry_;
-    // Render targets kept between renders of the same frame (allocation is not free on llvmpipe).
 };
 
 }  // namespace

@@ -28,10 +28,11 @@ struct Renderer::Impl {
     std::string infoJson;
     std::function<void()> cacheTakenHook;
 
-    // The shared passes of a scene (kept across its edits: the frame redraws only what an edit
-    // changed) and the method objects with whatever they prepared for its last revision.
+    // The shared passes of a scene and the method objects with what they prepared, all kept
+    // across its edits: the frame redraws only what an edit changed, and a method rebuilds its
+    // geometry only when its light's key changes (Scene::lightGeometryKey).
     struct Cached {
-        uint64_t sceneId = 0, revision = 0;
+        uint64_t sceneId = 0;
         std::unique_ptr<Frame> frame;
         std::map<std::string, std::unique_ptr<Method>> methods;
     };
@@ -102,13 +103,6 @@ struct Renderer::Impl {
         destroyOnGlThread(oldest);
     }
 
-    // Method objects may hold GL objects: freed on the render thread, like the frame's.
-    void dropMethods(Cached& c) {
-        std::map<std::string, std::unique_ptr<Method>> stale;
-        stale.swap(c.methods);
-        destroyOnGlThread(stale);
-    }
-
     Cached& cacheFor(const Scene& scene) {
         for (size_t i = 0; i < caches.size(); ++i) {
             if (caches[i]->sceneId != scene.id()) continue;
@@ -117,16 +111,11 @@ struct Renderer::Impl {
             caches.push_back(std::move(c));
             Cached& cached = *caches.back();
             cached.frame->setScene(scene);  // the same scene, perhaps moved in memory
-            if (cached.revision != scene.revision()) {
-                dropMethods(cached);
-                cached.revision = scene.revision();
-            }
             return cached;
         }
         if (caches.size() >= kKeptScenes) dropOldest();
         auto cached = std::make_unique<Cached>();
         cached->sceneId = scene.id();
-        cached->revision = scene.revision();
         cached->frame = std::make_unique<Frame>(scene);
         ++finished.frames;
         caches.push_back(std::move(cached));

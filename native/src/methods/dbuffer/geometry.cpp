@@ -17,12 +17,10 @@ namespace ss {
 namespace {
 
 struct Key {
-    uint64_t sceneId = 0, revision = 0;
-    int lightIndex = 0;
+    Scene::LightGeometryKey geometry;
     Disk disk;
     bool operator==(const Key& o) const {
-        return sceneId == o.sceneId && revision == o.revision && lightIndex == o.lightIndex &&
-               disk.centre == o.disk.centre && disk.normal == o.disk.normal && disk.radius == o.disk.radius;
+        return geometry == o.geometry && disk.centre == o.disk.centre && disk.normal == o.disk.normal && disk.radius == o.disk.radius;
     }
 };
 
@@ -62,7 +60,7 @@ std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int l
     for (const Mesh& m : scene.meshes())
         if (m.casts())
             for (const glm::vec3& p : m.positions) casters.extend(p);
-    Key key{scene.id(), scene.revision(), lightIndex,
+    Key key{scene.lightGeometryKey(lightIndex),
             dbufferDisk(scene.light(lightIndex), casters, scene.bounds())};
     {
         std::lock_guard<std::mutex> lock(cacheMutex);

@@ -18,8 +18,8 @@ struct DbufferGeometry {
 };
 
 // The volumes of casting meshes for light `lightIndex`, built on first use and kept for the same
-// (scene id, scene revision, disk) — the scene's revision changes whenever a mesh or light does,
-// so a moved light or edited mesh rebuilds them. A few recent entries are kept (thread-safe).
+// (Scene::lightGeometryKey, disk): a mesh edit or move, or this light's edit, rebuilds them; a
+// camera edit or another light's keeps them. A few recent entries are kept (thread-safe).
 // Throws ss::Error(SS_ERROR_CANCELLED) between meshes once `cancel` is set.
 std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex,
                                                        const std::atomic<bool>* cancel = nullptr);

@@ -76,8 +76,8 @@ public:
 
 private:
     struct Key {
-        uint64_t scene = 0, revision = 0;
-        int light = -1, samples = 0, clusters = 1;
+        Scene::LightGeometryKey geometry;
+        int samples = 0, clusters = 1;
         uint32_t seed = 0;
         double border = 0;
         planar::FillMode fill{};
@@ -88,7 +88,7 @@ private:
 
     const SweepShadow& shadowFor(const Scene& scene, int lightIndex, const RenderSettings& settings) {
         SweepOptions o = sweepOptions(settings);
-        Key k{scene.id(), scene.revision(), lightIndex, o.samples, o.clusters, o.seed, o.borderShare, o.fill, o.receiver,
+        Key k{scene.lightGeometryKey(lightIndex), o.samples, o.clusters, o.seed, o.borderShare, o.fill, o.receiver,
               o.irradianceWeights};
         if (!cached_ || !(key_ == k)) {
             settings.report(0.0f, "sweep: geometry");
