@@ -15,16 +15,6 @@
 namespace ss {
 namespace {
 
-Mesh finalizedMesh(std::vector<glm::vec3> p, std::vector<glm::uvec3> t) {
-    Mesh m;
-    m.name = "test";
-    m.positions = std::move(p);
-    m.triangles = std::move(t);
-    m.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
-    m.finalize();
-    return m;
-}
-
 // A pyramid over a polygon (counter-clockwise in xy at z0) with its apex at `apex`; the base
 // is a fan from its centre.
 Mesh pyramid(const std::vector<glm::vec2>& base, float z0, const glm::vec3& apex) {
@@ -39,7 +29,7 @@ Mesh pyramid(const std::vector<glm::vec2>& base, float z0, const glm::vec3& apex
         t.push_back({i, j, top});
         t.push_back({j, i, bottom});
     }
-    return finalizedMesh(p, t);
+    return test::makeMesh(p, t);
 }
 
 // A prism over a star-shaped polygon, caps as fans from the centre.
@@ -58,7 +48,7 @@ Mesh prism(const std::vector<glm::vec2>& base, float z0, float z1) {
         t.push_back({j, i, 2 * n});
         t.push_back({n + i, n + j, 2 * n + 1});
     }
-    return finalizedMesh(p, t);
+    return test::makeMesh(p, t);
 }
 
 std::vector<glm::vec2> circle(int n, float r) {
@@ -81,7 +71,7 @@ std::vector<glm::vec2> star(int points, float outer, float inner) {
 }
 
 Mesh octahedron(float rx, float ry, float rz, float z0) {
-    return finalizedMesh({{rx, 0, z0}, {0, ry, z0}, {-rx, 0, z0}, {0, -ry, z0}, {0, 0, z0 + rz}, {0, 0, z0 - rz}},
+    return test::makeMesh({{rx, 0, z0}, {0, ry, z0}, {-rx, 0, z0}, {0, -ry, z0}, {0, 0, z0 + rz}, {0, 0, z0 - rz}},
                          {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}, {1, 0, 5}, {2, 1, 5}, {3, 2, 5}, {0, 3, 5}});
 }
 
@@ -104,7 +94,7 @@ Mesh twoOctahedra(bool split = false) {
         for (int k = 0; k < 3; ++k) m[k] = tri[k] == 5 ? (split ? 11 : 4) : tri[k] + 6;
         t.push_back(m);
     }
-    return finalizedMesh(p, t);
+    return test::makeMesh(p, t);
 }
 
 using Key = std::tuple<float, float, float>;

@@ -13,23 +13,13 @@
 namespace ss {
 namespace {
 
-Mesh finalizedMesh(std::vector<glm::vec3> p, std::vector<glm::uvec3> t) {
-    Mesh m;
-    m.name = "test";
-    m.positions = std::move(p);
-    m.triangles = std::move(t);
-    m.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
-    m.finalize();
-    return m;
-}
-
 Mesh box(glm::vec3 lo, glm::vec3 hi) {
     std::vector<glm::vec3> p;
     for (int i = 0; i < 8; ++i) p.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
     std::vector<glm::uvec3> t;
     auto quad = [&](uint32_t a, uint32_t b, uint32_t c, uint32_t d) { t.push_back({a, b, c}), t.push_back({a, c, d}); };
     quad(0, 2, 3, 1), quad(4, 5, 7, 6), quad(0, 1, 5, 4), quad(2, 6, 7, 3), quad(0, 4, 6, 2), quad(1, 3, 7, 5);
-    return finalizedMesh(p, t);
+    return test::makeMesh(p, t);
 }
 
 Mesh uvSphere(int rings, int segments) {
@@ -130,7 +120,7 @@ TEST(DbufferVolumes, SphereUnderWideDiskIsClosedWithSilhouetteFaces) {
 
 TEST(DbufferVolumes, OpenQuadStaysFiniteAndCountsEdgesThroughTheDisk) {
     // A quad right under the disk centre: its edges' lines are parallel to the light.
-    Mesh m = finalizedMesh({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+    Mesh m = test::makeMesh({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
     Disk d{{0, 0, 3}, {0, 0, -1}, 0.5f};
     ShadowVolumes v = extrudeVolumes(m, diskSilhouette(m, d), d, 10.0f);
     EXPECT_EQ(v.umbraQuads, 4u);
@@ -139,7 +129,7 @@ TEST(DbufferVolumes, OpenQuadStaysFiniteAndCountsEdgesThroughTheDisk) {
     expectLaterallyClosed(m, v.penumbra, "penumbra");
     // A vertical fin whose line pierces the disk: not a silhouette of a closed mesh, so the
     // fallback construction must keep everything finite.
-    Mesh fin = finalizedMesh({{0, 0, 0}, {0, 0, 1}, {1, 0, 0.5f}}, {{0, 1, 2}});
+    Mesh fin = test::makeMesh({{0, 0, 0}, {0, 0, 1}, {1, 0, 0.5f}}, {{0, 1, 2}});
     ShadowVolumes f = extrudeVolumes(fin, diskSilhouette(fin, d), d, 10.0f);
     EXPECT_GE(f.insideDiskEdges, 1u);
     for (const VolumeVertex& x : f.umbra) EXPECT_TRUE(std::isfinite(x.position.x + x.position.y + x.position.z));

@@ -17,16 +17,6 @@ namespace {
 
 using EdgeSet = std::set<std::pair<uint32_t, uint32_t>>;  // undirected (lo, hi)
 
-Mesh finalized(std::vector<glm::vec3> p, std::vector<glm::uvec3> t) {
-    Mesh m;
-    m.name = "test";
-    m.positions = std::move(p);
-    m.triangles = std::move(t);
-    m.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
-    m.finalize();
-    return m;
-}
-
 // Cube [-1,1]^3, outward CCW. Vertex i has x = bit0, y = bit1, z = bit2 (0 -> -1, 1 -> +1).
 Mesh cube() {
     std::vector<glm::vec3> p;
@@ -42,11 +32,11 @@ Mesh cube() {
     quad(t, 2, 6, 7, 3);  // +y
     quad(t, 0, 4, 6, 2);  // -x
     quad(t, 1, 3, 7, 5);  // +x
-    return finalized(p, t);
+    return test::makeMesh(p, t);
 }
 
 Mesh tetrahedron() {
-    return finalized({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+    return test::makeMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
                      {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
 }
 // Faces of tetrahedron(): 0 bottom (z=0), 1 y=0, 2 x=0, 3 slanted.
@@ -113,7 +103,7 @@ TEST(PointSilhouette, PointInAFacePlaneSeesItAsBackFacing) {
 }
 
 TEST(PointSilhouette, OpenQuadEdgesCountFromBothSides) {
-    Mesh m = finalized({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+    Mesh m = test::makeMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
     EdgeSet border = {{0, 1}, {1, 2}, {2, 3}, {0, 3}};
     PointSilhouette above = pointSilhouette(m, {0.5f, 0.5f, 3});
     PointSilhouette below = pointSilhouette(m, {0.5f, 0.5f, -3});
@@ -134,7 +124,7 @@ TEST(PointSilhouette, OpenQuadEdgesCountFromBothSides) {
 
 TEST(PointSilhouette, NonManifoldFinNeedsBothClassesAmongItsFaces) {
     // Three triangles on edge (0,1): two facing +z-ish, one facing +y.
-    Mesh m = finalized({{0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1}},
+    Mesh m = test::makeMesh({{0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1}},
                        {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
     ASSERT_EQ(m.report.nonManifoldEdges, 1u);
     // From high above: faces 0 and 1 front (+z), face 2 normal -y: the point at y=0.5 is
@@ -152,7 +142,7 @@ TEST(PointSilhouette, NonManifoldFinNeedsBothClassesAmongItsFaces) {
 
 TEST(PointSilhouette, DegenerateFacesTakeNoPart) {
     // A tetrahedron plus a zero-area triangle hanging on one of its edges by a duplicate vertex.
-    Mesh m = finalized({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5f, 0, 0}},
+    Mesh m = test::makeMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5f, 0, 0}},
                        {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 4, 1}});
     ASSERT_EQ(m.report.degenerateFaces, 1u);
     PointSilhouette s = pointSilhouette(m, {0.2f, 0.2f, 5});
@@ -308,7 +298,7 @@ TEST(DiskSilhouette, SphereUnderAxisDiskHasLatitudeLoops) {
 }
 
 TEST(DiskSilhouette, OpenQuadIsBothUmbraAndPenumbraSilhouette) {
-    Mesh m = finalized({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+    Mesh m = test::makeMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
     EdgeSet border = {{0, 1}, {1, 2}, {2, 3}, {0, 3}};
     for (float z : {3.0f, -3.0f}) {
         DiskSilhouette s = diskSilhouette(m, Disk{{0.5f, 0.5f, z}, {0, 0, z > 0 ? -1.f : 1.f}, 0.5f});

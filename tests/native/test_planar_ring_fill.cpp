@@ -10,18 +10,13 @@
 #include "planar/outline.h"
 #include "planar/ring_fill.h"
 #include "planar/rings.h"
+#include "test_planar_shapes.h"
 #include "planar_oracles/level_rings.h"
 
 using namespace ss::planar;
+using ss::planar::test::rectEdges;
 
 namespace {
-
-std::vector<DirectedEdge> rectEdges(int64_t x0, int64_t y0, int64_t x1, int64_t y1) {
-    std::vector<IPoint> r = {{x0, y0}, {x0, y1}, {x1, y1}, {x1, y0}};  // clockwise
-    std::vector<DirectedEdge> e;
-    for (size_t i = 0; i < 4; ++i) e.push_back({r[i], r[(i + 1) % 4], 1});
-    return e;
-}
 
 std::vector<DirectedEdge> merge(const std::vector<std::vector<DirectedEdge>>& shapes) {
     std::vector<std::vector<DirectedEdge>> outlines;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -78,6 +79,16 @@ Mesh makeUvSphere(const glm::vec3& centre, float radius, int rings, int segments
     for (const glm::vec3& p : soup.positions) m.positions.push_back(centre + p);
     m.triangles = std::move(soup.triangles);
     m.flags = flags;
+    m.finalize();
+    return m;
+}
+
+Mesh makeMesh(std::vector<glm::vec3> positions, std::vector<glm::uvec3> triangles) {
+    Mesh m;
+    m.name = "test";
+    m.positions = std::move(positions);
+    m.triangles = std::move(triangles);
+    m.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
     m.finalize();
     return m;
 }

@@ -15,6 +15,8 @@
 
 namespace ss::test {
 
+// A mesh named "test" from positions and triangles, casting and receiving, finalized.
+Mesh makeMesh(std::vector<glm::vec3> positions, std::vector<glm::uvec3> triangles);
 // Closed, outward-wound meshes (Mesh::finalize() already run).
 Mesh makeBox(const glm::vec3& lo, const glm::vec3& hi, uint32_t flags);
 // A prism over a counter-clockwise simple polygon, caps triangulated as a fan from
