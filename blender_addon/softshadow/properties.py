@@ -148,7 +148,7 @@ class SoftShadowSceneSettings(bpy.types.PropertyGroup):
     # Pipeline scripts reach the add-on through the scene in every Blender and both install modes:
     # as an extension its package is `bl_ext.<repository>.softshadow`, a name the studio chooses,
     # and an extension may not add a top-level module of its own.
-    def render_passes(self, lights=None, methods=None, extra_layers=False, final=False):
+    def render_passes(self, lights=None, methods=None, extra_layers=False, final=None):
         """The passes of this scene's current frame: see api.render_passes."""
         from . import api
         return api.render_passes(self.id_data, lights=lights, methods=methods, extra_layers=extra_layers,
