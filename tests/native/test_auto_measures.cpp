@@ -17,6 +17,7 @@
 #include "reference/render_reference.h"
 #include "reference/trace_pixels.h"
 #include "renderer/renderer.h"
+#include "test_pcss_support.h"
 #include "test_scenes.h"
 
 namespace ss {
@@ -175,6 +176,55 @@ TEST(AutoMeasures, SparseCheckPixelsCoverTheImageOncePerCell) {
     }
     EXPECT_EQ(left, 2048);  // one per cell: exactly half the cells lie in the left half
     EXPECT_EQ(sparseCheckPixels(4, 3, 4096, 1).size(), 12u);  // a small image is checked whole
+}
+
+// The box over a curved open ground (z = 0.04 x^2, a bowl like a photo backdrop) that casts,
+// as every Blender object does: every face sees the whole light from above.
+Scene boxOverCurvedGround(const test::SceneParams& p) {
+    Scene box = test::sceneBox(p);
+    Scene s;
+    const int n = 24;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::uvec3> triangles;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const float x = -8.0f + 16.0f * float(i) / float(n), y = -8.0f + 16.0f * float(j) / float(n);
+            positions.emplace_back(x, y, 0.04f * x * x);
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+            triangles.emplace_back(a, b, d);
+            triangles.emplace_back(a, d, c);
+        }
+    Mesh ground = test::makeMesh(positions, triangles);
+    ground.name = "curved ground";
+    ground.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
+    s.addMesh(ground);
+    for (const Mesh& m : box.meshes())
+        if (!m.receives()) s.addMesh(m);
+    s.addLight(box.light(0));
+    s.setCamera(box.camera());
+    return s;
+}
+
+TEST(AutoMeasures, GivesDbufferAnOpenCasterThatSeesTheLightFromOneSide) {
+    test::SceneParams p;
+    p.width = 96, p.height = 72;
+    const Scene s = boxOverCurvedGround(p);
+    ASSERT_FALSE(s.meshes()[0].report.closedManifold());
+    auto candidates = autoCandidates(s, 0);
+    EXPECT_EQ(std::count(candidates.begin(), candidates.end(), "dbuffer"), 1);
+    // Its border's volumes point away from the light: no leak, no false shadow.
+    const Layers reference = test::renderReference(s);
+    EXPECT_LT(fullRmse(test::renderWith(s, "dbuffer"), reference), 0.03);
+    // The same ground folded over itself (faces seeing the light from both sides) is not.
+    Scene folded = s;
+    Mesh bent = s.meshes()[0];
+    for (glm::vec3& v : bent.positions) v.z = 2.0f * std::sin(1.5f * v.x);
+    folded.updateMesh(0, bent);
+    candidates = autoCandidates(folded, 0);
+    EXPECT_EQ(std::count(candidates.begin(), candidates.end(), "dbuffer"), 0);
 }
 
 TEST(AutoMeasures, NeverGivesDbufferAnOpenCaster) {
