@@ -290,6 +290,37 @@ TEST(SparseCheck, EqualsTheReferenceImageAtItsPixels) {
     EXPECT_GT(umbraOrLit, n / 2);  // most checked pixels are decided by the first round
 }
 
+// sweep shades its receiver plane only: where the shadow falls on another receiving surface (a
+// low platform on the ground) the check bounds its error before it renders, the bound holds, and
+// auto leaves sweep out once a rendered candidate is clearly below it.
+TEST(AutoMeasures, SweepsBoundCountsTheSurfacesOffItsPlane) {
+    test::SceneParams p;
+    p.width = 128, p.height = 96;
+    Scene scene = test::sceneBox(p);
+    Mesh platform = test::makeBox({-1.2f, -1.2f, 0.0f}, {0.4f, 0.4f, 0.5f}, SS_MESH_CAST | SS_MESH_RECEIVE);
+    platform.name = "platform";
+    scene.addMesh(platform);
+    const Camera& cam = scene.camera();
+    TraceScene trace(scene);
+    const SparseCheck check =
+        runSparseCheck(trace, scene, 0, sparseCheckDefaultPixels(cam.width, cam.height), 0, RenderSettings{}.seed);
+    const double bound = errorLowerBound(check, "sweep", scene, 0);
+    Renderer renderer(SS_BACKEND_AUTO);
+    RenderSettings withEstimate;
+    withEstimate.options["estimate_rmse"] = "1";
+    double estimate = 0.0;
+    renderer.render(scene, 0, "sweep", withEstimate, nullptr, &estimate);
+    EXPECT_GT(bound, 0.02);
+    EXPECT_LE(bound, estimate * 1.02 + 0.001);
+    std::string used;
+    Renderer::AutoTrials trials;
+    Renderer fresh(SS_BACKEND_AUTO);
+    fresh.render(scene, 0, "auto", RenderSettings{}, &used, nullptr, &trials);
+    EXPECT_NE(used, "sweep");
+    EXPECT_EQ(std::count(trials.rendered.begin(), trials.rendered.end(), "sweep"), 0) << used;
+    EXPECT_EQ(std::count(trials.skippedByBound.begin(), trials.skippedByBound.end(), "sweep"), 1);
+}
+
 // The check's lower bounds hold for the two methods they describe, and auto renders at most
 // three candidates at full size on the test scenes (its prior and the bounds leave out the rest).
 TEST(AutoMeasures, RendersAtMostThreeCandidatesAndTheBoundsHold) {
@@ -304,11 +335,11 @@ TEST(AutoMeasures, RendersAtMostThreeCandidatesAndTheBoundsHold) {
             withEstimate.options["estimate_rmse"] = "1";
             double estimate = 0.0;
             renderer.render(c.scene, 0, bounded, withEstimate, nullptr, &estimate);
-            const double bound = errorLowerBound(check, bounded);
+            const double bound = errorLowerBound(check, bounded, c.scene, 0);
             EXPECT_GT(bound, 0.0) << c.name << " " << bounded;
             EXPECT_LE(bound, estimate * 1.02 + 0.001) << c.name << " " << bounded;
         }
-        EXPECT_EQ(errorLowerBound(check, "pcss"), 0.0);
+        EXPECT_EQ(errorLowerBound(check, "pcss", c.scene, 0), 0.0);
         Renderer fresh(SS_BACKEND_AUTO);
         std::string used;
         Renderer::AutoTrials trials;
