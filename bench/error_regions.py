@@ -23,7 +23,7 @@ Regions (all inside the truth's mask, the pixels the light reaches, as `make ben
   an occluder touches or nearly touches the receiver);
 - terminator band on casters: caster pixels within TERMINATOR_PX pixels of a caster pixel the
   camera sees but the light does not reach (the caster's own lit/unlit boundary);
-- overlapping occluders: pixels that at least two separate occluders (connected components of
+- overlapping occluders: receiver pixels that at least two separate occluders (connected components of
   the casting meshes) each shadow, from one render per component with only it casting
   (OCCLUDER_SAMPLES samples: an occluder hiding less than about 1/OCCLUDER_SAMPLES of the light
   may be missed).
@@ -230,8 +230,8 @@ def regions(truth, mask, helpers):
         "terminator band on casters": casters & dilate(unlit_casters, TERMINATOR_PX),
     }
     if helpers["occluders"] is not None and helpers["occluder_count"] > 1:
-        r["two or more occluders"] = mask & (helpers["occluders"] >= 2)
-        r["one occluder"] = mask & (helpers["occluders"] == 1)
+        r["receivers under two or more occluders"] = receivers & (helpers["occluders"] >= 2)
+        r["receivers under one occluder"] = receivers & (helpers["occluders"] == 1)
     return r
 
 
@@ -296,6 +296,7 @@ def main():
     ap.add_argument("--work", required=True)
     ap.add_argument("--methods", default=",".join(METHODS))
     ap.add_argument("--images", help="write error_<method>.png strips here")
+    ap.add_argument("--markdown", help="write the docs' tables here")
     ap.add_argument("scenes", nargs="+")
     a = ap.parse_args(argv)
     methods = a.methods.split(",")
@@ -326,10 +327,59 @@ def main():
             tiles[method].append(heat_tile(truth, mask, err))
             print_table(name, method, results[name][method])
     write_json(os.path.join(a.work, "regions.json"), results)
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write(markdown(results, methods))
     if a.images:
         os.makedirs(a.images, exist_ok=True)
         for method in methods:
             write_png(os.path.join(a.images, "error_%s.png" % method), np.concatenate(tiles[method], axis=1))
+
+
+DOC_ROWS = (("receivers", "receivers"), ("casters", "casters"), ("lit", "truth lit (V = 1)"),
+            ("penumbra", "truth penumbra"), ("umbra", "truth umbra (V = 0)"),
+            ("sharp penumbra on receivers", "sharp penumbra on receivers"),
+            ("terminator band on casters", "terminator band on casters"),
+            ("receivers under one occluder", "receivers under one occluder"),
+            ("receivers under two or more occluders", "receivers under two or more occluders"))
+SUMMARY_COLUMNS = ("receivers penumbra", "receivers umbra", "casters", "terminator band on casters",
+                   "sharp penumbra on receivers", "receivers under two or more occluders")
+
+
+def cell(row):
+    if row["share"] == 0.0 and row["pixels"] == 0.0:
+        return "—"
+    return "%.0f %% (%.3f)" % (100 * row["share"], row["rmse"])
+
+
+def markdown(results, methods):
+    scenes = list(results)
+    head = "| | " + " | ".join(scenes) + " |\n|---|" + "---|" * len(scenes) + "\n"
+    out = ["## Pixels in each region (share of the truth's mask)\n\n" + head]
+    for key, label in DOC_ROWS:
+        out.append("| %s | %s |\n" % (label, " | ".join(
+            "%.1f %%" % (100.0 * results[s]["pixels"].get(key, 0) / results[s]["pixels"]["all"])
+            if key in results[s]["pixels"] else "—" for s in scenes)))
+    for method in methods:
+        out.append("\n## %s: share of the squared error (RMSE there)\n\n" % method + head)
+        rows = [("all surfaces: RMSE", lambda r: "%.4f" % r["all"]["rmse"]),
+                ("too dark / too light", lambda r: "%.0f %% / %.0f %%" % (
+                    100 * r["all"]["too_dark_share"], 100 * r["all"]["too_light_share"]))]
+        rows += [(label, lambda r, k=key: cell(r[k]) if k in r else "—") for key, label in DOC_ROWS]
+        for label, fmt in rows:
+            out.append("| %s | %s |\n" % (label, " | ".join(
+                "refused" if "refused" in results[s][method] else fmt(results[s][method]) for s in scenes)))
+    out.append("\n## Summary: share of the squared error (RMSE there)\n\n| method | scene | RMSE | "
+               + " | ".join(SUMMARY_COLUMNS) + " |\n|---|---|---|" + "---|" * len(SUMMARY_COLUMNS) + "\n")
+    for method in methods:
+        for s in scenes:
+            r = results[s][method]
+            if "refused" in r:
+                out.append("| %s | %s | refused |%s\n" % (method, s, " |" * len(SUMMARY_COLUMNS)))
+                continue
+            out.append("| %s | %s | %.4f | %s |\n" % (method, s, r["all"]["rmse"], " | ".join(
+                cell(r[k]) if k in r else "—" for k in SUMMARY_COLUMNS)))
+    return "".join(out)
 
 
 def print_table(scene, method, rows):
