@@ -85,7 +85,10 @@ def is_receiver(mesh):
 
 def camera_pose(scene):
     """The camera's position and viewing direction (its -Z) in world space."""
-    m = scene["camera"]["world_to_camera"]  # column-major
+    cam = scene["camera"]
+    if "look_from" in cam:
+        return list(cam["look_from"]), (np.array(cam["look_at"]) - np.array(cam["look_from"])).tolist()
+    m = cam["world_to_camera"]  # column-major
     r = np.array([[m[c * 4 + r] for c in range(3)] for r in range(3)])
     t = np.array([m[12], m[13], m[14]])
     return (-r.T @ t).tolist(), (-r[2]).tolist()
@@ -253,16 +256,25 @@ def split_error(err, regs):
     return rows
 
 
+def reduction(shape):
+    """The whole factor that brings the image's longer side down to about TILE, and the tile's size."""
+    f = max(1, max(shape) // TILE)
+    return f, shape[0] // f, shape[1] // f
+
+
 def heat_tile(truth, mask, err):
     """RGB tile: grey shows the truth (darker outside the mask), red where the method is too dark,
-    blue where too light, at |error| x ERROR_GAIN; each 2x2 block keeps its largest |error| so
-    one-pixel lines of error survive the halving."""
-    h, w = err.shape
-    f = h // TILE
-    e = np.where(mask, err, 0.0).reshape(TILE, f, TILE, f).transpose(0, 2, 1, 3).reshape(TILE, TILE, f * f)
+    blue where too light, at |error| x ERROR_GAIN; each f x f block keeps its largest |error| so
+    one-pixel lines of error survive the reduction."""
+    f, th, tw = reduction(err.shape)
+
+    def blocks(a):
+        return a[:th * f, :tw * f].reshape(th, f, tw, f).transpose(0, 2, 1, 3).reshape(th, tw, f * f)
+
+    e = blocks(np.where(mask, err, 0.0))
     pick = np.take_along_axis(e, np.argmax(np.abs(e), axis=2)[..., None], axis=2)[..., 0]
-    t = truth.reshape(TILE, f, TILE, f).mean(axis=(1, 3))
-    m = mask.reshape(TILE, f, TILE, f).mean(axis=(1, 3)) > 0.5
+    t = blocks(truth).mean(axis=2)
+    m = blocks(mask.astype(np.float64)).mean(axis=2) > 0.5
     grey = np.where(m, 0.55 + 0.4 * t, 0.25)
     a = np.clip(np.abs(pick) * ERROR_GAIN, 0.0, 1.0)
     too_dark = pick < 0
@@ -272,9 +284,10 @@ def heat_tile(truth, mask, err):
     return (np.clip(rgb, 0, 1) * 255 + 0.5).astype(np.uint8)
 
 
-def refused_tile():
+def refused_tile(shape):
     """A plain dark tile where the method does not take the scene."""
-    return np.full((TILE, TILE, 3), 64, np.uint8)
+    _, th, tw = reduction(shape)
+    return np.full((th, tw, 3), 64, np.uint8)
 
 
 def write_png(path, rgb):
@@ -289,6 +302,36 @@ def write_png(path, rgb):
                 + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
+def measure(cli, work_root, scene_dirs, methods, truth_samples=TRUTH_SAMPLES):
+    """{scene: {"pixels": {region: count}, method: {region: numbers} or {"refused": message}}} and
+    {method: [error tile per scene]}, rendering into work_root/<scene>/ what is not there yet."""
+    results, tiles = {}, {m: [] for m in methods}
+    for scene_dir in scene_dirs:
+        name = os.path.basename(os.path.normpath(scene_dir))
+        work = os.path.join(work_root, name)
+        os.makedirs(work, exist_ok=True)
+        scene_path = os.path.join(scene_dir, "scene.json")
+        with open(scene_path) as f:
+            light = json.load(f)["lights"][0]["name"]
+        truth_path = os.path.join(work, "truth.exr")
+        render(cli, scene_path, "reference", truth_path, samples=truth_samples)
+        truth = channel(truth_path, light, "reference")
+        mask = channel(truth_path, light, "reference", "mask") > 0.5
+        regs = regions(truth, mask, helper_renders(cli, scene_path, work))
+        results[name] = {"pixels": {k: int(np.count_nonzero(v)) for k, v in regs.items()}}
+        for method in methods:
+            out = os.path.join(work, method + ".exr")
+            refused = render(cli, scene_path, method, out, may_refuse=True)
+            if refused:
+                results[name][method] = {"refused": refused}
+                tiles[method].append(refused_tile(truth.shape))
+                continue
+            err = channel(out, light, method) - truth
+            results[name][method] = split_error(err, regs)
+            tiles[method].append(heat_tile(truth, mask, err))
+    return results, tiles
+
+
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
     ap = argparse.ArgumentParser()
@@ -300,32 +343,13 @@ def main():
     ap.add_argument("scenes", nargs="+")
     a = ap.parse_args(argv)
     methods = a.methods.split(",")
-    results, tiles = {}, {m: [] for m in methods}
-    for scene_dir in a.scenes:
-        name = os.path.basename(os.path.normpath(scene_dir))
-        work = os.path.join(a.work, name)
-        os.makedirs(work, exist_ok=True)
-        scene_path = os.path.join(scene_dir, "scene.json")
-        with open(scene_path) as f:
-            light = json.load(f)["lights"][0]["name"]
-        truth_path = os.path.join(work, "truth.exr")
-        render(a.cli, scene_path, "reference", truth_path, samples=TRUTH_SAMPLES)
-        truth = channel(truth_path, light, "reference")
-        mask = channel(truth_path, light, "reference", "mask") > 0.5
-        regs = regions(truth, mask, helper_renders(a.cli, scene_path, work))
-        results[name] = {"pixels": {k: int(np.count_nonzero(v)) for k, v in regs.items()}}
+    results, tiles = measure(a.cli, a.work, a.scenes, methods)
+    for scene, per_method in results.items():
         for method in methods:
-            out = os.path.join(work, method + ".exr")
-            refused = render(a.cli, scene_path, method, out, may_refuse=True)
-            if refused:
-                results[name][method] = {"refused": refused}
-                tiles[method].append(refused_tile())
-                print("\n%s / %s: %s" % (name, method, refused))
-                continue
-            err = channel(out, light, method) - truth
-            results[name][method] = split_error(err, regs)
-            tiles[method].append(heat_tile(truth, mask, err))
-            print_table(name, method, results[name][method])
+            if "refused" in per_method[method]:
+                print("\n%s / %s: %s" % (scene, method, per_method[method]["refused"]))
+            else:
+                print_table(scene, method, per_method[method])
     write_json(os.path.join(a.work, "regions.json"), results)
     if a.markdown:
         with open(a.markdown, "w") as f:
