@@ -22,6 +22,14 @@ from . import native, passes, scene_export
 
 PREVIEW_OPACITY = 0.75
 COARSE_DIVISOR = 4    # the coarse image's width and height are the full one's divided by this
+# The coarse image keeps the full one's texels per pixel where that pays: occlusion textures'
+# long side shrinks with its pixels, from the library's default 512
+# (docs/methods/occlusion_textures.md; the slicing draw, light-side, would otherwise cost the
+# coarse image what it costs the full one). Shadow maps keep their size: at a quarter of it
+# (512) the test scene's coarse image moved from the full one by 0.014 in mean alpha (0.001 at
+# 2048), and shadow_map and pcss are cheap in the coarse image already. `auto` renders its
+# choice with that method's defaults.
+COARSE_SETTINGS = {"occlusion_textures": "resolution=%d" % (512 // COARSE_DIVISOR)}
 RECORD_LENGTH = 64    # entries kept in _State.delivered and _State.cancelled
 
 
@@ -68,8 +76,9 @@ def apply_edits(live, edits):
             live.apply(edit[1], edit[2])
 
 
-def _render_job(live, edits, camera, cancelled):
-    """Product of every previewed light's V, as an RGBA overlay. Runs on the worker."""
+def _render_job(live, edits, camera, cancelled, coarse=False):
+    """Product of every previewed light's V, as an RGBA overlay. Runs on the worker.
+    coarse: the methods' coarse settings (COARSE_SETTINGS)."""
     apply_edits(live, edits)
     with live.lock:
         if live.scene is None:
@@ -85,7 +94,7 @@ def _render_job(live, edits, camera, cancelled):
             method = method if method in fast_methods() else "auto"
             # The viewport cannot wait for auto to render every candidate: it takes auto's rule by
             # the light's shape (docs/methods/README.md).
-            settings = "check_pixels=0" if method == "auto" else None
+            settings = "check_pixels=0" if method == "auto" else COARSE_SETTINGS.get(method) if coarse else None
             result = scene.render(indices[light["name"]], method, settings=settings,
                                   progress=lambda f, s: cancelled())
             try:
@@ -124,7 +133,7 @@ def progressive_job(scenes, backlog, edits, camera, cancelled, deliver):
             return size
         pending, backlog[stage] = backlog[stage], []
         try:
-            rgba = _render_job(scenes[stage], pending, view, cancelled)
+            rgba = _render_job(scenes[stage], pending, view, cancelled, coarse=stage == "coarse")
         except native.SoftShadowError as exc:
             if exc.cancelled:
                 return size
