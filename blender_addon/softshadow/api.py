@@ -17,11 +17,13 @@ def _evaluated_depsgraph(scene, depsgraph=None):
     return graph
 
 
-def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers=False):
+def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers=False, final=False):
     """Soft-shadow passes of `scene`'s current frame from its camera at its render resolution.
 
     lights: None (every shadow-casting light whose pass is enabled), a name or a list of names.
     methods: None (each light's own setting, 'auto' unless set), a method name or a list.
+    final: the passes a final render writes (each light's Refine Final Renders applies: slower,
+    closer to the truth); by default the fast GL passes the preview shows.
     Returns {(light name, method that ran): float32 array (height, width), row 0 = top}.
     Raises native.LibraryUnavailable or native.SoftShadowError for what cannot be done at all;
     per-light failures are left out and listed in `render_passes.last_problems`; each result's
@@ -31,7 +33,7 @@ def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers
     graph = _evaluated_depsgraph(scene, depsgraph)
     exported = scene_export.export(graph, scene, mode="RENDER", reuse=mesh_cache.render_meshes)
     result = passes.compute(exported, lights=lights, methods=methods, extra_layers=extra_layers,
-                            only_enabled=lights is None)
+                            only_enabled=lights is None, final=final)
     render_passes.last_problems = list(result.problems)
     render_passes.last_chosen = dict(result.chosen)
     render_passes.last_estimates = dict(result.estimates)

@@ -215,7 +215,7 @@ def _replaces_shadow(obj):
 def _light_settings(obj):
     props = getattr(obj.original.data, "softshadow", None)
     if props is None:
-        return {"enabled": True, "method": "auto", "samples": 0, "settings": "", "refine_final": False}
+        return {"enabled": True, "method": "auto", "samples": 0, "settings": "", "refine_final": True}
     return {"enabled": bool(props.enabled), "method": props.method, "samples": int(props.samples),
             "settings": props.settings, "refine_final": bool(props.refine_final)}
 

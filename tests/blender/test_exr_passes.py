@@ -72,9 +72,9 @@ def test_extra_layers_and_values():
         sstest.check(name in channels, "%s in %s" % (name, channels))
     kind, names = _image_node_outputs(path)
     sstest.check(kind == "MULTILAYER" and "Key_shadow_map_mask" in names, "mask pass listed: %s" % names)
-    # The file holds what render_passes returns (row 0 = top in both).
+    # The file holds what render_passes returns for a final render (row 0 = top in both).
     stored = sstest.exr_channel(path, "ViewLayer.Key_shadow_map.V")
-    direct = ss.render_passes(scene, lights="Key", methods="shadow_map")[("Key", "shadow_map")]
+    direct = ss.render_passes(scene, lights="Key", methods="shadow_map", final=True)[("Key", "shadow_map")]
     sstest.check(stored.shape == direct.shape, "shape %s vs %s" % (stored.shape, direct.shape))
     sstest.check(float(np.abs(stored - direct).max()) <= 1e-6, "EXR equals the array")
 
@@ -118,12 +118,12 @@ def test_auto_keeps_its_pass_name_and_the_header_says_what_ran():
     print("   auto ran", ran)
 
 
-def test_refine_final_renders_trace_only_the_final_render():
+def test_final_renders_refine_by_default_and_only_final_renders():
     folder = sstest.tempdir("exr-refine")
     scene = sstest.standard_scene(48, 32)
     key = scene.objects["Key"].data.softshadow
     key.method = "pcss"
-    key.refine_final = True
+    sstest.check(key.refine_final, "Refine Final Renders is on for a new light")
     scene.softshadow.extra_layers = True
     scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
     bpy.context.view_layer.update()
