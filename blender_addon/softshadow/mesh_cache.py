@@ -67,8 +67,16 @@ render_meshes = MeshCache()
 _CACHES = (render_meshes,)
 
 
-def _foreign_frame_handlers():
-    return any(fn is not _on_frame_change for fn in bpy.app.handlers.frame_change_post)
+def unreported_frame_edits():
+    """Whether a frame change may change data without depsgraph.updates saying so: a
+    frame_change_post handler not of this add-on is registered (Blender evaluates its edits
+    after the handlers ran, without reporting them)."""
+    package = __name__.rpartition(".")[0]
+
+    def ours(fn):
+        module = getattr(fn, "__module__", None) or ""
+        return module == package or module.startswith(package + ".")
+    return not all(ours(fn) for fn in bpy.app.handlers.frame_change_post)
 
 
 @bpy.app.handlers.persistent
@@ -82,7 +90,7 @@ def _on_depsgraph_update(scene, depsgraph=None, *_args):
 
 @bpy.app.handlers.persistent
 def _on_frame_change(scene, depsgraph=None, *_args):
-    foreign = _foreign_frame_handlers()
+    foreign = unreported_frame_edits()
     for cache in _CACHES:
         if depsgraph is None or foreign:
             cache.clear()

@@ -1,8 +1,8 @@
 # How the 3D viewport shows a live soft-shadow preview: export on change, render off-thread, draw.
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The main thread exports what changed (from depsgraph.updates: only the objects an edit
-touched, a moved object as its matrix alone) and reads each viewport's view in its draw
-callback; a worker thread applies those edits to the native scenes kept alive for the preview
+"""The main thread exports what changed (from depsgraph.updates of edits and frame changes: only
+the objects an edit or the animation touched, a moved object as its matrix alone) and reads each
+viewport's view in its draw callback; a worker thread applies those edits to the native scenes kept alive for the preview
 (so the library keeps every unchanged mesh's GPU buffers and every unchanged light's shadow maps)
 and renders at reduced resolution through the library (which releases the GIL). Each request is
 rendered twice, progressively: a coarse image (COARSE_DIVISOR times fewer pixels in each axis) that
@@ -18,7 +18,7 @@ import gpu
 import numpy as np
 from gpu_extras.presets import draw_texture_2d
 
-from . import native, passes, scene_export
+from . import mesh_cache, native, passes, scene_export
 
 PREVIEW_OPACITY = 0.75
 COARSE_DIVISOR = 4    # the coarse image's width and height are the full one's divided by this
@@ -313,6 +313,15 @@ def _on_depsgraph_update(scene, depsgraph=None, *_args):
     note_updates(scene, depsgraph.updates)
 
 
+@bpy.app.handlers.persistent
+def _on_frame_change(scene, depsgraph=None, *_args):
+    """A frame change re-evaluates what is animated: the same updates as an edit."""
+    if depsgraph is None or mesh_cache.unreported_frame_edits():
+        _state.full = True
+        return
+    note_updates(scene, depsgraph.updates)
+
+
 def _poll_redraw():
     """Main-thread timer: redraw the viewports when the worker has finished an image."""
     if _state.fresh:
@@ -328,6 +337,7 @@ def register():
     global _draw_handle
     _draw_handle = bpy.types.SpaceView3D.draw_handler_add(_draw, (), "WINDOW", "POST_PIXEL")
     bpy.app.handlers.depsgraph_update_post.append(_on_depsgraph_update)
+    bpy.app.handlers.frame_change_post.append(_on_frame_change)
     bpy.app.timers.register(_poll_redraw, first_interval=0.1, persistent=True)
 
 
@@ -338,6 +348,8 @@ def unregister():
         _draw_handle = None
     while _on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
         bpy.app.handlers.depsgraph_update_post.remove(_on_depsgraph_update)
+    while _on_frame_change in bpy.app.handlers.frame_change_post:
+        bpy.app.handlers.frame_change_post.remove(_on_frame_change)
     if bpy.app.timers.is_registered(_poll_redraw):
         bpy.app.timers.unregister(_poll_redraw)
     with _state.lock:

@@ -193,6 +193,31 @@ def test_render_passes_reads_again_only_the_meshes_a_frame_change_animates():
     _matches_a_fresh_export(scene, arrays, "frame 2")
 
 
+def test_the_preview_follows_a_frame_change_and_reads_only_the_animated_meshes():
+    scene = _animated_scene()
+    preview._state.full = True
+    live = passes.LiveScene()
+    try:
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        camera = scene_export.scene_camera(scene, depsgraph)
+        preview._render_job(live, [preview.export_edit(depsgraph, scene)], camera, lambda: False)
+        scene.frame_set(2)
+        sstest.check({"Occluder", "Other", "Driven"} <= preview._state.geometry,
+                     "the frame change's geometry updates are noted: %s" % preview._state.geometry)
+        sstest.check("Still" not in preview._state.changed and "Ground" not in preview._state.changed,
+                     "the still meshes are not: %s" % preview._state.changed)
+        reads = scene_export.mesh_reads.copy()
+        edit = preview.export_edit(depsgraph, scene)
+        read = scene_export.mesh_reads - reads
+        sstest.check(edit[0] == "objects" and set(read) == {"Occluder", "Other", "Driven"},
+                     "a partial edit reading the animated meshes: %s %s" % (edit[0], dict(read)))
+        rgba = preview._render_job(live, [edit], camera, lambda: False)
+        sstest.check(_shadow_alpha(rgba, scene, sstest.shadow_centre(0.0)) > 0.5, "the shadow followed the frame")
+        sstest.check(_shadow_alpha(rgba, scene, sstest.shadow_centre(-1.0)) < 0.05, "and left its old place")
+    finally:
+        live.close()
+
+
 def test_a_frame_change_handler_that_edits_a_mesh_makes_render_passes_read_every_mesh():
     scene = _animated_scene()
     ss.render_passes(scene, methods=["shadow_map"])
