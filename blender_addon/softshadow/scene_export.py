@@ -316,9 +316,12 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
                 out.meshes.append({"name": base_name, "local": None, "triangles": None, "flags": flags,
                                    "matrix": column_major(matrix)})
             continue
-        name = unique_name(base_name, used_mesh_names)
-        arrays = reuse.get(obj) if reuse is not None and not is_instance else None
-        if arrays is None:
+        # An object the viewport's depsgraph does not show (added for a render, inst None) may
+        # not be evaluated there, so no update vouches for its mesh: it is read every time.
+        cacheable = reuse is not None and inst is not None and not is_instance
+        arrays = reuse.get(obj) if cacheable else None
+        fresh = arrays is None
+        if fresh:
             key = (obj.type, obj.data.as_pointer() if obj.data is not None else obj.as_pointer())
             if key not in local_cache or not is_instance:
                 try:
@@ -327,11 +330,13 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
                     out.problems.append("object '%s': %s" % (base_name, exc))
                     continue
             arrays = local_cache[key]
+        name = unique_name(base_name, used_mesh_names)
+        if fresh:
             problem = mesh_problem(name, *arrays)
             if problem:
                 out.problems.append(problem)
                 continue
-            if reuse is not None and not is_instance:
+            if cacheable:
                 reuse.put(obj, *arrays)  # only meshes that passed the checks
         vertices, triangles = arrays
         flat = column_major(matrix)

@@ -241,6 +241,18 @@ def test_a_frame_change_handler_that_edits_a_mesh_makes_render_passes_read_every
     _matches_a_fresh_export(scene, arrays, "after the handler's edit")
 
 
+def test_an_object_hidden_in_the_viewport_is_read_at_every_call():
+    scene = _scene()
+    scene.objects["Other"].hide_set(True)  # the viewport's depsgraph leaves it out: no update vouches for it
+    bpy.context.view_layer.update()
+    ss.render_passes(scene, methods=["shadow_map"])
+    reads = scene_export.mesh_reads.copy()
+    arrays = ss.render_passes(scene, methods=["shadow_map"])
+    read = scene_export.mesh_reads - reads
+    sstest.check(set(read) == {"Other"}, "the hidden object alone is read again: %s" % dict(read))
+    _matches_a_fresh_export(scene, arrays, "with a hidden object")
+
+
 def test_a_scene_rebuilt_with_the_same_names_is_read_again():
     scene = _scene()
     ss.render_passes(scene, methods=["shadow_map"])
