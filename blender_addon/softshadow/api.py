@@ -4,7 +4,7 @@ import os
 
 import bpy
 
-from . import compositor, native, output_paths, passes, replace, scene_export
+from . import compositor, mesh_cache, native, output_paths, passes, replace, scene_export
 
 
 def _evaluated_depsgraph(scene, depsgraph=None):
@@ -34,7 +34,7 @@ def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers
     if final is None:
         final = methods is None
     graph = _evaluated_depsgraph(scene, depsgraph)
-    exported = scene_export.export(graph, scene, mode="RENDER")
+    exported = scene_export.export(graph, scene, mode="RENDER", reuse=mesh_cache.render_meshes)
     result = passes.compute(exported, lights=lights, methods=methods, extra_layers=extra_layers,
                             only_enabled=lights is None, final=final)
     render_passes.last_problems = list(result.problems)
@@ -107,7 +107,8 @@ def _render_layer(scene, view_layer, depsgraph=None, progress=None):
     target = frame_exr_path(scene, view_layer=view_layer)
     _remove_stale(target)
     graph = depsgraph if depsgraph is not None else _layer_depsgraph(scene, view_layer)
-    exported = scene_export.export(graph, scene, mode="RENDER", view_layer=view_layer)
+    exported = scene_export.export(graph, scene, mode="RENDER", view_layer=view_layer,
+                                   reuse=mesh_cache.render_meshes)
     result = passes.compute(exported, extra_layers=scene.softshadow.extra_layers, keep_results=True,
                             progress=progress, final=True)
     path = ""
