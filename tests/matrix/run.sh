@@ -15,8 +15,9 @@ ROOT=$(cd "$HERE/../.." && pwd)
 # shellcheck source=rootfs.sh
 . "$HERE/rootfs.sh"
 SUITES=${SOFTSHADOW_MATRIX_SUITES:-trixie sid}
-# Every Blender test but those about the source tree itself (SOFTSHADOW_LIB, package.sh).
-SOURCE_ONLY=" test_register test_package test_scene_export_pure "
+# Every Blender test but those about the source tree itself (SOFTSHADOW_LIB, package.sh, the
+# bench's scripts).
+SOURCE_ONLY=" test_register test_package test_scene_export_pure test_error_regions "
 TESTS=()
 for t in "$ROOT"/tests/blender/test_*.py; do
   name=$(basename "$t" .py)
