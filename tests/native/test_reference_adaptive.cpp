@@ -119,6 +119,47 @@ TEST(ReferenceAdaptive, TracesFarFewerRaysWhereMostPixelsAreLitOrInUmbra) {
     EXPECT_LE(compare(tight, truth).rmse, c.rmse);
 }
 
+// An occluder far smaller than the light: no umbra, a wide faint penumbra (V >= 0.97) whose
+// first rounds mostly agree. The guard band follows it outwards, wave after wave, so the shadow
+// is traced to where further rounds see no occlusion.
+TEST(ReferenceAdaptive, TracesTheFaintPenumbraOfAnOccluderSmallerThanTheLight) {
+    test::SceneParams p = smallScene();
+    p.lightDiameter = 3.0f;
+    p.lightHeight = 3.0f;
+    p.cameraZoom = 2.0f;
+    Scene scene;
+    scene.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    scene.addMesh(test::makeUvSphere({0.0f, 0.0f, 1.2f}, 0.12f, 12, 24, SS_MESH_CAST));
+    scene.addLight(test::makeDiskLight({0.0f, 0.0f, p.lightHeight}, p.lightDiameter));
+    scene.setCamera(test::sceneBox(p).camera());  // the shared camera, zoomed in on the shadow
+    TraceSceneCache cache;
+    const Layers truth = renderReference(scene, 0, fixedSamples(4096), &cache);
+    const Layers adaptive = renderReference(scene, 0, adaptiveSettings("0.005"), &cache);
+    const Comparison c = compare(adaptive, truth);
+    // The shadow, in pixels: sum of 1 - V over the mask.
+    auto shadow = [](const Layers& l) {
+        const Image &v = layer(l, "V"), &m = layer(l, "mask");
+        double s = 0.0;
+        for (size_t i = 0; i < v.pixels.size(); ++i)
+            if (m.pixels[i] != 0.0f) s += 1.0 - v.pixels[i];
+        return s;
+    };
+    // Pixels in the truth's shadow (V < 0.995) that the adaptive run left fully lit.
+    int shadowed = 0, leftLit = 0;
+    for (size_t i = 0; i < layer(truth, "V").pixels.size(); ++i) {
+        if (layer(truth, "mask").pixels[i] == 0.0f || layer(truth, "V").pixels[i] >= 0.995f) continue;
+        ++shadowed;
+        leftLit += layer(adaptive, "V").pixels[i] == 1.0f;
+    }
+    std::printf("small occluder: RMSE %.5f, shadow %.1f of the truth's %.1f pixels, %d of %d shadowed pixels left lit, %.1f rays per pixel\n",
+                c.rmse, shadow(adaptive), shadow(truth), leftLit, shadowed, total(layer(adaptive, "rays")) / c.maskPixels);
+    EXPECT_EQ(c.maskDiffers, 0);
+    EXPECT_GT(shadowed, 500);
+    EXPECT_LE(c.rmse, 0.005);
+    EXPECT_GE(shadow(adaptive), 0.9 * shadow(truth));
+    EXPECT_LE(leftLit, shadowed / 10);
+}
+
 // The target is the mask's RMSE: the undecided pixels share it, each allowed more error the
 // fewer they are, within [target, kMaxPixelError].
 TEST(ReferenceAdaptive, ThePixelTargetSpreadsTheMasksErrorOverTheUndecidedPixels) {

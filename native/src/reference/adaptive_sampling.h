@@ -52,13 +52,28 @@ void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, cons
 std::vector<std::string> adaptiveSamplingKeys();
 AdaptiveSampling adaptiveSampling(const RenderSettings& settings, int maxSamples);
 
-// Traces the pixels where `select` is non-zero (every pixel when it is null) of the scene's
-// camera for light `lightIndex`. Where the light reaches the surface (E_L > 0) writes V into
-// *visibility and 1 into *mask (when not null); elsewhere leaves both as they are. *rays (when
-// not null) gets the shadow rays traced per selected pixel. Deterministic for settings.seed and
-// independent of the thread count.
+// Which pixels traceAdaptive traces: those where `select` is non-zero (every pixel when null),
+// and those where `growInto` is non-zero that the guard band reaches (none when null).
+struct AdaptivePixels {
+    const Image* select = nullptr;
+    const Image* growInto = nullptr;
+};
+// Where traceAdaptive writes, per traced pixel: V into *visibility and 1 into *mask where the
+// light reaches the surface (E_L > 0); the shadow rays it traced into *rays; 1 into *traced.
+// Untraced pixels keep their values. Any but visibility may be null.
+struct AdaptiveOutputs {
+    Image* visibility = nullptr;
+    Image* mask = nullptr;
+    Image* rays = nullptr;
+    Image* traced = nullptr;
+};
+
+// Traces `pixels` of the scene's camera for light `lightIndex` in adaptive rounds. The guard band
+// follows the penumbra: a pixel the band promoted that disagrees after its further rounds
+// promotes its own neighbours within the band, wave after wave until no pixel is promoted.
+// Deterministic for settings.seed and independent of the thread count.
 void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
                    const AdaptiveSampling& sampling, const RenderSettings& settings,
-                   const Image* select, Image* visibility, Image* mask, Image* rays);
+                   const AdaptivePixels& pixels, const AdaptiveOutputs& out);
 
 }  // namespace ss
