@@ -173,6 +173,13 @@ TEST(ReferenceAdaptive, ThePixelTargetSpreadsTheMasksErrorOverTheUndecidedPixels
     EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 10), 0.2f);
 }
 
+// Beside a disagreeing pixel, agreement is trusted only after 2 / (e * target) rays.
+TEST(ReferenceAdaptive, AgreementBesideADisagreeingPixelNeedsRaysInProportionToTheTarget) {
+    EXPECT_EQ(raysToTrustAgreement(0.005f), 148);
+    EXPECT_EQ(raysToTrustAgreement(0.02f), 37);
+    EXPECT_EQ(raysToTrustAgreement(AdaptiveSampling::kMaxPixelError), 15);
+}
+
 TEST(ReferenceAdaptive, DeterministicForASeedWhateverTheThreadCount) {
     Scene scene = test::sceneTorus(smallScene());
     RenderSettings one = adaptiveSettings("0.01"), two = one, other = one;

@@ -53,13 +53,6 @@ struct Tracer {
     }
 };
 
-// Rays a pixel must trace before agreement alone stops it, for its expected error to stay within
-// `pixelTarget`: a blocked (or visible) share p of the light hides from n stratified rays with
-// probability about (1 - p)^n, an RMS error sqrt(p^2 (1 - p)^n) <= 2 / (e n) at worst (p = 2 / n).
-int raysToTrustAgreement(float pixelTarget) {
-    return int(std::ceil(2.0 / (std::exp(1.0) * double(pixelTarget))));
-}
-
 // Rounds after the first until the point is decided; `sums` holds the first round's samples.
 // A pixel whose rays all agree stops once the round passes the target and it has traced
 // `agreeingRays` rays (the guard band's pixels: beside a disagreeing pixel, a faint penumbra may
@@ -82,6 +75,10 @@ void continueRounds(const std::function<void(uint32_t, uint32_t, SampleSums*)>& 
 }
 
 }  // namespace
+
+int raysToTrustAgreement(float pixelTarget) {
+    return int(std::ceil(2.0 / (std::exp(1.0) * double(pixelTarget))));
+}
 
 float pixelErrorTarget(const AdaptiveSampling& a, size_t maskPixels, size_t undecidedPixels) {
     if (undecidedPixels == 0) return a.errorTarget;

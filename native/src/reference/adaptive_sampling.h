@@ -20,8 +20,11 @@ namespace ss {
 // - A pixel whose first round agrees (all blocked or all visible, at least minSamples / 2 rays
 //   above the horizon) or carries no weight at all is decided, unless a pixel
 //   within `guardBand` pixels disagrees: thin casters and shadow edges hide between samples.
+//   A pixel the band took in that disagrees after its further rounds takes in its own
+//   neighbours, in waves, so the band follows a faint penumbra outwards.
 // - Every other pixel stops when its estimated error is at most the pixel target twice in a row
-//   (once when every sample so far agrees) or at `maxSamples`. The estimate of a round is half
+//   or at `maxSamples`; one passing round suffices while every sample so far agrees, once the
+//   pixel has traced enough rays to trust the agreement (raysToTrustAgreement). The estimate of a round is half
 //   the difference between V of the samples before it and V of the round's own samples (each a
 //   power-of-two prefix or block of a (0,2)-sequence, so both are stratified estimates).
 // - `errorTarget` is the RMSE over the mask the rounds aim at: decided pixels are exact, so the
@@ -40,6 +43,12 @@ struct AdaptiveSampling {
 
 // The error each undecided pixel may keep so that the mask's RMSE meets the target.
 float pixelErrorTarget(const AdaptiveSampling& sampling, size_t maskPixels, size_t undecidedPixels);
+
+// Rays a pixel beside a disagreeing one must trace before agreement alone stops it: a share p
+// of the light blocked (or seen) hides from n stratified rays with probability about (1 - p)^n,
+// an RMS error sqrt(p^2 (1 - p)^n) <= 2 / (e n) at worst (p = 2 / n); this keeps it within
+// `pixelTarget`.
+int raysToTrustAgreement(float pixelTarget);
 
 // One point on its own, without the guard band (no neighbours to consult: the sparse check's
 // isolated pixels): the first round, then further rounds unless the first agrees. Adds to *sums.
