@@ -65,13 +65,19 @@ Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSetti
     AdaptiveSampling check;
     check.minSamples = check.maxSamples = verifyRays;
     check.guardBand = 0;
-    Image traced = visibility;  // where the light does not reach, the pass's own value: no dispute
-    traceAdaptive(scene, lightIndex, trace, check, settings, {&certain, nullptr}, {&traced, nullptr, rays, nullptr});
-    return growWithinMask(mask, margin, [&](int x, int y) {
+    Image traced = visibility, checkRays(width, height, 0.0f);
+    traceAdaptive(scene, lightIndex, trace, check, settings, {&certain, nullptr}, {&traced, nullptr, &checkRays, nullptr});
+    for (size_t i = 0; i < rays->pixels.size(); ++i) rays->pixels[i] += checkRays.pixels[i];
+    Image wrong = growWithinMask(mask, margin, [&](int x, int y) {
         if (certain.at(x, y) == 0.0f) return false;
         const float gl = visibility.at(x, y), v = traced.at(x, y);
         return (gl == 1.0f && v < 1.0f) || (gl == 0.0f && v > 0.0f);
     });
+    // Fewer than half the rays above the horizon (a surface turned almost away from the light):
+    // too few to vouch for the pass, as for the adaptive rounds' agreement.
+    for (size_t i = 0; i < wrong.pixels.size(); ++i)
+        if (certain.pixels[i] != 0.0f && 2.0f * checkRays.pixels[i] < float(verifyRays)) wrong.pixels[i] = 1.0f;
+    return wrong;
 }
 
 void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
