@@ -75,7 +75,8 @@ SS_BENCH_SCENES="$SCENE_LIST" SS_BENCH_OUT="$WORK/ours" "$BENCH" --benchmark_fil
   { tail -n 30 "$WORK/scene_files.txt"; exit 1; }
 
 # 4a. `auto` as users get it: the CLI on each scene file (it renders every candidate and keeps the
-#     one with the least error on its sparse check); its time, the method it took and its estimate.
+#     one with the least error on its sparse check); its time, the method it took and its estimate;
+#     the preview's (GL only) and a final render's (refine=on).
 log "auto through the CLI"
 for dir in "$WORK"/scenes/*/; do
   name=$(basename "$dir")
@@ -90,8 +91,14 @@ for dir in "$WORK"/scenes/*/; do
   # uncertain; their "rays" / "refined" layers give the share of pixels traced.
   "$CLI" render "$dir/scene.json" -m reference --set adaptive=on -o "$WORK/ours/$name/reference-adaptive.exr" \
     > "$WORK/ours/$name/reference-adaptive.txt" || echo "adaptive reference failed on $name"
+  # auto as a final render gets it (the add-on's Refine Final Renders, on by default), and the
+  # method it took refined alone, for the time ratio.
   "$CLI" render "$dir/scene.json" -m auto --set refine=on -o "$WORK/ours/$name/auto-refine.exr" \
     > "$WORK/ours/$name/auto-refine.txt" || echo "auto refine=on failed on $name"
+  used=$(awk '$2 == "auto" {print $3}' "$WORK/ours/$name/auto-refine.txt")
+  [ -n "$used" ] && "$CLI" render "$dir/scene.json" -m "$used" --set refine=on --no-extra \
+    -o "$WORK/ours/$name/picked-refine.exr" > "$WORK/ours/$name/picked-refine.txt" &&
+    rm -f "$WORK/ours/$name/picked-refine.exr"
   python3 "$HERE/traced_share.py" "$WORK/ours/$name" > "$WORK/ours/$name/traced.json" || echo "traced share failed on $name"
 done
 

@@ -6,15 +6,20 @@
 # (~1M triangles), over a ground plane, one disk light, a small box that moves 0.05 along x every
 # frame. For each scene:
 #   - render_passes per GL method at SIZE² on the kept scene (the add-on's path): the median over
-#     FRAMES moved frames of each stage: the full export (Python), the C API update (LiveScene.sync),
+#     FRAMES moved frames of each stage: the export (Python, render_passes' own: meshes whose geometry
+#     the depsgraph did not report changed come from mesh_cache; beside it the full export that reads
+#     every mesh), the C API update (LiveScene.sync),
 #     the library's mesh upload, camera pass, shadow map and the method's own work (timed by
 #     ss_context_cache_stats), the rest of ss_render (thread hand-off, checks), the copy of the
-#     layers into numpy and the EXR write of a final render;
+#     layers into numpy and the EXR write of a final render; and the floor: the same render on an
+#     unchanged scene (every cache kept: the method's own passes and the read-back, which no edit
+#     tracking removes);
 # PARTS: comma-separated, of "render" and "preview" (default both): which of the two below run.
 #   - the preview after a move at 960x540 (shadow_map, pcss, occlusion_textures): edit-to-overlay
 #     latency of the coarse image and of the full one (main thread's export of the edit + the
 #     worker's updates, renders and overlays, `preview.progressive_job`) over an animated sequence
-#     of 2 x FRAMES moves, median and 95th percentile, with its stages.
+#     of 2 x FRAMES moves, median and 95th percentile, with its stages; and the floor of each image:
+#     a request with no edit (a new view of the same scene costs at least this).
 import math
 import os
 import statistics
@@ -35,7 +40,7 @@ sys.path.insert(0, os.environ.get("SOFTSHADOW_ADDON_PATH", ""))
 import softshadow  # noqa: E402
 if not hasattr(bpy.types.Scene, "softshadow"):
     softshadow.register()
-from softshadow import native, passes, scene_export  # noqa: E402
+from softshadow import mesh_cache, native, passes, scene_export  # noqa: E402
 
 preview = sys.modules["softshadow.preview"]
 PREVIEW_METHODS = ("shadow_map", "pcss", "occlusion_textures")
@@ -81,7 +86,7 @@ def render_passes_frame(scene, mover, method, live, exr_path):
     """Seconds per stage of one moved frame of render_passes (and its EXR)."""
     move(mover)
     t0 = time.perf_counter()
-    exported = scene_export.export(bpy.context.evaluated_depsgraph_get(), scene)
+    exported = scene_export.export(bpy.context.evaluated_depsgraph_get(), scene, reuse=mesh_cache.render_meshes)
     t1 = time.perf_counter()
     live.sync(exported)
     t2 = time.perf_counter()
@@ -98,12 +103,35 @@ def render_passes_frame(scene, mover, method, live, exr_path):
         result.close()
     if "V" not in layers:
         raise RuntimeError("%s made no V layer" % method)
+    t6 = time.perf_counter()
+    scene_export.export(bpy.context.evaluated_depsgraph_get(), scene)  # what every frame read before mesh_cache
+    full_export = time.perf_counter() - t6
     shared = (after["upload_ms"] + after["camera_pass_ms"] + after["shadow_map_ms"]) / 1e3
-    return {"export": t1 - t0, "update": t2 - t1, "upload": after["upload_ms"] / 1e3,
+    return {"export": t1 - t0, "full export": full_export, "update": t2 - t1, "upload": after["upload_ms"] / 1e3,
             "camera pass": after["camera_pass_ms"] / 1e3, "shadow map": after["shadow_map_ms"] / 1e3,
             "method": after["method_ms"] / 1e3 - shared, "ss_render rest": (t3 - t2) - after["method_ms"] / 1e3,
             "copy out": t4 - t3, "total": t4 - t0, "EXR write": t5 - t4,
             "uploads": after["mesh_uploads"]}
+
+
+def render_floor(scene, method, live):
+    """Seconds of render_passes' render and copy-out on an unchanged scene."""
+    t0 = time.perf_counter()
+    result = live.scene.render(live.light_indices()[live.lights[0]["name"]], method)
+    try:
+        result.layers()
+    finally:
+        result.close()
+    return time.perf_counter() - t0
+
+
+def preview_floor(scenes, camera):
+    """Seconds to the coarse and to the full image of a request with no edit."""
+    t0 = time.perf_counter()
+    images = []
+    preview.progressive_job(scenes, {"coarse": [], "full": []}, [], camera, lambda: False,
+                            lambda rgba: images.append(time.perf_counter()))
+    return images[0] - t0, images[1] - t0
 
 
 def preview_frame(scene, mover, scenes, camera):
@@ -132,7 +160,7 @@ def p95(values):
     return ordered[min(len(ordered) - 1, int(math.ceil(0.95 * len(ordered))) - 1)]
 
 
-RENDER_COLUMNS = ("export", "update", "upload", "camera pass", "shadow map", "method", "ss_render rest",
+RENDER_COLUMNS = ("export", "full export", "update", "upload", "camera pass", "shadow map", "method", "ss_render rest",
                   "copy out", "total", "EXR write")
 PREVIEW_COLUMNS = ("main thread", "camera pass", "shadow map", "method", "worker rest", "full render")
 report = []
@@ -147,8 +175,10 @@ for tori in torus_counts:
         live = passes.LiveScene()
         render_passes_frame(scene, mover, method, live, exr_path)  # the first frame builds the kept scene
         runs = [render_passes_frame(scene, mover, method, live, exr_path) for _ in range(frames)]
+        floor = statistics.median(render_floor(scene, method, live) for _ in range(frames))
         live.close()
         row = {k: statistics.median(r[k] for r in runs) for k in runs[0]}
+        row["floor"] = floor
         rows.append((method, row))
         print("BENCH warm %d tris %s: %s" % (triangles, method, " ".join(
             "%s=%.3f" % (k, v) for k, v in row.items())), flush=True)
@@ -164,15 +194,18 @@ for tori in torus_counts:
         preview.progressive_job(scenes, {"coarse": [], "full": []}, [preview.export_edit(depsgraph, scene)],
                                 camera, lambda: False, lambda rgba: None)
         runs = [preview_frame(scene, mover, scenes, camera) for _ in range(2 * frames)]
+        floors = [preview_floor(scenes, camera) for _ in range(frames)]
+        stages_floor = (statistics.median(f[0] for f in floors), statistics.median(f[1] for f in floors))
         for live in scenes.values():
             live.close()
         latencies = [r["latency"] for r in runs]
         coarse = [r["coarse"] for r in runs]
         stages = {k: statistics.median(r[k] for r in runs) for k in PREVIEW_COLUMNS}
         preview_rows.append((method, statistics.median(coarse), p95(coarse), statistics.median(latencies),
-                             p95(latencies), stages))
+                             p95(latencies), stages, stages_floor))
         print("BENCH preview %d tris %s: coarse median %.3f s p95 %.3f s, full median %.3f s p95 %.3f s, "
-              "full render alone %.3f s" % (triangles, method, *preview_rows[-1][1:5], stages["full render"]),
+              "full render alone %.3f s, floor coarse %.3f s full %.3f s" % (triangles, method, *preview_rows[-1][1:5],
+                                                                 stages["full render"], *stages_floor),
               flush=True)
     report.append((tori, triangles, rows, preview_rows))
 
@@ -185,22 +218,27 @@ with open(out_path, "w") as f:
             "the kept scene). Machine load average while it ran: %.1f / %.1f / %.1f on %d cores (the GL is "
             "Mesa llvmpipe: every stage is CPU work, shared with whatever else runs).\n\n"
             % (frames, load[0], load[1], load[2], os.cpu_count()))
-    f.write("Stages: *export* the full scene export in Python (render_passes exports every frame and compares); "
+    f.write("Stages: *export* render_passes' export in Python (every object's matrix; a mesh read from Blender "
+            "only when the depsgraph reported its geometry changed, `mesh_cache`); *full export* beside it, not in "
+            "the total: the export that reads every mesh (what each frame cost before `mesh_cache`); "
             "*update* the C API edits of what differs; *upload*, *camera pass*, *shadow map* the library's "
             "shared passes, each until the GL finished it; *method* the method's own passes, read-back "
             "included; *ss_render rest* the rest of the call; *copy out* the layers into numpy; *total* what "
-            "`render_passes` costs per light; *EXR write* what a final render adds for its pass file.\n\n")
+            "`render_passes` costs per light; *EXR write* what a final render adds for its pass file; *floor* "
+            "render and copy-out on an unchanged scene (every cache kept): the method's own passes and read-back "
+            "at that size, which every frame redoes whatever changed; where the floor is above the target, "
+            "llvmpipe running the method's own passes is the limit.\n\n")
     for tori, triangles, rows, preview_rows in report:
         if rows:
             target = TARGET_RENDER.get(tori)
             f.write("## %d triangles: render_passes at %d² per light\n\n" % (triangles, size))
             if target:
                 f.write("Target: total ≤ %.0f ms per light.\n\n" % (target * 1e3))
-            f.write("| method | " + " | ".join(RENDER_COLUMNS) + " | meshes uploaded per frame |\n")
-            f.write("|---" * (len(RENDER_COLUMNS) + 2) + "|\n")
+            f.write("| method | " + " | ".join(RENDER_COLUMNS) + " | target | floor | meshes uploaded per frame |\n")
+            f.write("|---" * (len(RENDER_COLUMNS) + 4) + "|\n")
             for method, row in rows:
                 f.write("| %s | " % method + " | ".join("%.3f" % row[k] for k in RENDER_COLUMNS)
-                        + " | %d |\n" % row["uploads"])
+                        + " | %s | %.3f | %d |\n" % ("%.3f" % target if target else "-", row["floor"], row["uploads"]))
             camera = statistics.median(row["camera pass"] for _, row in rows)
             maps = statistics.median(row["shadow map"] for _, row in rows if row["shadow map"] > 0)
             f.write("\nThe shared passes a move redraws (only inside the screen rectangle of the box's old and new "
@@ -216,14 +254,17 @@ with open(out_path, "w") as f:
                 "one after it: the main thread's export of the edit (`preview.export_edit`: the moved object's "
                 "matrix) and the worker's updates, renders and overlays (`preview.progressive_job`); stage "
                 "medians of both renders together beside, and the full render alone (coarse image to full "
-                "image). Targets on 1M triangles: coarse ≤ %.0f ms, full ≤ %.0f ms.\n\n"
+                "image); the floors: the coarse and the full image of a request with no edit (the methods' own "
+                "passes at those sizes; a new view costs at least this). Targets on 1M triangles: coarse ≤ %.0f "
+                "ms, full ≤ %.0f ms.\n\n"
                 % (2 * frames, 960 // preview.COARSE_DIVISOR, 540 // preview.COARSE_DIVISOR,
                    TARGET_COARSE * 1e3, TARGET_PREVIEW * 1e3))
-        f.write("| method | coarse median | coarse p95 | full median | full p95 | "
+        f.write("| method | coarse median | coarse floor | coarse p95 | full median | full floor | full p95 | "
                 + " | ".join(PREVIEW_COLUMNS) + " |\n")
-        f.write("|---" * (len(PREVIEW_COLUMNS) + 5) + "|\n")
-        for method, coarse, coarse_high, median, high, stages in preview_rows:
-            f.write("| %s | %.3f | %.3f | %.3f | %.3f | " % (method, coarse, coarse_high, median, high)
+        f.write("|---" * (len(PREVIEW_COLUMNS) + 7) + "|\n")
+        for method, coarse, coarse_high, median, high, stages, floor in preview_rows:
+            f.write("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | " % (method, coarse, floor[0], coarse_high,
+                                                                      median, floor[1], high)
                     + " | ".join("%.3f" % stages[k] for k in PREVIEW_COLUMNS) + " |\n")
         f.write("\n")
 print("BENCH-WARM-OK")

@@ -4,7 +4,7 @@ import os
 
 import bpy
 
-from . import compositor, native, output_paths, passes, replace, scene_export
+from . import compositor, mesh_cache, native, output_paths, passes, replace, scene_export
 
 
 def _evaluated_depsgraph(scene, depsgraph=None):
@@ -17,21 +17,26 @@ def _evaluated_depsgraph(scene, depsgraph=None):
     return graph
 
 
-def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers=False):
+def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers=False, final=None):
     """Soft-shadow passes of `scene`'s current frame from its camera at its render resolution.
 
     lights: None (every shadow-casting light whose pass is enabled), a name or a list of names.
     methods: None (each light's own setting, 'auto' unless set), a method name or a list.
+    final: True for the passes a final render writes (each light's Refine Final Renders applies:
+    slower, closer to the truth), False for the methods' own passes; None (default): True when
+    `methods` is None (the passes equal the render's pass file), False when methods are named.
     Returns {(light name, method that ran): float32 array (height, width), row 0 = top}.
     Raises native.LibraryUnavailable or native.SoftShadowError for what cannot be done at all;
     per-light failures are left out and listed in `render_passes.last_problems`; each result's
     expected RMSE (for 'auto', or a method whose settings ask "estimate_rmse=1") is in
     `render_passes.last_estimates` and printed.
     """
+    if final is None:
+        final = methods is None
     graph = _evaluated_depsgraph(scene, depsgraph)
-    exported = scene_export.export(graph, scene, mode="RENDER")
+    exported = scene_export.export(graph, scene, mode="RENDER", reuse=mesh_cache.render_meshes)
     result = passes.compute(exported, lights=lights, methods=methods, extra_layers=extra_layers,
-                            only_enabled=lights is None)
+                            only_enabled=lights is None, final=final)
     render_passes.last_problems = list(result.problems)
     render_passes.last_chosen = dict(result.chosen)
     render_passes.last_estimates = dict(result.estimates)
@@ -102,7 +107,8 @@ def _render_layer(scene, view_layer, depsgraph=None, progress=None):
     target = frame_exr_path(scene, view_layer=view_layer)
     _remove_stale(target)
     graph = depsgraph if depsgraph is not None else _layer_depsgraph(scene, view_layer)
-    exported = scene_export.export(graph, scene, mode="RENDER", view_layer=view_layer)
+    exported = scene_export.export(graph, scene, mode="RENDER", view_layer=view_layer,
+                                   reuse=mesh_cache.render_meshes)
     result = passes.compute(exported, extra_layers=scene.softshadow.extra_layers, keep_results=True,
                             progress=progress, final=True)
     path = ""

@@ -32,7 +32,7 @@ def build_native_scene(exported):
     scene.set_view_layer(exported.view_layer)
     for mesh in exported.meshes:
         try:
-            scene.add_mesh(mesh["name"], mesh["vertices"], mesh["triangles"], mesh["flags"])
+            scene.add_mesh(mesh["name"], scene_export.world_vertices(mesh), mesh["triangles"], mesh["flags"])
         except native.SoftShadowError as exc:
             exported.problems.append("object '%s' skipped: %s" % (mesh["name"], exc))
     indices = {}
@@ -112,8 +112,10 @@ class LiveScene:
 
     def _replace_mesh(self, index, mesh):
         old = self.meshes[index]
-        same_geometry = (old["flags"] == mesh["flags"] and np.array_equal(old["triangles"], mesh["triangles"])
-                         and np.array_equal(old["local"], mesh["local"]))
+        same_geometry = old["flags"] == mesh["flags"] and (
+            # arrays an export took from its mesh cache are the very ones sent before
+            (old["triangles"] is mesh["triangles"] and old["local"] is mesh["local"])
+            or (np.array_equal(old["triangles"], mesh["triangles"]) and np.array_equal(old["local"], mesh["local"])))
         if not same_geometry:
             self.scene.update_mesh(index, mesh["local"], mesh["triangles"], mesh["flags"])
         if not np.array_equal(old["matrix"], mesh["matrix"]):

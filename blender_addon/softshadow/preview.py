@@ -1,8 +1,8 @@
 # How the 3D viewport shows a live soft-shadow preview: export on change, render off-thread, draw.
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The main thread exports what changed (from depsgraph.updates: only the objects an edit
-touched, a moved object as its matrix alone) and reads each viewport's view in its draw
-callback; a worker thread applies those edits to the native scenes kept alive for the preview
+"""The main thread exports what changed (from depsgraph.updates of edits and frame changes: only
+the objects an edit or the animation touched, a moved object as its matrix alone) and reads each
+viewport's view in its draw callback; a worker thread applies those edits to the native scenes kept alive for the preview
 (so the library keeps every unchanged mesh's GPU buffers and every unchanged light's shadow maps)
 and renders at reduced resolution through the library (which releases the GIL). Each request is
 rendered twice, progressively: a coarse image (COARSE_DIVISOR times fewer pixels in each axis) that
@@ -18,10 +18,18 @@ import gpu
 import numpy as np
 from gpu_extras.presets import draw_texture_2d
 
-from . import native, passes, scene_export
+from . import mesh_cache, native, passes, scene_export
 
 PREVIEW_OPACITY = 0.75
 COARSE_DIVISOR = 4    # the coarse image's width and height are the full one's divided by this
+# The coarse image keeps the full one's texels per pixel where that pays: occlusion textures'
+# long side shrinks with its pixels, from the library's default 512
+# (docs/methods/occlusion_textures.md; the slicing draw, light-side, would otherwise cost the
+# coarse image what it costs the full one). Shadow maps keep their size: at a quarter of it
+# (512) the test scene's coarse image moved from the full one by 0.014 in mean alpha (0.001 at
+# 2048), and shadow_map and pcss are cheap in the coarse image already. `auto` renders its
+# choice with that method's defaults.
+COARSE_SETTINGS = {"occlusion_textures": "resolution=%d" % (512 // COARSE_DIVISOR)}
 RECORD_LENGTH = 64    # entries kept in _State.delivered and _State.cancelled
 
 
@@ -68,8 +76,9 @@ def apply_edits(live, edits):
             live.apply(edit[1], edit[2])
 
 
-def _render_job(live, edits, camera, cancelled):
-    """Product of every previewed light's V, as an RGBA overlay. Runs on the worker."""
+def _render_job(live, edits, camera, cancelled, coarse=False):
+    """Product of every previewed light's V, as an RGBA overlay. Runs on the worker.
+    coarse: the methods' coarse settings (COARSE_SETTINGS)."""
     apply_edits(live, edits)
     with live.lock:
         if live.scene is None:
@@ -85,7 +94,7 @@ def _render_job(live, edits, camera, cancelled):
             method = method if method in fast_methods() else "auto"
             # The viewport cannot wait for auto to render every candidate: it takes auto's rule by
             # the light's shape (docs/methods/README.md).
-            settings = "check_pixels=0" if method == "auto" else None
+            settings = "check_pixels=0" if method == "auto" else COARSE_SETTINGS.get(method) if coarse else None
             result = scene.render(indices[light["name"]], method, settings=settings,
                                   progress=lambda f, s: cancelled())
             try:
@@ -124,7 +133,7 @@ def progressive_job(scenes, backlog, edits, camera, cancelled, deliver):
             return size
         pending, backlog[stage] = backlog[stage], []
         try:
-            rgba = _render_job(scenes[stage], pending, view, cancelled)
+            rgba = _render_job(scenes[stage], pending, view, cancelled, coarse=stage == "coarse")
         except native.SoftShadowError as exc:
             if exc.cancelled:
                 return size
@@ -304,6 +313,15 @@ def _on_depsgraph_update(scene, depsgraph=None, *_args):
     note_updates(scene, depsgraph.updates)
 
 
+@bpy.app.handlers.persistent
+def _on_frame_change(scene, depsgraph=None, *_args):
+    """A frame change re-evaluates what is animated: the same updates as an edit."""
+    if depsgraph is None or mesh_cache.unreported_frame_edits():
+        _state.full = True
+        return
+    note_updates(scene, depsgraph.updates)
+
+
 def _poll_redraw():
     """Main-thread timer: redraw the viewports when the worker has finished an image."""
     if _state.fresh:
@@ -319,6 +337,7 @@ def register():
     global _draw_handle
     _draw_handle = bpy.types.SpaceView3D.draw_handler_add(_draw, (), "WINDOW", "POST_PIXEL")
     bpy.app.handlers.depsgraph_update_post.append(_on_depsgraph_update)
+    bpy.app.handlers.frame_change_post.append(_on_frame_change)
     bpy.app.timers.register(_poll_redraw, first_interval=0.1, persistent=True)
 
 
@@ -329,6 +348,8 @@ def unregister():
         _draw_handle = None
     while _on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
         bpy.app.handlers.depsgraph_update_post.remove(_on_depsgraph_update)
+    while _on_frame_change in bpy.app.handlers.frame_change_post:
+        bpy.app.handlers.frame_change_post.remove(_on_frame_change)
     if bpy.app.timers.is_registered(_poll_redraw):
         bpy.app.timers.unregister(_poll_redraw)
     with _state.lock:

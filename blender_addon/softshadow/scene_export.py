@@ -4,6 +4,7 @@
 without Blender. The bottom half walks an evaluated depsgraph; it only touches the objects it
 is given, so this module never imports bpy itself.
 """
+import collections
 import math
 from dataclasses import dataclass, field
 
@@ -19,7 +20,7 @@ GEOMETRY_TYPES = ("MESH", "CURVE", "SURFACE", "FONT", "META")
 
 @dataclass
 class ExportedScene:
-    meshes: list = field(default_factory=list)    # dicts: name, vertices, triangles, flags
+    meshes: list = field(default_factory=list)    # dicts: name, local, matrix, triangles, flags
     lights: list = field(default_factory=list)    # dicts: see light_values()
     camera: dict = None                           # dict: see camera_values(); None = no camera
     view_layer: str = "ViewLayer"
@@ -50,6 +51,12 @@ def transform_points(matrix, points):
     return (p @ m[:3, :3].T + m[:3, 3]).astype(np.float32)
 
 
+def world_vertices(mesh):
+    """An exported mesh's vertices in world space, (N, 3) float32."""
+    rows = np.asarray(mesh["matrix"], dtype=np.float64).reshape(4, 4).T
+    return transform_points(rows, mesh["local"])
+
+
 def render_size(resolution_x, resolution_y, percentage):
     """Blender's final pixel size: integer arithmetic as in BKE_render_resolution."""
     return (int(resolution_x) * int(percentage)) // 100, (int(resolution_y) * int(percentage)) // 100
@@ -66,6 +73,13 @@ def mesh_problem(name, vertices, triangles):
         return "object '%s' has %d vertices that are not finite numbers (NaN/inf): skipped" % (name, bad)
     if triangles.max() >= len(vertices.reshape(-1, 3)):
         return "object '%s' has a face index out of range: skipped" % name
+    return None
+
+
+def transform_problem(name, matrix):
+    """Why an object's matrix cannot place its mesh (a message), or None."""
+    if not np.all(np.isfinite(np.asarray(matrix))):
+        return "object '%s' has a transform that is not finite numbers (NaN/inf): skipped" % name
     return None
 
 
@@ -151,8 +165,13 @@ def rendering_objects(view_layer):
     return [obj for obj in view_layer.objects if _object_visible(obj, "RENDER", view_layer, collections)]
 
 
+# How often each object's mesh was read from Blender (the tests check what an export reads).
+mesh_reads = collections.Counter()
+
+
 def _local_mesh_arrays(obj):
     """(vertices (N,3) float32 local, triangles (M,3) uint32) of an evaluated object."""
+    mesh_reads[obj.original.name] += 1
     mesh = obj.to_mesh()
     try:
         if mesh is None:
@@ -196,7 +215,7 @@ def _replaces_shadow(obj):
 def _light_settings(obj):
     props = getattr(obj.original.data, "softshadow", None)
     if props is None:
-        return {"enabled": True, "method": "auto", "samples": 0, "settings": "", "refine_final": False}
+        return {"enabled": True, "method": "auto", "samples": 0, "settings": "", "refine_final": True}
     return {"enabled": bool(props.enabled), "method": props.method, "samples": int(props.samples),
             "settings": props.settings, "refine_final": bool(props.refine_final)}
 
@@ -241,20 +260,25 @@ def _instances(depsgraph, view_layer, mode):
         yield None, evaluated, False, None, evaluated.matrix_world.copy()
 
 
-def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=None, geometry=None):
+def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=None, geometry=None,
+           reuse=None):
     """An evaluated depsgraph -> ExportedScene. mode: 'RENDER' (hide_render, collections'
     render switches) or 'VIEWPORT' (what the viewport shows). camera overrides the scene camera
     (the viewport preview passes its own view).
 
-    only: names of the objects to export (the preview's changed objects; no instances); of
-    those, the ones not in `geometry` are exported without reading their mesh ("local",
-    "vertices" and "triangles" None: a moved object costs its matrix). Each mesh carries its
-    object-space "local" coordinates and column-major "matrix" beside the world "vertices"."""
+    Each mesh carries its object-space "local" vertices, "triangles" and column-major "matrix"
+    (world_vertices() places it). only: names of the objects to export (the preview's changed
+    objects; no instances); of those, the ones not in `geometry` are exported without reading
+    their mesh ("local" and "triangles" None: a moved object costs its matrix). reuse: a
+    mesh_cache.MeshCache: an object's mesh comes from it while the depsgraph reports no change
+    of the object's geometry, and goes into it when read (instances are always read)."""
     view_layer = view_layer or depsgraph.view_layer
     out = ExportedScene(view_layer=view_layer.name)
     render_collections = _render_visible_collections(view_layer) if mode == "RENDER" else set()
     used_mesh_names, used_light_names = set(), set()
     local_cache = {}
+    if reuse is not None:
+        reuse.bind(depsgraph)
 
     for inst, obj, is_instance, parent, matrix in _instances(depsgraph, view_layer, mode):
         if only is not None and (is_instance or obj.original.name not in only):
@@ -289,28 +313,42 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
         if only is not None and obj.original.name not in (geometry or ()):
             flags = _mesh_flags(obj)
             if flags:
-                out.meshes.append({"name": base_name, "vertices": None, "triangles": None, "flags": flags,
-                                   "local": None, "matrix": column_major(matrix)})
+                out.meshes.append({"name": base_name, "local": None, "triangles": None, "flags": flags,
+                                   "matrix": column_major(matrix)})
             continue
-        key = (obj.type, obj.data.as_pointer() if obj.data is not None else obj.as_pointer())
-        if key not in local_cache or not is_instance:
-            try:
-                local_cache[key] = _local_mesh_arrays(obj)
-            except RuntimeError as exc:
-                out.problems.append("object '%s': %s" % (base_name, exc))
-                continue
-        vertices, triangles = local_cache[key]
+        # An object the viewport's depsgraph does not show (added for a render, inst None) may
+        # not be evaluated there, so no update vouches for its mesh: it is read every time.
+        cacheable = reuse is not None and inst is not None and not is_instance
+        arrays = reuse.get(obj) if cacheable else None
+        fresh = arrays is None
+        if fresh:
+            key = (obj.type, obj.data.as_pointer() if obj.data is not None else obj.as_pointer())
+            if key not in local_cache or not is_instance:
+                try:
+                    local_cache[key] = _local_mesh_arrays(obj)
+                except RuntimeError as exc:
+                    out.problems.append("object '%s': %s" % (base_name, exc))
+                    continue
+            arrays = local_cache[key]
         name = unique_name(base_name, used_mesh_names)
-        world = transform_points(matrix, vertices)
-        problem = mesh_problem(name, world, triangles)
+        if fresh:
+            problem = mesh_problem(name, *arrays)
+            if problem:
+                out.problems.append(problem)
+                continue
+            if cacheable:
+                reuse.put(obj, *arrays)  # only meshes that passed the checks
+        vertices, triangles = arrays
+        flat = column_major(matrix)
+        problem = transform_problem(name, flat)
         if problem:
             out.problems.append(problem)
             continue
         flags = _mesh_flags(obj)
         if flags == 0:
             continue
-        out.meshes.append({"name": name, "vertices": world, "triangles": triangles, "flags": flags,
-                           "local": vertices, "matrix": column_major(matrix)})
+        out.meshes.append({"name": name, "local": vertices, "triangles": triangles, "flags": flags,
+                           "matrix": flat})
 
     if camera is None and only is None:
         camera = scene_camera(scene, depsgraph)

@@ -74,7 +74,7 @@ def test_extra_layers_and_values():
     sstest.check(kind == "MULTILAYER" and "Key_shadow_map_mask" in names, "mask pass listed: %s" % names)
     # The file holds what render_passes returns (row 0 = top in both).
     stored = sstest.exr_channel(path, "ViewLayer.Key_shadow_map.V")
-    direct = ss.render_passes(scene, lights="Key", methods="shadow_map")[("Key", "shadow_map")]
+    direct = ss.render_passes(scene, lights="Key")[("Key", "shadow_map")]
     sstest.check(stored.shape == direct.shape, "shape %s vs %s" % (stored.shape, direct.shape))
     sstest.check(float(np.abs(stored - direct).max()) <= 1e-6, "EXR equals the array")
 
@@ -118,12 +118,12 @@ def test_auto_keeps_its_pass_name_and_the_header_says_what_ran():
     print("   auto ran", ran)
 
 
-def test_refine_final_renders_trace_only_the_final_render():
+def test_final_renders_refine_by_default_and_only_final_renders():
     folder = sstest.tempdir("exr-refine")
     scene = sstest.standard_scene(48, 32)
     key = scene.objects["Key"].data.softshadow
     key.method = "pcss"
-    key.refine_final = True
+    sstest.check(key.refine_final, "Refine Final Renders is on for a new light")
     scene.softshadow.extra_layers = True
     scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
     bpy.context.view_layer.update()
@@ -133,8 +133,10 @@ def test_refine_final_renders_trace_only_the_final_render():
     refined = sstest.exr_channel(path, "ViewLayer.Key_pcss_refined.V")
     v_final = sstest.exr_channel(path, "ViewLayer.Key_pcss.V")
     sstest.check(0 < refined.sum() < refined.size / 2, "some pixels traced: %d" % refined.sum())
-    # Scripts' render_passes (like the viewport preview) are not final renders: the plain method.
-    v_plain = ss.render_passes(scene)[("Key", "pcss")]
+    # A script's render_passes gives what the render wrote, unless it asks for the fast passes.
+    v_default = ss.render_passes(scene)[("Key", "pcss")]
+    sstest.check(float(np.abs(v_default - v_final).max()) <= 1e-6, "render_passes() equals the pass file")
+    v_plain = ss.render_passes(scene, final=False)[("Key", "pcss")]
     certain = refined == 0
     sstest.check(np.array_equal(v_final[certain], v_plain[certain]), "untouched where pcss is certain")
     sstest.check(not np.array_equal(v_final[~certain], v_plain[~certain]), "traced where it is not")

@@ -51,7 +51,7 @@ def test_moving_one_object_sends_its_matrix_and_moves_the_shadow():
         edit = preview.export_edit(depsgraph, scene)
         sstest.check(edit[0] == "objects" and edit[2] == {"Occluder"}, "a partial edit: %r" % (edit[:1] + edit[2:],))
         sent = edit[1].meshes
-        sstest.check(len(sent) == 1 and sent[0]["local"] is None and sent[0]["vertices"] is None,
+        sstest.check(len(sent) == 1 and sent[0]["local"] is None and sent[0]["triangles"] is None,
                      "the moved object is exported as its matrix alone: %s" % [m["name"] for m in sent])
         after = preview._render_job(live, [edit], camera, lambda: False)
         stats_after = native.cache_stats()
@@ -109,8 +109,11 @@ def test_render_passes_sends_only_the_moved_matrix():
 
     scene.objects["Occluder"].location.x += 1.0
     bpy.context.view_layer.update()
+    reads = scene_export.mesh_reads.copy()
     moved = ss.render_passes(scene, methods=["shadow_map"])[("Key", "shadow_map")]
     after = native.cache_stats()
+    read = scene_export.mesh_reads - reads
+    sstest.check(not read, "a move reads no mesh from Blender, read %s" % dict(read))
     uploads = after["mesh_uploads"] - unchanged["mesh_uploads"]
     sstest.check(uploads == 0, "a move uploads no mesh (the matrix is sent), got %d" % uploads)
     sstest.check(after["shadow_maps"] == unchanged["shadow_maps"] + 1, "the light's map is redrawn once")
@@ -127,6 +130,142 @@ def test_render_passes_sends_only_the_moved_matrix():
         fresh.close()
     sstest.check(np.array_equal(result.arrays[("Key", "shadow_map")], moved),
                  "the updated scene renders exactly as a fresh one")
+
+
+
+def _matches_a_fresh_export(scene, arrays, what):
+    """render_passes' arrays are exactly those of a scene exported whole and built afresh."""
+    exported = scene_export.export(bpy.context.evaluated_depsgraph_get(), scene)
+    fresh = passes.LiveScene()
+    try:
+        result = passes.compute(exported, methods=["shadow_map"], live=fresh)
+    finally:
+        fresh.close()
+    sstest.check(np.array_equal(result.arrays[("Key", "shadow_map")], arrays[("Key", "shadow_map")]),
+                 "%s: render_passes renders exactly as a fresh export" % what)
+
+
+def _animated_scene():
+    """The plate slides +1 along x from frame 1 to 2 by a shape key; "Other" grows by an animated
+    Displace modifier, "Driven" by a Displace whose strength a driver takes from the frame;
+    "Still" has none of these."""
+    scene = _scene()
+    plate = scene.objects["Occluder"]
+    plate.shape_key_add(name="Basis")
+    slid = plate.shape_key_add(name="Slid")
+    for point in slid.data:
+        point.co.x += 1.0
+    slid.value = 0.0
+    slid.keyframe_insert("value", frame=1)
+    slid.value = 1.0
+    slid.keyframe_insert("value", frame=2)
+    grow = scene.objects["Other"].modifiers.new("Grow", "DISPLACE")
+    grow.strength = 0.0
+    grow.keyframe_insert("strength", frame=1)
+    grow.strength = 0.3
+    grow.keyframe_insert("strength", frame=2)
+    driven = sstest.add_box("Driven", 0.5, (-3.0, 2.5, 0.5))
+    curve = driven.modifiers.new("Swell", "DISPLACE").driver_add("strength")
+    curve.driver.expression = "frame * 0.1"
+    sstest.add_box("Still", 0.5, (-3.0, -2.5, 0.5))
+    scene.frame_set(1)
+    return scene
+
+
+def test_render_passes_reads_again_only_the_meshes_a_frame_change_animates():
+    scene = _animated_scene()
+    ss.render_passes(scene, methods=["shadow_map"])
+    reads = scene_export.mesh_reads.copy()
+    again = ss.render_passes(scene, methods=["shadow_map"])
+    read = scene_export.mesh_reads - reads
+    sstest.check(not read, "nothing changed: no mesh read, read %s" % dict(read))
+    _matches_a_fresh_export(scene, again, "frame 1")
+
+    scene.frame_set(2)
+    reads = scene_export.mesh_reads.copy()
+    arrays = ss.render_passes(scene, methods=["shadow_map"])
+    read = scene_export.mesh_reads - reads
+    sstest.check(set(read) == {"Occluder", "Other", "Driven"},
+                 "the shape key's, the animated modifier's and the driven modifier's meshes are read again, "
+                 "the ground's and the still box's are not: %s" % dict(read))
+    row, col = sstest.pixel_of(scene, sstest.shadow_centre(0.0))
+    sstest.check(arrays[("Key", "shadow_map")][row, col] < 0.05, "the shadow followed the shape key")
+    _matches_a_fresh_export(scene, arrays, "frame 2")
+
+
+def test_the_preview_follows_a_frame_change_and_reads_only_the_animated_meshes():
+    scene = _animated_scene()
+    preview._state.full = True
+    live = passes.LiveScene()
+    try:
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        camera = scene_export.scene_camera(scene, depsgraph)
+        preview._render_job(live, [preview.export_edit(depsgraph, scene)], camera, lambda: False)
+        scene.frame_set(2)
+        sstest.check({"Occluder", "Other", "Driven"} <= preview._state.geometry,
+                     "the frame change's geometry updates are noted: %s" % preview._state.geometry)
+        sstest.check("Still" not in preview._state.changed and "Ground" not in preview._state.changed,
+                     "the still meshes are not: %s" % preview._state.changed)
+        reads = scene_export.mesh_reads.copy()
+        edit = preview.export_edit(depsgraph, scene)
+        read = scene_export.mesh_reads - reads
+        sstest.check(edit[0] == "objects" and set(read) == {"Occluder", "Other", "Driven"},
+                     "a partial edit reading the animated meshes: %s %s" % (edit[0], dict(read)))
+        rgba = preview._render_job(live, [edit], camera, lambda: False)
+        sstest.check(_shadow_alpha(rgba, scene, sstest.shadow_centre(0.0)) > 0.5, "the shadow followed the frame")
+        sstest.check(_shadow_alpha(rgba, scene, sstest.shadow_centre(-1.0)) < 0.05, "and left its old place")
+    finally:
+        live.close()
+
+
+def test_a_frame_change_handler_that_edits_a_mesh_makes_render_passes_read_every_mesh():
+    scene = _animated_scene()
+    ss.render_passes(scene, methods=["shadow_map"])
+    still = scene.objects["Still"].data
+
+    # Blender evaluates what frame_change_post handlers change without reporting it.
+    def edit(scene, *_args):
+        for vertex in still.vertices:
+            vertex.co.z += 2.0
+        still.update()
+    bpy.app.handlers.frame_change_post.append(edit)
+    try:
+        scene.frame_set(2)
+    finally:
+        bpy.app.handlers.frame_change_post.remove(edit)
+    reads = scene_export.mesh_reads.copy()
+    arrays = ss.render_passes(scene, methods=["shadow_map"])
+    read = scene_export.mesh_reads - reads
+    sstest.check(set(read) == {"Ground", "Occluder", "Other", "Driven", "Still"},
+                 "every mesh is read again: %s" % dict(read))
+    _matches_a_fresh_export(scene, arrays, "after the handler's edit")
+
+
+def test_an_object_hidden_in_the_viewport_is_read_at_every_call():
+    scene = _scene()
+    scene.objects["Other"].hide_set(True)  # the viewport's depsgraph leaves it out: no update vouches for it
+    bpy.context.view_layer.update()
+    ss.render_passes(scene, methods=["shadow_map"])
+    reads = scene_export.mesh_reads.copy()
+    arrays = ss.render_passes(scene, methods=["shadow_map"])
+    read = scene_export.mesh_reads - reads
+    sstest.check(set(read) == {"Other"}, "the hidden object alone is read again: %s" % dict(read))
+    _matches_a_fresh_export(scene, arrays, "with a hidden object")
+
+
+def test_a_scene_rebuilt_with_the_same_names_is_read_again():
+    scene = _scene()
+    ss.render_passes(scene, methods=["shadow_map"])
+    scene = _scene()  # every object and mesh removed and made again under its old name
+    for vertex in scene.objects["Occluder"].data.vertices:
+        vertex.co.x += 1.0
+    scene.objects["Occluder"].data.update()
+    bpy.context.view_layer.update()
+    reads = scene_export.mesh_reads.copy()
+    arrays = ss.render_passes(scene, methods=["shadow_map"])
+    read = scene_export.mesh_reads - reads
+    sstest.check(set(read) == {"Ground", "Occluder", "Other"}, "every mesh read: %s" % dict(read))
+    _matches_a_fresh_export(scene, arrays, "the rebuilt scene")
 
 
 sstest.run(globals())

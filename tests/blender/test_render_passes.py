@@ -155,9 +155,9 @@ def test_sweep_ring_fill_from_the_method_settings():
     scene.render.pixel_aspect_x = 1.0  # another test may have left it at 2
     key = scene.objects["Key"].data.softshadow
     key.method = "sweep"
-    smooth = ss.render_passes(scene)[("Key", "sweep")]
+    smooth = ss.render_passes(scene, final=False)[("Key", "sweep")]
     key.settings = "fill=rings"
-    rings = ss.render_passes(scene)[("Key", "sweep")]
+    rings = ss.render_passes(scene, final=False)[("Key", "sweep")]
     _check_pass(rings, scene, "sweep fill=rings")
     diff = np.abs(rings - smooth)
     sstest.check(diff.max() > 1e-3 and diff.mean() < 0.02,
@@ -175,9 +175,9 @@ def test_dbuffer_paper_formula_from_the_light_settings():
     scene = sstest.standard_scene(W, H)
     light = scene.objects["Key"].data.softshadow
     light.method = "dbuffer"
-    exact = ss.render_passes(scene)[("Key", "dbuffer")]
+    exact = ss.render_passes(scene, final=False)[("Key", "dbuffer")]
     light.settings = "formula=paper"
-    paper = ss.render_passes(scene)[("Key", "dbuffer")]
+    paper = ss.render_passes(scene, final=False)[("Key", "dbuffer")]
     soft_exact = int(np.sum((exact > 0.05) & (exact < 0.95)))
     soft_paper = int(np.sum((paper > 0.05) & (paper < 0.95)))
     sstest.check(soft_exact > 20 and soft_paper < soft_exact // 4,

@@ -22,6 +22,8 @@ LIT_GROUND = 0.2  # solid shading draws the lit ground at least this bright
 
 
 COARSE_MATCH = 0.05  # mean |alpha| difference of the coarse image (scaled up) from the full one
+# ... with the coarse settings (texels per pixel as the full image): a small part of COARSE_MATCH
+COARSE_LOSS = 0.01
 
 
 def _wait(predicate, what, seconds=120):
@@ -94,6 +96,54 @@ def test_coarse_then_full_and_a_newer_edit_cancels():
     finally:
         ss.preview.unregister()
         ss.preview.register()
+
+
+def test_the_coarse_image_uses_the_coarse_sizes_and_still_matches_the_full_one():
+    preview = ss.preview
+    scene = sstest.standard_scene(64, 48)
+    full = (960, 540)
+    camera = ss.scene_export.scene_camera(scene, bpy.context.evaluated_depsgraph_get(), *full)
+    coarse_camera = preview.coarse_camera(camera)
+    sstest.check(preview.COARSE_SETTINGS == {"occlusion_textures": "resolution=128"},
+                 "coarse settings: %s" % preview.COARSE_SETTINGS)
+    for method, settings in sorted(preview.COARSE_SETTINGS.items()):
+        scene.objects["Key"].data.softshadow.method = method
+        bpy.context.view_layer.update()
+        preview._state.full = True
+        edit = preview.export_edit(bpy.context.evaluated_depsgraph_get(), scene)
+        scenes = {"coarse": ss.passes.LiveScene(), "full": ss.passes.LiveScene()}
+        images = []
+        try:
+            preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False, images.append)
+            live = scenes["coarse"]
+            index = live.light_indices()["Key"]
+            small, default = (live.scene.render(index, method, settings=text) for text in (settings, None))
+            try:
+                v_small, v_default = small.layers()["V"], default.layers()["V"]
+            finally:
+                small.close()
+                default.close()
+        finally:
+            for live in scenes.values():
+                live.close()
+        alpha = images[0][..., 3]
+        sstest.check(alpha.shape == (coarse_camera["height"], coarse_camera["width"]), "coarse size %s" % (alpha.shape,))
+        expected = np.flipud(preview.PREVIEW_OPACITY * (1.0 - np.clip(v_small, 0.0, 1.0)))
+        sstest.check(np.array_equal(alpha, expected), "%s: the coarse image is rendered with %s" % (method, settings))
+        changed = float(np.mean(np.abs(v_small - v_default) > 1e-6))
+        sstest.check(changed > 0, "%s: %s renders differently from the default size (else this test "
+                     "cannot tell them apart)" % (method, settings))
+        # no visible loss: the coarse image scaled up matches the full one as closely as with defaults
+        scaled = np.repeat(np.repeat(alpha, preview.COARSE_DIVISOR, 0), preview.COARSE_DIVISOR, 1)
+        difference = float(np.abs(scaled - images[1][..., 3]).mean())
+        with_defaults = np.repeat(np.repeat(np.flipud(preview.PREVIEW_OPACITY * (1.0 - np.clip(v_default, 0.0, 1.0))),
+                                            preview.COARSE_DIVISOR, 0), preview.COARSE_DIVISOR, 1)
+        baseline = float(np.abs(with_defaults - images[1][..., 3]).mean())
+        print("   %s coarse (%s) vs full: mean |alpha| %.4f (defaults %.4f); %.4f of the pixels changed"
+              % (method, settings, difference, baseline, changed))
+        sstest.check(difference <= COARSE_MATCH, "%s: coarse vs full %.4f" % (method, difference))
+        sstest.check(difference <= COARSE_LOSS, "%s: the smaller sizes lose little: %.4f (defaults %.4f)"
+                     % (method, difference, baseline))
 
 
 def _screenshot(path):

@@ -17,6 +17,7 @@
 #include "reference/render_reference.h"
 #include "reference/trace_pixels.h"
 #include "renderer/renderer.h"
+#include "test_pcss_support.h"
 #include "test_scenes.h"
 
 namespace ss {
@@ -177,6 +178,55 @@ TEST(AutoMeasures, SparseCheckPixelsCoverTheImageOncePerCell) {
     EXPECT_EQ(sparseCheckPixels(4, 3, 4096, 1).size(), 12u);  // a small image is checked whole
 }
 
+// The box over a curved open ground (z = 0.04 x^2, a bowl like a photo backdrop) that casts,
+// as every Blender object does: every face sees the whole light from above.
+Scene boxOverCurvedGround(const test::SceneParams& p) {
+    Scene box = test::sceneBox(p);
+    Scene s;
+    const int n = 24;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::uvec3> triangles;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const float x = -8.0f + 16.0f * float(i) / float(n), y = -8.0f + 16.0f * float(j) / float(n);
+            positions.emplace_back(x, y, 0.04f * x * x);
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+            triangles.emplace_back(a, b, d);
+            triangles.emplace_back(a, d, c);
+        }
+    Mesh ground = test::makeMesh(positions, triangles);
+    ground.name = "curved ground";
+    ground.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
+    s.addMesh(ground);
+    for (const Mesh& m : box.meshes())
+        if (!m.receives()) s.addMesh(m);
+    s.addLight(box.light(0));
+    s.setCamera(box.camera());
+    return s;
+}
+
+TEST(AutoMeasures, GivesDbufferAnOpenCasterThatSeesTheLightFromOneSide) {
+    test::SceneParams p;
+    p.width = 96, p.height = 72;
+    const Scene s = boxOverCurvedGround(p);
+    ASSERT_FALSE(s.meshes()[0].report.closedManifold());
+    auto candidates = autoCandidates(s, 0);
+    EXPECT_EQ(std::count(candidates.begin(), candidates.end(), "dbuffer"), 1);
+    // Its border's volumes point away from the light: no leak, no false shadow.
+    const Layers reference = test::renderReference(s);
+    EXPECT_LT(fullRmse(test::renderWith(s, "dbuffer"), reference), 0.03);
+    // The same ground folded over itself (faces seeing the light from both sides) is not.
+    Scene folded = s;
+    Mesh bent = s.meshes()[0];
+    for (glm::vec3& v : bent.positions) v.z = 2.0f * std::sin(1.5f * v.x);
+    folded.updateMesh(0, bent);
+    candidates = autoCandidates(folded, 0);
+    EXPECT_EQ(std::count(candidates.begin(), candidates.end(), "dbuffer"), 0);
+}
+
 TEST(AutoMeasures, NeverGivesDbufferAnOpenCaster) {
     test::SceneParams p;
     p.width = 96, p.height = 72;
@@ -240,6 +290,37 @@ TEST(SparseCheck, EqualsTheReferenceImageAtItsPixels) {
     EXPECT_GT(umbraOrLit, n / 2);  // most checked pixels are decided by the first round
 }
 
+// sweep shades its receiver plane only: where the shadow falls on another receiving surface (a
+// low platform on the ground) the check bounds its error before it renders, the bound holds, and
+// auto leaves sweep out once a rendered candidate is clearly below it.
+TEST(AutoMeasures, SweepsBoundCountsTheSurfacesOffItsPlane) {
+    test::SceneParams p;
+    p.width = 128, p.height = 96;
+    Scene scene = test::sceneBox(p);
+    Mesh platform = test::makeBox({-1.2f, -1.2f, 0.0f}, {0.4f, 0.4f, 0.5f}, SS_MESH_CAST | SS_MESH_RECEIVE);
+    platform.name = "platform";
+    scene.addMesh(platform);
+    const Camera& cam = scene.camera();
+    TraceScene trace(scene);
+    const SparseCheck check =
+        runSparseCheck(trace, scene, 0, sparseCheckDefaultPixels(cam.width, cam.height), 0, RenderSettings{}.seed);
+    const double bound = errorLowerBound(check, "sweep", scene, 0);
+    Renderer renderer(SS_BACKEND_AUTO);
+    RenderSettings withEstimate;
+    withEstimate.options["estimate_rmse"] = "1";
+    double estimate = 0.0;
+    renderer.render(scene, 0, "sweep", withEstimate, nullptr, &estimate);
+    EXPECT_GT(bound, 0.02);
+    EXPECT_LE(bound, estimate * 1.02 + 0.001);
+    std::string used;
+    Renderer::AutoTrials trials;
+    Renderer fresh(SS_BACKEND_AUTO);
+    fresh.render(scene, 0, "auto", RenderSettings{}, &used, nullptr, &trials);
+    EXPECT_NE(used, "sweep");
+    EXPECT_EQ(std::count(trials.rendered.begin(), trials.rendered.end(), "sweep"), 0) << used;
+    EXPECT_EQ(std::count(trials.skippedByBound.begin(), trials.skippedByBound.end(), "sweep"), 1);
+}
+
 // The check's lower bounds hold for the two methods they describe, and auto renders at most
 // three candidates at full size on the test scenes (its prior and the bounds leave out the rest).
 TEST(AutoMeasures, RendersAtMostThreeCandidatesAndTheBoundsHold) {
@@ -254,11 +335,11 @@ TEST(AutoMeasures, RendersAtMostThreeCandidatesAndTheBoundsHold) {
             withEstimate.options["estimate_rmse"] = "1";
             double estimate = 0.0;
             renderer.render(c.scene, 0, bounded, withEstimate, nullptr, &estimate);
-            const double bound = errorLowerBound(check, bounded);
+            const double bound = errorLowerBound(check, bounded, c.scene, 0);
             EXPECT_GT(bound, 0.0) << c.name << " " << bounded;
             EXPECT_LE(bound, estimate * 1.02 + 0.001) << c.name << " " << bounded;
         }
-        EXPECT_EQ(errorLowerBound(check, "pcss"), 0.0);
+        EXPECT_EQ(errorLowerBound(check, "pcss", c.scene, 0), 0.0);
         Renderer fresh(SS_BACKEND_AUTO);
         std::string used;
         Renderer::AutoTrials trials;

@@ -128,9 +128,14 @@ TEST(Refinement, RecoversFromAGlPassThatIsWronglyCertain) {
 
 TEST(Refinement, EveryMethodAcceptsTheKeyAndRefusesABadValue) {
     Scene scene = test::sceneBox(smallSoftScene());
-    for (const std::string& method : methodNames())
+    for (const std::string& method : methodNames()) {
         test::expectSettingRefused(scene, method, {{"refine", "maybe"}}, "refine");
+        // Final renders add refine=on to whatever method a light has: every one must take it.
+        const Layers refined = test::renderWith(scene, method, {{"refine", "on"}}, 16);
+        for (float v : layer(refined, "V").pixels) ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << method;
+    }
     test::expectSettingRefused(scene, "pcss", {{"refine", "on"}, {"refine_margin", "-1"}}, "refine_margin");
+    test::expectSettingRefused(scene, "pcss", {{"refine", "on"}, {"refine_verify", "-1"}}, "refine_verify");
     // The reference is exact already: refine changes nothing there.
     const Layers a = test::renderWith(scene, "reference", {}, 16);
     const Layers b = test::renderWith(scene, "reference", {{"refine", "on"}}, 16);

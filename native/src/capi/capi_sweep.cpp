@@ -48,6 +48,7 @@ SS_API ss_status ss_sweep_shadow_mesh(const ss_scene* scene, int32_t light_index
             settings.seed = options->seed;
             if (options->settings) settings.options = ss::parseSettings(options->settings);
         }
+        settings.requireKnownKeys("sweep", ss::sweepSettingKeys());
         ss::SweepShadow shadow = ss::computeSweepShadow(scene->scene, light_index, ss::sweepOptions(settings));
         auto mesh = std::make_unique<ss_sweep_mesh>();
         mesh->receiver = shadow.plane.mesh;

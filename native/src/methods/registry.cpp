@@ -1,5 +1,6 @@
 // Which methods exist (the contract names), which of them `auto` may try and its fallback rule.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
 #include <functional>
 
 #include "core/error.h"
@@ -48,19 +49,45 @@ std::unique_ptr<Method> createMethod(const std::string& name) {
 }
 
 namespace {
-// A flat open caster (a floor, a wall: Blender lets every object cast by default) is not a
-// problem for the volumes: it has no silhouette inside itself and its border's volumes point
-// away from the light, behind it. Any other open or non-manifold caster is.
-bool castersClosedForVolumes(const Scene& scene) {
+// Whether every point of the light lies on the same side of every face: then the mesh's only
+// silhouette, seen from anywhere on the light, is its border.
+bool facesOneSideOfLight(const Mesh& mesh, const Light& light) {
+    const glm::dvec3 centre(light.position());
+    const double reach = light.type == LightType::Point || light.type == LightType::Spot
+                             ? double(light.radius)
+                             : std::sqrt(double(glm::dot(light.halfAxisX(), light.halfAxisX())) +
+                                         double(glm::dot(light.halfAxisY(), light.halfAxisY())));
+    const glm::dvec3 toSun = -glm::dvec3(light.direction());
+    const double sunSlack = std::sin(double(light.sunHalfAngle()));
+    int side = 0;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::dvec3 a(mesh.positions[t[0]]), b(mesh.positions[t[1]]), c(mesh.positions[t[2]]);
+        const glm::dvec3 n = glm::cross(b - a, c - a);
+        const double length = glm::length(n);
+        if (!(length > 0.0)) continue;  // a degenerate face has no side
+        const double distance = light.type == LightType::Sun ? glm::dot(n, toSun) : glm::dot(n, centre - a);
+        const double slack = length * (light.type == LightType::Sun ? sunSlack : reach);
+        const int faceSide = distance > slack ? 1 : distance < -slack ? -1 : 0;
+        if (faceSide == 0 || (side != 0 && faceSide != side)) return false;
+        side = faceSide;
+    }
+    return true;
+}
+
+// An open caster whose faces all see the light from one side (a floor, a wall, a curved ground
+// or backdrop: Blender lets every object cast by default) is not a problem for the volumes:
+// its only silhouette is its border, whose volumes point away from the light, behind it. Any
+// other open or non-manifold caster is.
+bool castersClosedForVolumes(const Scene& scene, const Light& light) {
     for (const Mesh& m : scene.meshes())
-        if (m.casts() && !m.report.closedManifold() && !isPlanarMesh(m)) return false;
+        if (m.casts() && !m.report.closedManifold() && !isPlanarMesh(m) && !facesOneSideOfLight(m, light))
+            return false;
     return true;
 }
 }  // namespace
 
 std::vector<std::string> autoCandidates(const Scene& scene, int lightIndex) {
-    (void)scene.light(lightIndex);
-    const bool closed = castersClosedForVolumes(scene);
+    const bool closed = castersClosedForVolumes(scene, scene.light(lightIndex));
     std::vector<std::string> out;
     for (const std::string& name : methodNames()) {
         if (name == "reference") continue;  // the truth itself: not an interactive method
@@ -85,7 +112,7 @@ std::string chooseAutoMethodByShape(const Scene& scene, int lightIndex) {
     // Used only where the sparse check cannot run (docs/methods/README.md): each light gets the
     // method whose paper models its shape, unless the scene breaks that method's assumptions.
     const Light& light = scene.light(lightIndex);
-    const bool castersClosed = castersClosedForVolumes(scene);
+    const bool castersClosed = castersClosedForVolumes(scene, light);
     switch (light.type) {
         case LightType::Square:
         case LightType::Rectangle:

@@ -39,6 +39,7 @@ std::vector<PixelVisibility> tracePixels(const TraceScene& trace, const Scene& s
             if (!rays.span(out[i].x, out[i].y, &ray, &tNear, &tFar)) continue;
             SurfaceHit hit = trace.intersect(ray, tNear, tFar);
             if (!hit.hit || !scene.meshes()[hit.mesh].receives()) continue;
+            out[i].mesh = int(hit.mesh);
             SampleSequence sequence(seed, uint32_t(out[i].x), uint32_t(out[i].y));
             out[i].centreVisible = lightCentreVisible(trace, sampler, hit, light.castShadows);
             if (adaptive) {

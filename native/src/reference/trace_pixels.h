@@ -14,6 +14,7 @@ struct PixelVisibility {
     float visibility = 1.0f;
     bool inMask = false;  // a receiving surface the light reaches (the reference's mask)
     bool centreVisible = true;  // lightCentreVisible there: outside the light centre's hard shadow
+    int mesh = -1;              // the receiving mesh the pixel sees (scene.meshes() index), -1 none
 };
 
 // The reference's V and mask at each listed pixel, exactly as renderReference computes them for

@@ -303,7 +303,7 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
             std::vector<std::string> first, bounded;
             for (const std::string& candidate : candidates) {
                 if (!autoPriorKeeps(scene, lightIndex, candidate)) trials.skippedByPrior.push_back(candidate);
-                else if (errorLowerBound(check, candidate) > 0.0) bounded.push_back(candidate);
+                else if (errorLowerBound(check, candidate, scene, lightIndex) > 0.0) bounded.push_back(candidate);
                 else first.push_back(candidate);
             }
             std::map<std::string, std::pair<double, Layers>> scored;
@@ -329,7 +329,8 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
             for (const std::string& candidate : bounded) {
                 // It could still win: its score may be at the bound, and a cheaper candidate
                 // keeps a tie (clearlyBetter).
-                if (!std::isfinite(best) || !clearlyBetter(best, errorLowerBound(check, candidate))) attempt(candidate);
+                if (!std::isfinite(best) || !clearlyBetter(best, errorLowerBound(check, candidate, scene, lightIndex)))
+                    attempt(candidate);
                 else trials.skippedByBound.push_back(candidate);
             }
             // The choice over what rendered, in the candidates' order of cost: the lowest

@@ -20,7 +20,6 @@ namespace ss {
 std::vector<std::string> sweepSettingKeys() { return {"receiver", "fill", "border", "clusters", "weights", "raster"}; }
 
 SweepOptions sweepOptions(const RenderSettings& settings) {
-    settings.requireKnownKeys("sweep", sweepSettingKeys());
     SweepOptions o;
     if (settings.samples < 0) fail(SS_ERROR_INVALID_ARGUMENT, "sweep: samples must not be negative");
     o.samples = settings.samples > 0 ? settings.samples : kSweepDefaultSamples;

@@ -36,7 +36,8 @@ struct SweepOptions {
 std::vector<std::string> sweepSettingKeys();
 // Reads RenderSettings: samples (0 = 16), seed, options "receiver", "fill" (smooth|steps|rings),
 // "border" (share of samples on the light's border, 0..1), "clusters" (1..64), "weights"
-// (irradiance|equal). Throws ss::Error on an unknown key or a bad value.
+// (irradiance|equal). Throws ss::Error on a bad value; unknown keys are the caller's check
+// (the renderer: the method's keys and refinement's; the C API: sweepSettingKeys()).
 SweepOptions sweepOptions(const RenderSettings& settings);
 
 struct SweepTimings {
