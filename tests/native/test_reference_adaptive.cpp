@@ -160,6 +160,28 @@ TEST(ReferenceAdaptive, TracesTheFaintPenumbraOfAnOccluderSmallerThanTheLight) {
     EXPECT_LE(leftLit, shadowed / 10);
 }
 
+// A wall that sees only a sliver of the light above its horizon: a first round of 16 samples
+// often finds none there, yet the light reaches the wall (E_L > 0, as the 4096-sample truth
+// finds): such a pixel is not decided by its empty first round.
+TEST(ReferenceAdaptive, APixelTheLightReachesIsNotDecidedByAnEmptyFirstRound) {
+    Scene scene;
+    scene.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    // The wall's face at x = 1.4 faces the camera (-x); the light spans x in [1.3, 4.3].
+    scene.addMesh(test::makeBox({1.4f, -1.5f, 0.0f}, {1.6f, 1.5f, 1.6f}, SS_MESH_CAST | SS_MESH_RECEIVE));
+    scene.addLight(test::makeDiskLight({2.8f, 0.0f, 2.0f}, 3.0f));
+    scene.setCamera(makeLookAtCamera({-2.0f, 0.0f, 1.0f}, {1.4f, 0.0f, 0.8f}, {0.0f, 0.0f, 1.0f},
+                                     glm::radians(40.0f), 96, 72, 0.1f, 50.0f));
+    TraceSceneCache cache;
+    const Layers truth = renderReference(scene, 0, fixedSamples(4096), &cache);
+    const Layers adaptive = renderReference(scene, 0, adaptiveSettings("0.005"), &cache);
+    const Comparison c = compare(adaptive, truth);
+    std::printf("sliver of light: %d of %d mask pixels outside the adaptive mask, RMSE %.5f\n", c.maskDiffers,
+                c.maskPixels, c.rmse);
+    EXPECT_GT(c.maskPixels, 2000);
+    EXPECT_LE(c.maskDiffers, c.maskPixels / 1000);
+    EXPECT_LE(c.rmse, 0.005);
+}
+
 // The target is the mask's RMSE: the undecided pixels share it, each allowed more error the
 // fewer they are, within [target, kMaxPixelError].
 TEST(ReferenceAdaptive, ThePixelTargetSpreadsTheMasksErrorOverTheUndecidedPixels) {

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "core/visibility_contract.h"
 #include "reference/camera_rays.h"
 #include "reference/light_sampler.h"
 #include "reference/parallel_rows.h"
@@ -131,7 +132,10 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
             return false;
         }
         t.add(*hit, x, y, 0, uint32_t(sampling.minSamples), &sums[i]);
-        const bool decided = !(sums[i].weight > 0.0) || decidedByAgreement(sums[i], sampling);
+        // No weight in the first round decides the pixel only where the light cannot reach it: a
+        // surface turned almost away from the light may see a sliver of it the round missed.
+        const bool unlit = !(sums[i].weight > 0.0) && !lightReaches(light, hit->point, hit->normal);
+        const bool decided = unlit || decidedByAgreement(sums[i], sampling);
         state[i] = decided ? PixelState::Decided : PixelState::Undecided;
         return true;
     };

@@ -18,7 +18,8 @@ namespace ss {
 // Per pixel, light samples (the same Owen-scrambled Sobol points as the fixed count) in rounds
 // of doubling size: `minSamples` first, then 2x, 4x, ... up to `maxSamples`.
 // - A pixel whose first round agrees (all blocked or all visible, at least minSamples / 2 rays
-//   above the horizon) or carries no weight at all is decided, unless a pixel
+//   above the horizon) or carries no weight where the light cannot reach it (lightReaches) is
+//   decided, unless a pixel
 //   within `guardBand` pixels disagrees: thin casters and shadow edges hide between samples.
 //   A pixel the band took in that disagrees after its further rounds takes in its own
 //   neighbours, in waves, so the band follows a faint penumbra outwards.
