@@ -155,7 +155,7 @@ TEST(GlRendererSettings, AnUnknownKeyIsRefusedNamingItAndTheKnownKeys) {
         EXPECT_EQ(e.status(), SS_ERROR_INVALID_ARGUMENT);
         EXPECT_EQ(std::string(e.what()),
                   "method 'pcss' has no setting 'blocker_sample' (its settings: blocker_samples, pcf_samples, "
-                  "shadow_map_size, max_search, refine, refine_margin, refine_samples, error_target, guard_band)");
+                  "shadow_map_size, max_search, refine, refine_margin, refine_samples, refine_verify, error_target, guard_band)");
     }
     // Every method refuses an unknown key, CPU and GL alike, and before any work.
     for (const std::string& method : methodNames()) {

@@ -119,6 +119,69 @@ TEST(ReferenceAdaptive, TracesFarFewerRaysWhereMostPixelsAreLitOrInUmbra) {
     EXPECT_LE(compare(tight, truth).rmse, c.rmse);
 }
 
+// An occluder far smaller than the light: no umbra, a wide faint penumbra (V >= 0.97) whose
+// first rounds mostly agree. The guard band follows it outwards, wave after wave, so the shadow
+// is traced to where further rounds see no occlusion.
+TEST(ReferenceAdaptive, TracesTheFaintPenumbraOfAnOccluderSmallerThanTheLight) {
+    test::SceneParams p = smallScene();
+    p.lightDiameter = 3.0f;
+    p.lightHeight = 3.0f;
+    p.cameraZoom = 2.0f;
+    Scene scene;
+    scene.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    scene.addMesh(test::makeUvSphere({0.0f, 0.0f, 1.2f}, 0.12f, 12, 24, SS_MESH_CAST));
+    scene.addLight(test::makeDiskLight({0.0f, 0.0f, p.lightHeight}, p.lightDiameter));
+    scene.setCamera(test::sceneBox(p).camera());  // the shared camera, zoomed in on the shadow
+    TraceSceneCache cache;
+    const Layers truth = renderReference(scene, 0, fixedSamples(4096), &cache);
+    const Layers adaptive = renderReference(scene, 0, adaptiveSettings("0.005"), &cache);
+    const Comparison c = compare(adaptive, truth);
+    // The shadow, in pixels: sum of 1 - V over the mask.
+    auto shadow = [](const Layers& l) {
+        const Image &v = layer(l, "V"), &m = layer(l, "mask");
+        double s = 0.0;
+        for (size_t i = 0; i < v.pixels.size(); ++i)
+            if (m.pixels[i] != 0.0f) s += 1.0 - v.pixels[i];
+        return s;
+    };
+    // Pixels in the truth's shadow (V < 0.995) that the adaptive run left fully lit.
+    int shadowed = 0, leftLit = 0;
+    for (size_t i = 0; i < layer(truth, "V").pixels.size(); ++i) {
+        if (layer(truth, "mask").pixels[i] == 0.0f || layer(truth, "V").pixels[i] >= 0.995f) continue;
+        ++shadowed;
+        leftLit += layer(adaptive, "V").pixels[i] == 1.0f;
+    }
+    std::printf("small occluder: RMSE %.5f, shadow %.1f of the truth's %.1f pixels, %d of %d shadowed pixels left lit, %.1f rays per pixel\n",
+                c.rmse, shadow(adaptive), shadow(truth), leftLit, shadowed, total(layer(adaptive, "rays")) / c.maskPixels);
+    EXPECT_EQ(c.maskDiffers, 0);
+    EXPECT_GT(shadowed, 500);
+    EXPECT_LE(c.rmse, 0.005);
+    EXPECT_GE(shadow(adaptive), 0.9 * shadow(truth));
+    EXPECT_LE(leftLit, shadowed / 10);
+}
+
+// A wall that sees only a sliver of the light above its horizon: a first round of 16 samples
+// often finds none there, yet the light reaches the wall (E_L > 0, as the 4096-sample truth
+// finds): such a pixel is not decided by its empty first round.
+TEST(ReferenceAdaptive, APixelTheLightReachesIsNotDecidedByAnEmptyFirstRound) {
+    Scene scene;
+    scene.addMesh(test::makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    // The wall's face at x = 1.4 faces the camera (-x); the light spans x in [1.3, 4.3].
+    scene.addMesh(test::makeBox({1.4f, -1.5f, 0.0f}, {1.6f, 1.5f, 1.6f}, SS_MESH_CAST | SS_MESH_RECEIVE));
+    scene.addLight(test::makeDiskLight({2.8f, 0.0f, 2.0f}, 3.0f));
+    scene.setCamera(makeLookAtCamera({-2.0f, 0.0f, 1.0f}, {1.4f, 0.0f, 0.8f}, {0.0f, 0.0f, 1.0f},
+                                     glm::radians(40.0f), 96, 72, 0.1f, 50.0f));
+    TraceSceneCache cache;
+    const Layers truth = renderReference(scene, 0, fixedSamples(4096), &cache);
+    const Layers adaptive = renderReference(scene, 0, adaptiveSettings("0.005"), &cache);
+    const Comparison c = compare(adaptive, truth);
+    std::printf("sliver of light: %d of %d mask pixels outside the adaptive mask, RMSE %.5f\n", c.maskDiffers,
+                c.maskPixels, c.rmse);
+    EXPECT_GT(c.maskPixels, 2000);
+    EXPECT_LE(c.maskDiffers, c.maskPixels / 1000);
+    EXPECT_LE(c.rmse, 0.005);
+}
+
 // The target is the mask's RMSE: the undecided pixels share it, each allowed more error the
 // fewer they are, within [target, kMaxPixelError].
 TEST(ReferenceAdaptive, ThePixelTargetSpreadsTheMasksErrorOverTheUndecidedPixels) {
@@ -130,6 +193,13 @@ TEST(ReferenceAdaptive, ThePixelTargetSpreadsTheMasksErrorOverTheUndecidedPixels
     EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 0), 0.005f);
     a.errorTarget = 0.2f;
     EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 10), 0.2f);
+}
+
+// Beside a disagreeing pixel, agreement is trusted only after 2 / (e * target) rays.
+TEST(ReferenceAdaptive, AgreementBesideADisagreeingPixelNeedsRaysInProportionToTheTarget) {
+    EXPECT_EQ(raysToTrustAgreement(0.005f), 148);
+    EXPECT_EQ(raysToTrustAgreement(0.02f), 37);
+    EXPECT_EQ(raysToTrustAgreement(AdaptiveSampling::kMaxPixelError), 15);
 }
 
 TEST(ReferenceAdaptive, DeterministicForASeedWhateverTheThreadCount) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "io/metrics.h"
+#include "reference/trace_scene_cache.h"
 #include "renderer/refinement.h"
 #include "test_pcss_support.h"
 
@@ -26,24 +27,33 @@ test::SceneParams smallSoftScene() {
     return p;
 }
 
+// Where the pass is certain and the verification's rays agree with it, V is the GL value to the
+// bit; the uncertain pixels and their margin are all traced.
 TEST(Refinement, IdenticalToTheGlResultWhereThePassIsCertain) {
     Scene scene = test::sceneBox(smallSoftScene());
     for (const char* method : {"pcss", "shadow_map", "penumbra_map"}) {
         const Layers gl = test::renderWith(scene, method);
         const Layers refined = test::renderWith(scene, method, {{"refine", "on"}});
-        const Image &vGl = layer(gl, "V"), &vRef = layer(refined, "V"), &traced = layer(refined, "refined");
-        const Image expected = uncertainPixels(vGl, layer(gl, "mask"), 3);
-        EXPECT_EQ(traced.pixels, expected.pixels) << method;
-        int certain = 0, changed = 0;
+        const Image &vGl = layer(gl, "V"), &vRef = layer(refined, "V"), &traced = layer(refined, "refined"),
+                    &rays = layer(refined, "rays"), &mask = layer(gl, "mask");
+        const Image uncertain = uncertainPixels(vGl, mask, 3);
+        int certain = 0, changed = 0, grown = 0;
         for (size_t i = 0; i < vGl.pixels.size(); ++i) {
+            if (uncertain.pixels[i] != 0.0f) EXPECT_EQ(traced.pixels[i], 1.0f) << method << " pixel " << i;
+            else grown += traced.pixels[i] != 0.0f;
             if (traced.pixels[i] == 0.0f) {
                 ++certain;
                 EXPECT_EQ(vRef.pixels[i], vGl.pixels[i]) << method << " pixel " << i;
-                EXPECT_EQ(layer(refined, "rays").pixels[i], 0.0f);
+                // Only the verification's rays: 8 per mask pixel the light reaches above the horizon.
+                EXPECT_LE(rays.pixels[i], float(kRefineDefaultVerifyRays)) << method << " pixel " << i;
+                if (mask.pixels[i] == 0.0f) {
+                    EXPECT_EQ(rays.pixels[i], 0.0f) << method << " pixel " << i;
+                }
             } else if (vRef.pixels[i] != vGl.pixels[i]) {
                 ++changed;
             }
         }
+        std::printf("%s: %d certain pixels kept, %d traced beyond the uncertain ones\n", method, certain, grown);
         EXPECT_GT(certain, int(vGl.pixels.size() / 2)) << method;
         EXPECT_GT(changed, 0) << method;
         // The method's own layers stay, mask included, in their order; refinement adds two.
@@ -53,7 +63,9 @@ TEST(Refinement, IdenticalToTheGlResultWhereThePassIsCertain) {
         for (const auto& [name, image] : gl.items) {
             if (name == "umbra" || name == "penumbra") continue;
             while (refined.items[k].first != name) ++k;
-            if (name != "V") EXPECT_EQ(refined.items[k].second.pixels, image.pixels) << method << " " << name;
+            if (name != "V") {
+                EXPECT_EQ(refined.items[k].second.pixels, image.pixels) << method << " " << name;
+            }
         }
     }
 }
@@ -74,6 +86,46 @@ TEST(Refinement, CloserToA4096SampleReferenceThanTheGlMethodAlone) {
     }
 }
 
+// A GL pass that is wrongly certain everywhere (V = 1 over a soft shadow, or V = 0 over lit
+// ground): the verification rays find the shadow, or the light, and the refinement traces it.
+TEST(Refinement, RecoversFromAGlPassThatIsWronglyCertain) {
+    Scene scene = test::sceneBox(smallSoftScene());
+    const Layers truth = test::renderWith(scene, "reference", {}, 4096);
+    const Image& mask = layer(truth, "mask");
+    auto refineConstant = [&](float glValue, const char* verify) {
+        Layers layers;
+        Image v(mask.width, mask.height, 0.0f);
+        for (size_t i = 0; i < v.pixels.size(); ++i) v.pixels[i] = mask.pixels[i] != 0.0f ? glValue : 0.0f;
+        layers.add("V", std::move(v));
+        layers.add("mask", mask);
+        RenderSettings s;
+        s.options = {{"refine", "on"}, {"refine_verify", verify}};
+        TraceSceneCache cache;
+        refineUncertainPixels(scene, 0, s, cache, layers);
+        return layers;
+    };
+    for (float glValue : {1.0f, 0.0f}) {
+        const Layers refined = refineConstant(glValue, "8");
+        const Layers unverified = refineConstant(glValue, "0");
+        const double rmse = test::compareToReference(refined, truth).rmse;
+        const double rmseUnverified = test::compareToReference(unverified, truth).rmse;
+        double rays = 0.0, maskCount = 0.0;
+        for (size_t i = 0; i < mask.pixels.size(); ++i) {
+            rays += layer(refined, "rays").pixels[i];
+            maskCount += mask.pixels[i] != 0.0f;
+        }
+        std::printf("GL V = %.0f everywhere: RMSE %.4f refined with verification, %.4f without; %.1f rays per mask pixel\n",
+                    glValue, rmse, rmseUnverified, rays / maskCount);
+        EXPECT_LE(rmse, 0.01) << "GL V = " << glValue;
+        EXPECT_GT(rmseUnverified, 0.05) << "GL V = " << glValue;
+        // Every mask pixel took at least the verification's rays (counted in "rays").
+        int unchecked = 0;
+        for (size_t i = 0; i < mask.pixels.size(); ++i)
+            unchecked += mask.pixels[i] != 0.0f && layer(refined, "rays").pixels[i] < 8.0f;
+        EXPECT_EQ(unchecked, 0) << "GL V = " << glValue;
+    }
+}
+
 TEST(Refinement, EveryMethodAcceptsTheKeyAndRefusesABadValue) {
     Scene scene = test::sceneBox(smallSoftScene());
     for (const std::string& method : methodNames()) {
@@ -83,6 +135,7 @@ TEST(Refinement, EveryMethodAcceptsTheKeyAndRefusesABadValue) {
         for (float v : layer(refined, "V").pixels) ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << method;
     }
     test::expectSettingRefused(scene, "pcss", {{"refine", "on"}, {"refine_margin", "-1"}}, "refine_margin");
+    test::expectSettingRefused(scene, "pcss", {{"refine", "on"}, {"refine_verify", "-1"}}, "refine_verify");
     // The reference is exact already: refine changes nothing there.
     const Layers a = test::renderWith(scene, "reference", {}, 16);
     const Layers b = test::renderWith(scene, "reference", {{"refine", "on"}}, 16);

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "core/visibility_contract.h"
 #include "reference/camera_rays.h"
 #include "reference/light_sampler.h"
 #include "reference/parallel_rows.h"
@@ -17,7 +18,13 @@
 namespace ss {
 namespace {
 
-enum class PixelState : uint8_t { Skipped, Decided, Undecided };
+// Outside: not to be traced. Selected: to take a first round. Reachable: not selected, but the
+// guard band may reach it (it becomes Promoted). NoSurface: sees no receiving surface.
+// Undecided pixels take further rounds and end Finished.
+enum class PixelState : uint8_t { Outside, Selected, Reachable, Promoted, NoSurface, Decided, Undecided, Finished };
+
+// Pixels of a wave per work item: the waves are short lists scattered over the image.
+constexpr size_t kWaveChunk = 64;
 
 // Agreement decides a pixel only when it rests on at least half a first round of rays: near the
 // horizon one or two samples above it would decide the pixel alone.
@@ -48,8 +55,11 @@ struct Tracer {
 };
 
 // Rounds after the first until the point is decided; `sums` holds the first round's samples.
+// A pixel whose rays all agree stops once the round passes the target and it has traced
+// `agreeingRays` rays (the guard band's pixels: beside a disagreeing pixel, a faint penumbra may
+// hide between a few rays); any other after two passing rounds in a row.
 void continueRounds(const std::function<void(uint32_t, uint32_t, SampleSums*)>& add, const AdaptiveSampling& a,
-                    float pixelTarget, SampleSums* sums) {
+                    float pixelTarget, int agreeingRays, SampleSums* sums) {
     int n = a.minSamples, passed = 0;
     while (n < a.maxSamples) {
         const int next = std::min(2 * n, a.maxSamples);
@@ -61,11 +71,15 @@ void continueRounds(const std::function<void(uint32_t, uint32_t, SampleSums*)>& 
         const double roundV = (sums->visible - before.visible) / roundWeight;
         const double error = 0.5 * std::abs(before.visibility() - roundV);
         passed = error <= pixelTarget ? passed + 1 : 0;
-        if (passed >= (decidedByAgreement(*sums, a) ? 1 : 2)) break;
+        if (decidedByAgreement(*sums, a) ? passed >= 1 && sums->rays >= agreeingRays : passed >= 2) break;
     }
 }
 
 }  // namespace
+
+int raysToTrustAgreement(float pixelTarget) {
+    return int(std::ceil(2.0 / (std::exp(1.0) * double(pixelTarget))));
+}
 
 float pixelErrorTarget(const AdaptiveSampling& a, size_t maskPixels, size_t undecidedPixels) {
     if (undecidedPixels == 0) return a.errorTarget;
@@ -82,7 +96,7 @@ void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, cons
     add(0, uint32_t(sampling.minSamples), sums);
     if (!(sums->weight > 0.0) || decidedByAgreement(*sums, sampling)) return;
     // An isolated point has no image to share the error with: it keeps the target itself.
-    continueRounds(add, sampling, sampling.errorTarget, sums);
+    continueRounds(add, sampling, sampling.errorTarget, 0, sums);
 }
 
 std::vector<std::string> adaptiveSamplingKeys() { return {"error_target", "guard_band"}; }
@@ -98,64 +112,112 @@ AdaptiveSampling adaptiveSampling(const RenderSettings& settings, int maxSamples
 
 void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
                    const AdaptiveSampling& sampling, const RenderSettings& settings,
-                   const Image* select, Image* visibility, Image* mask, Image* rays) {
+                   const AdaptivePixels& pixels, const AdaptiveOutputs& out) {
     const Camera& camera = scene.camera();
     const int width = camera.width, height = camera.height;
     const Light& light = scene.light(lightIndex);
     const Tracer t{scene, light, trace, LightSampler(light), CameraRays(camera), settings.seed};
     const size_t count = size_t(width) * size_t(height);
-    std::vector<PixelState> state(count, PixelState::Skipped);
+    std::vector<PixelState> state(count, PixelState::Outside);
     std::vector<SampleSums> sums(count);
-    auto selected = [&](int x, int y) { return !select || select->at(x, y) != 0.0f; };
+    for (size_t i = 0; i < count; ++i) {
+        const int x = int(i % size_t(width)), y = int(i / size_t(width));
+        if (!pixels.select || pixels.select->at(x, y) != 0.0f) state[i] = PixelState::Selected;
+        else if (pixels.growInto && pixels.growInto->at(x, y) != 0.0f) state[i] = PixelState::Reachable;
+    }
+    // The first round; false when the pixel sees no receiving surface.
+    auto firstRound = [&](int x, int y, size_t i, SurfaceHit* hit) {
+        if (!t.surface(x, y, hit)) {
+            state[i] = PixelState::NoSurface;
+            return false;
+        }
+        t.add(*hit, x, y, 0, uint32_t(sampling.minSamples), &sums[i]);
+        // No weight in the first round decides the pixel only where the light cannot reach it: a
+        // surface turned almost away from the light may see a sliver of it the round missed.
+        const bool unlit = !(sums[i].weight > 0.0) && !lightReaches(light, hit->point, hit->normal);
+        const bool decided = unlit || decidedByAgreement(sums[i], sampling);
+        state[i] = decided ? PixelState::Decided : PixelState::Undecided;
+        return true;
+    };
 
-    // First round everywhere selected.
     forEachRow(settings, height, "tracing shadow rays (first round)", 0.0f, 0.3f, [&](int y) {
         for (int x = 0; x < width; ++x) {
-            SurfaceHit hit;
-            if (!selected(x, y) || !t.surface(x, y, &hit)) continue;
             const size_t i = size_t(y) * size_t(width) + size_t(x);
-            t.add(hit, x, y, 0, uint32_t(sampling.minSamples), &sums[i]);
-            const bool decided = !(sums[i].weight > 0.0) || decidedByAgreement(sums[i], sampling);
-            state[i] = decided ? PixelState::Decided : PixelState::Undecided;
+            SurfaceHit hit;
+            if (state[i] == PixelState::Selected) firstRound(x, y, i, &hit);
         }
     });
 
-    // The guard band: a decided pixel near one that disagrees takes the further rounds too.
-    std::vector<PixelState> next = state;
+    // The guard band: a decided (or not yet traced, reachable) pixel near one that disagrees takes
+    // the further rounds too. Those that then disagree spread it on, wave after wave, so a faint
+    // penumbra whose first rounds agree is followed to where further rounds see no occlusion.
     const int g = sampling.guardBand;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            if (state[size_t(y) * size_t(width) + size_t(x)] != PixelState::Undecided) continue;
+    auto spread = [&](const std::vector<size_t>& from, std::vector<size_t>* wave) {
+        for (size_t f : from) {
+            const int x = int(f % size_t(width)), y = int(f / size_t(width));
             for (int v = std::max(0, y - g); v <= std::min(height - 1, y + g); ++v)
                 for (int u = std::max(0, x - g); u <= std::min(width - 1, x + g); ++u) {
-                    PixelState& s = next[size_t(v) * size_t(width) + size_t(u)];
-                    if (s == PixelState::Decided) s = PixelState::Undecided;
+                    const size_t i = size_t(v) * size_t(width) + size_t(u);
+                    if (state[i] == PixelState::Decided) state[i] = PixelState::Undecided;
+                    else if (state[i] == PixelState::Reachable) state[i] = PixelState::Promoted;
+                    else continue;
+                    wave->push_back(i);
                 }
         }
-    state.swap(next);
-    size_t maskPixels = sampling.untracedMaskPixels, undecided = 0;
-    for (size_t i = 0; i < count; ++i) {
-        if (state[i] == PixelState::Undecided) ++undecided;
-        if (state[i] != PixelState::Skipped && sums[i].weight > 0.0) ++maskPixels;
-    }
-    const float pixelTarget = pixelErrorTarget(sampling, maskPixels, undecided);
-
-    forEachRow(settings, height, "tracing shadow rays (adaptive rounds)", 0.3f, 1.0f, [&](int y) {
-        for (int x = 0; x < width; ++x) {
-            const size_t i = size_t(y) * size_t(width) + size_t(x);
-            if (state[i] == PixelState::Skipped) continue;
-            if (state[i] == PixelState::Undecided) {
-                SurfaceHit hit;
-                t.surface(x, y, &hit);  // the same deterministic hit as the first round's
-                continueRounds([&](uint32_t begin, uint32_t end, SampleSums* into) { t.add(hit, x, y, begin, end, into); },
-                               sampling, pixelTarget, &sums[i]);
-            }
-            if (rays) rays->at(x, y) = float(sums[i].rays);
-            if (!(sums[i].weight > 0.0)) continue;
-            visibility->at(x, y) = float(sums[i].visible / sums[i].weight);
-            if (mask) mask->at(x, y) = 1.0f;
+    };
+    std::vector<size_t> wave, disagreeing;
+    for (size_t i = 0; i < count; ++i)
+        if (state[i] == PixelState::Undecided) {
+            wave.push_back(i);
+            disagreeing.push_back(i);
         }
-    });
+    spread(disagreeing, &wave);
+    // The pixel target is set once, from the first wave: later waves add faint pixels whose
+    // further rounds cost little error.
+    size_t maskPixels = sampling.untracedMaskPixels;
+    for (size_t i = 0; i < count; ++i)
+        if ((state[i] == PixelState::Decided || state[i] == PixelState::Undecided) && sums[i].weight > 0.0) ++maskPixels;
+    const float pixelTarget = pixelErrorTarget(sampling, maskPixels, wave.size());
+    const int agreeingRays = raysToTrustAgreement(pixelTarget);
+
+    for (int round = 0; !wave.empty(); ++round) {
+        std::sort(wave.begin(), wave.end());
+        const int chunks = int((wave.size() + kWaveChunk - 1) / kWaveChunk);
+        const char* stage = round == 0 ? "tracing shadow rays (adaptive rounds)" : "tracing shadow rays (following the penumbra)";
+        forEachRow(settings, chunks, stage, round == 0 ? 0.3f : 0.95f, 0.95f, [&](int c) {
+            for (size_t k = size_t(c) * kWaveChunk; k < std::min(wave.size(), size_t(c + 1) * kWaveChunk); ++k) {
+                const size_t i = wave[k];
+                const int x = int(i % size_t(width)), y = int(i / size_t(width));
+                SurfaceHit hit;
+                // A reachable pixel has no first round yet; any other has its hit recomputed (the
+                // same deterministic hit as its first round's).
+                if (state[i] == PixelState::Promoted) {
+                    if (!firstRound(x, y, i, &hit)) continue;
+                } else {
+                    t.surface(x, y, &hit);
+                }
+                continueRounds([&](uint32_t begin, uint32_t end, SampleSums* into) { t.add(hit, x, y, begin, end, into); },
+                               sampling, pixelTarget, agreeingRays, &sums[i]);
+                state[i] = PixelState::Finished;
+            }
+        });
+        disagreeing.clear();
+        for (size_t i : wave)
+            if (state[i] == PixelState::Finished && !sums[i].agree()) disagreeing.push_back(i);
+        wave.clear();
+        spread(disagreeing, &wave);
+    }
+
+    for (size_t i = 0; i < count; ++i) {
+        if (state[i] == PixelState::Outside || state[i] == PixelState::Reachable) continue;
+        const int x = int(i % size_t(width)), y = int(i / size_t(width));
+        if (out.traced) out.traced->at(x, y) = 1.0f;
+        if (out.rays) out.rays->at(x, y) = float(sums[i].rays);
+        if (!(sums[i].weight > 0.0)) continue;
+        out.visibility->at(x, y) = float(sums[i].visible / sums[i].weight);
+        if (out.mask) out.mask->at(x, y) = 1.0f;
+    }
+    settings.report(1.0f, "tracing shadow rays");
 }
 
 }  // namespace ss

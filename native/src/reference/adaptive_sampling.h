@@ -18,10 +18,14 @@ namespace ss {
 // Per pixel, light samples (the same Owen-scrambled Sobol points as the fixed count) in rounds
 // of doubling size: `minSamples` first, then 2x, 4x, ... up to `maxSamples`.
 // - A pixel whose first round agrees (all blocked or all visible, at least minSamples / 2 rays
-//   above the horizon) or carries no weight at all is decided, unless a pixel
+//   above the horizon) or carries no weight where the light cannot reach it (lightReaches) is
+//   decided, unless a pixel
 //   within `guardBand` pixels disagrees: thin casters and shadow edges hide between samples.
+//   A pixel the band took in that disagrees after its further rounds takes in its own
+//   neighbours, in waves, so the band follows a faint penumbra outwards.
 // - Every other pixel stops when its estimated error is at most the pixel target twice in a row
-//   (once when every sample so far agrees) or at `maxSamples`. The estimate of a round is half
+//   or at `maxSamples`; one passing round suffices while every sample so far agrees, once the
+//   pixel has traced enough rays to trust the agreement (raysToTrustAgreement). The estimate of a round is half
 //   the difference between V of the samples before it and V of the round's own samples (each a
 //   power-of-two prefix or block of a (0,2)-sequence, so both are stratified estimates).
 // - `errorTarget` is the RMSE over the mask the rounds aim at: decided pixels are exact, so the
@@ -41,6 +45,12 @@ struct AdaptiveSampling {
 // The error each undecided pixel may keep so that the mask's RMSE meets the target.
 float pixelErrorTarget(const AdaptiveSampling& sampling, size_t maskPixels, size_t undecidedPixels);
 
+// Rays a pixel beside a disagreeing one must trace before agreement alone stops it: a share p
+// of the light blocked (or seen) hides from n stratified rays with probability about (1 - p)^n,
+// an RMS error sqrt(p^2 (1 - p)^n) <= 2 / (e n) at worst (p = 2 / n); this keeps it within
+// `pixelTarget`.
+int raysToTrustAgreement(float pixelTarget);
+
 // One point on its own, without the guard band (no neighbours to consult: the sparse check's
 // isolated pixels): the first round, then further rounds unless the first agrees. Adds to *sums.
 void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, const SurfaceHit& hit,
@@ -52,13 +62,28 @@ void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, cons
 std::vector<std::string> adaptiveSamplingKeys();
 AdaptiveSampling adaptiveSampling(const RenderSettings& settings, int maxSamples);
 
-// Traces the pixels where `select` is non-zero (every pixel when it is null) of the scene's
-// camera for light `lightIndex`. Where the light reaches the surface (E_L > 0) writes V into
-// *visibility and 1 into *mask (when not null); elsewhere leaves both as they are. *rays (when
-// not null) gets the shadow rays traced per selected pixel. Deterministic for settings.seed and
-// independent of the thread count.
+// Which pixels traceAdaptive traces: those where `select` is non-zero (every pixel when null),
+// and those where `growInto` is non-zero that the guard band reaches (none when null).
+struct AdaptivePixels {
+    const Image* select = nullptr;
+    const Image* growInto = nullptr;
+};
+// Where traceAdaptive writes, per traced pixel: V into *visibility and 1 into *mask where the
+// light reaches the surface (E_L > 0); the shadow rays it traced into *rays; 1 into *traced.
+// Untraced pixels keep their values. Any but visibility may be null.
+struct AdaptiveOutputs {
+    Image* visibility = nullptr;
+    Image* mask = nullptr;
+    Image* rays = nullptr;
+    Image* traced = nullptr;
+};
+
+// Traces `pixels` of the scene's camera for light `lightIndex` in adaptive rounds. The guard band
+// follows the penumbra: a pixel the band promoted that disagrees after its further rounds
+// promotes its own neighbours within the band, wave after wave until no pixel is promoted.
+// Deterministic for settings.seed and independent of the thread count.
 void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
                    const AdaptiveSampling& sampling, const RenderSettings& settings,
-                   const Image* select, Image* visibility, Image* mask, Image* rays);
+                   const AdaptivePixels& pixels, const AdaptiveOutputs& out);
 
 }  // namespace ss

@@ -38,8 +38,8 @@ Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings&
     if (adaptive) {
         const int width = camera.width, height = camera.height;
         Image visibility(width, height, 1.0f), mask(width, height, 0.0f), rays(width, height, 0.0f);
-        traceAdaptive(scene, lightIndex, *trace, adaptiveSampling(settings, samples), settings,
-                      nullptr, &visibility, &mask, &rays);
+        traceAdaptive(scene, lightIndex, *trace, adaptiveSampling(settings, samples), settings, {},
+                      {&visibility, &mask, &rays, nullptr});
         Layers layers;
         layers.add("V", std::move(visibility));
         layers.add("mask", std::move(mask));

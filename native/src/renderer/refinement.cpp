@@ -3,6 +3,7 @@
 #include "renderer/refinement.h"
 
 #include <algorithm>
+#include <functional>
 
 #include "core/error.h"
 #include "reference/adaptive_sampling.h"
@@ -11,12 +12,30 @@
 namespace ss {
 
 std::vector<std::string> refinementKeys() {
-    std::vector<std::string> keys{"refine", "refine_margin", "refine_samples"};
+    std::vector<std::string> keys{"refine", "refine_margin", "refine_samples", "refine_verify"};
     for (const std::string& k : adaptiveSamplingKeys()) keys.push_back(k);
     return keys;
 }
 
 bool refinementRequested(const RenderSettings& settings) { return settings.flag("refine", false); }
+
+namespace {
+
+// 1 within `margin` pixels of a seed, inside the mask; 0 elsewhere.
+Image growWithinMask(const Image& mask, int margin, const std::function<bool(int, int)>& seed) {
+    const int width = mask.width, height = mask.height;
+    Image out(width, height, 0.0f);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            if (!seed(x, y)) continue;
+            for (int j = std::max(0, y - margin); j <= std::min(height - 1, y + margin); ++j)
+                for (int i = std::max(0, x - margin); i <= std::min(width - 1, x + margin); ++i)
+                    if (mask.at(i, j) != 0.0f) out.at(i, j) = 1.0f;
+        }
+    return out;
+}
+
+}  // namespace
 
 Image uncertainPixels(const Image& visibility, const Image& mask, int margin) {
     const int width = visibility.width, height = visibility.height;
@@ -25,7 +44,7 @@ Image uncertainPixels(const Image& visibility, const Image& mask, int margin) {
     };
     // A pixel the pass cannot decide: V strictly between 0 and 1, or a certain V beside the
     // opposite certain V (a hard method's shadow edge).
-    auto seed = [&](int x, int y) {
+    return growWithinMask(mask, margin, [&](int x, int y) {
         if (!inMask(x, y)) return false;
         const float v = visibility.at(x, y);
         if (v > 0.0f && v < 1.0f) return true;
@@ -33,22 +52,39 @@ Image uncertainPixels(const Image& visibility, const Image& mask, int margin) {
         for (int k = 0; k < 4; ++k)
             if (inMask(x + dx[k], y + dy[k]) && visibility.at(x + dx[k], y + dy[k]) != v) return true;
         return false;
-    };
-    Image out(width, height, 0.0f);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            if (!seed(x, y)) continue;
-            for (int j = std::max(0, y - margin); j <= std::min(height - 1, y + margin); ++j)
-                for (int i = std::max(0, x - margin); i <= std::min(width - 1, x + margin); ++i)
-                    if (inMask(i, j)) out.at(i, j) = 1.0f;
-        }
-    return out;
+    });
+}
+
+Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
+                           const TraceScene& trace, int verifyRays, const Image& visibility,
+                           const Image& mask, const Image& uncertain, int margin, Image* rays) {
+    const int width = visibility.width, height = visibility.height;
+    Image certain(width, height, 0.0f);
+    for (size_t i = 0; i < certain.pixels.size(); ++i)
+        certain.pixels[i] = mask.pixels[i] != 0.0f && uncertain.pixels[i] == 0.0f ? 1.0f : 0.0f;
+    AdaptiveSampling check;
+    check.minSamples = check.maxSamples = verifyRays;
+    check.guardBand = 0;
+    Image traced = visibility, checkRays(width, height, 0.0f);
+    traceAdaptive(scene, lightIndex, trace, check, settings, {&certain, nullptr}, {&traced, nullptr, &checkRays, nullptr});
+    for (size_t i = 0; i < rays->pixels.size(); ++i) rays->pixels[i] += checkRays.pixels[i];
+    Image wrong = growWithinMask(mask, margin, [&](int x, int y) {
+        if (certain.at(x, y) == 0.0f) return false;
+        const float gl = visibility.at(x, y), v = traced.at(x, y);
+        return (gl == 1.0f && v < 1.0f) || (gl == 0.0f && v > 0.0f);
+    });
+    // Fewer than half the rays above the horizon (a surface turned almost away from the light):
+    // too few to vouch for the pass, as for the adaptive rounds' agreement.
+    for (size_t i = 0; i < wrong.pixels.size(); ++i)
+        if (certain.pixels[i] != 0.0f && 2.0f * checkRays.pixels[i] < float(verifyRays)) wrong.pixels[i] = 1.0f;
+    return wrong;
 }
 
 void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
                            TraceSceneCache& cache, Layers& layers) {
     const int margin = settings.integer("refine_margin", 3, 0, 32);
     const int samples = settings.integer("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16);
+    const int verify = settings.integer("refine_verify", kRefineDefaultVerifyRays, 0, 1024);
     AdaptiveSampling sampling = adaptiveSampling(settings, samples);
     Image* visibility = nullptr;
     for (auto& [name, image] : layers.items)
@@ -56,16 +92,26 @@ void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSetti
     const Image* mask = layers.find("mask");
     if (!visibility || !mask) fail(SS_ERROR_INTERNAL, "refine: the method made no V or mask layer");
     Image select = uncertainPixels(*visibility, *mask, margin);
-    for (size_t i = 0; i < mask->pixels.size(); ++i)
-        if (mask->pixels[i] != 0.0f && select.pixels[i] == 0.0f) ++sampling.untracedMaskPixels;
 
     settings.report(0.0f, "building the ray-tracing scene");
     std::shared_ptr<const TraceScene> trace = cache.get(scene);
-    Image rays(visibility->width, visibility->height, 0.0f);
-    traceAdaptive(scene, lightIndex, *trace, sampling, settings, &select, visibility, nullptr, &rays);
+    const int width = visibility->width, height = visibility->height;
+    Image rays(width, height, 0.0f);
+    if (verify > 0) {
+        const Image wrong = wronglyCertainPixels(scene, lightIndex, settings, *trace, verify, *visibility, *mask,
+                                                 select, margin, &rays);
+        for (size_t i = 0; i < select.pixels.size(); ++i) select.pixels[i] = std::max(select.pixels[i], wrong.pixels[i]);
+    }
+    for (size_t i = 0; i < mask->pixels.size(); ++i)
+        if (mask->pixels[i] != 0.0f && select.pixels[i] == 0.0f) ++sampling.untracedMaskPixels;
+
+    Image tracedRays(width, height, 0.0f), refined(width, height, 0.0f);
+    traceAdaptive(scene, lightIndex, *trace, sampling, settings, {&select, mask},
+                  {visibility, nullptr, &tracedRays, &refined});
+    for (size_t i = 0; i < rays.pixels.size(); ++i) rays.pixels[i] += tracedRays.pixels[i];
     if (settings.extraLayers) {
         layers.add("rays", std::move(rays));
-        layers.add("refined", std::move(select));
+        layers.add("refined", std::move(refined));
     }
 }
 

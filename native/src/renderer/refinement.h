@@ -7,14 +7,17 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/settings.h"
+#include "reference/trace_scene.h"
 #include "reference/trace_scene_cache.h"
 
 namespace ss {
 
 // The keys every method accepts for refinement: "refine" (on/off, default off),
 // "refine_margin" (pixels around the uncertain ones, 0..32, default 3), "refine_samples" (the
-// cap of samples per traced pixel, default 1024) and the adaptive sampling's keys
-// (reference/adaptive_sampling.h).
+// cap of samples per traced pixel, default 1024), "refine_verify" (rays that check each pixel
+// the pass called certain, 0..1024, 0 = no check, default kRefineDefaultVerifyRays) and the
+// adaptive sampling's keys (reference/adaptive_sampling.h).
+constexpr int kRefineDefaultVerifyRays = 8;
 std::vector<std::string> refinementKeys();
 bool refinementRequested(const RenderSettings& settings);
 
@@ -22,10 +25,23 @@ bool refinementRequested(const RenderSettings& settings);
 // edge), grown by `margin` pixels (within the mask). 1 there, 0 elsewhere.
 Image uncertainPixels(const Image& visibility, const Image& mask, int margin);
 
-// Keeps V where the method was certain and traces the uncertain pixels adaptively; V there
-// becomes the ray-traced estimate wherever the light reaches the traced surface. Every other
-// layer (mask included) stays the method's. With settings.extraLayers adds "rays" (shadow rays
-// traced per pixel) and "refined" (1 where the pixels were traced).
+// Where `verifyRays` rays per pixel contradict a certain pass (inside the mask, outside
+// `uncertain`): V = 1 and a ray is blocked, or V = 0 and a ray sees the light; grown by `margin`
+// pixels within the mask. Also, on their own, the certain pixels where fewer than half the rays
+// could be traced (light mostly below the horizon, or no receiving surface for the ray tracer).
+// Adds the rays traced per pixel to *rays.
+Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
+                           const TraceScene& trace, int verifyRays, const Image& visibility,
+                           const Image& mask, const Image& uncertain, int margin, Image* rays);
+
+// Checks the pixels where the method was certain with "refine_verify" rays each (a GL pass can
+// be certain and wrong: a shadow map's missed caster, a faint penumbra it calls lit), then traces
+// adaptively the uncertain pixels and those the check contradicted, with their margin; the guard
+// band may follow a penumbra from there into the rest of the mask. V of every traced pixel
+// becomes the ray-traced estimate wherever the light reaches the surface; everywhere else V is
+// the method's. Every other layer (mask included) stays the method's. With settings.extraLayers
+// adds "rays" (shadow rays traced per pixel, the check's included) and "refined" (1 where the
+// pixels were traced adaptively).
 void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
                            TraceSceneCache& cache, Layers& layers);
 
