@@ -199,7 +199,7 @@ SCENES = [
     ("foliage", build_foliage, {"shape": "RECTANGLE", "size": 1.5, "size_y": 1.0}),
     ("curved_receiver", build_curved_receiver, {}),
     ("stepped", build_stepped, {}),
-] + [("scaled_%d" % lv, build_scaled(lv), {}) for lv in (1, 3, 5)]
+] + [("scaled_%d" % lv, build_scaled(lv), {}) for lv in (1, 2, 3, 4, 5)]
 
 
 def triangle_count(scene):

@@ -126,6 +126,30 @@ TEST(Refinement, RecoversFromAGlPassThatIsWronglyCertain) {
     }
 }
 
+// sweep shades its receiver plane only; the shadow the box casts on a low platform (another
+// receiver) is V = 1 in its result. Refined, every pixel the light reaches is answered.
+TEST(Refinement, AnswersEveryPixelTheLightReachesNotOnlyTheMethodsMask) {
+    Scene scene = test::sceneBox(smallSoftScene());
+    Mesh platform = test::makeBox({-1.2f, -1.2f, 0.0f}, {0.4f, 0.4f, 0.5f}, SS_MESH_CAST | SS_MESH_RECEIVE);
+    platform.name = "platform";
+    scene.addMesh(platform);
+    const Layers reference = test::renderWith(scene, "reference", {}, 1024);
+    const Layers plain = test::renderWith(scene, "sweep");
+    const Layers refined = test::renderWith(scene, "sweep", {{"refine", "on"}});
+    const Image& truthMask = layer(reference, "mask");
+    auto rmse = [&](const Layers& l) { return compareVisibility(layer(l, "V"), layer(reference, "V"), &truthMask).rmse; };
+    size_t outsidePlain = 0, outsideRefined = 0;
+    for (size_t i = 0; i < truthMask.pixels.size(); ++i) {
+        if (truthMask.pixels[i] == 0.0f) continue;
+        outsidePlain += layer(plain, "mask").pixels[i] == 0.0f;
+        outsideRefined += layer(refined, "mask").pixels[i] == 0.0f;
+    }
+    EXPECT_GT(outsidePlain, 300u);  // the platform's top and the box are not sweep's
+    EXPECT_EQ(outsideRefined, 0u);
+    EXPECT_GT(rmse(plain), 0.05);
+    EXPECT_LT(rmse(refined), 0.01) << "sweep alone " << rmse(plain);
+}
+
 TEST(Refinement, EveryMethodAcceptsTheKeyAndRefusesABadValue) {
     Scene scene = test::sceneBox(smallSoftScene());
     for (const std::string& method : methodNames()) {

@@ -209,7 +209,8 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
     }
 
     for (size_t i = 0; i < count; ++i) {
-        if (state[i] == PixelState::Outside || state[i] == PixelState::Reachable) continue;
+        if (state[i] == PixelState::Outside || state[i] == PixelState::Reachable || state[i] == PixelState::NoSurface)
+            continue;
         const int x = int(i % size_t(width)), y = int(i / size_t(width));
         if (out.traced) out.traced->at(x, y) = 1.0f;
         if (out.rays) out.rays->at(x, y) = float(sums[i].rays);

@@ -86,28 +86,36 @@ void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSetti
     const int samples = settings.integer("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16);
     const int verify = settings.integer("refine_verify", kRefineDefaultVerifyRays, 0, 1024);
     AdaptiveSampling sampling = adaptiveSampling(settings, samples);
-    Image* visibility = nullptr;
-    for (auto& [name, image] : layers.items)
+    Image *visibility = nullptr, *mask = nullptr;
+    for (auto& [name, image] : layers.items) {
         if (name == "V") visibility = &image;
-    const Image* mask = layers.find("mask");
+        if (name == "mask") mask = &image;
+    }
     if (!visibility || !mask) fail(SS_ERROR_INTERNAL, "refine: the method made no V or mask layer");
     Image select = uncertainPixels(*visibility, *mask, margin);
 
     settings.report(0.0f, "building the ray-tracing scene");
     std::shared_ptr<const TraceScene> trace = cache.get(scene);
     const int width = visibility->width, height = visibility->height;
+    // The check covers every pixel, not only the method's mask: outside it the method said V = 1
+    // (sweep shades its receiver plane only, leaving the casters and other receivers lit), and
+    // that is what a composite multiplies there too.
+    const Image everywhere(width, height, 1.0f);
+    for (size_t i = 0; i < mask->pixels.size(); ++i)
+        if (mask->pixels[i] == 0.0f) visibility->pixels[i] = 1.0f;
     Image rays(width, height, 0.0f);
     if (verify > 0) {
-        const Image wrong = wronglyCertainPixels(scene, lightIndex, settings, *trace, verify, *visibility, *mask,
+        const Image wrong = wronglyCertainPixels(scene, lightIndex, settings, *trace, verify, *visibility, everywhere,
                                                  select, margin, &rays);
         for (size_t i = 0; i < select.pixels.size(); ++i) select.pixels[i] = std::max(select.pixels[i], wrong.pixels[i]);
     }
     for (size_t i = 0; i < mask->pixels.size(); ++i)
         if (mask->pixels[i] != 0.0f && select.pixels[i] == 0.0f) ++sampling.untracedMaskPixels;
 
+    // A traced pixel the light reaches joins the mask: its V is the ray tracer's now.
     Image tracedRays(width, height, 0.0f), refined(width, height, 0.0f);
-    traceAdaptive(scene, lightIndex, *trace, sampling, settings, {&select, mask},
-                  {visibility, nullptr, &tracedRays, &refined});
+    traceAdaptive(scene, lightIndex, *trace, sampling, settings, {&select, verify > 0 ? &everywhere : mask},
+                  {visibility, mask, &tracedRays, &refined});
     for (size_t i = 0; i < rays.pixels.size(); ++i) rays.pixels[i] += tracedRays.pixels[i];
     if (settings.extraLayers) {
         layers.add("rays", std::move(rays));

@@ -37,9 +37,10 @@ Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSetti
 // Checks the pixels where the method was certain with "refine_verify" rays each (a GL pass can
 // be certain and wrong: a shadow map's missed caster, a faint penumbra it calls lit), then traces
 // adaptively the uncertain pixels and those the check contradicted, with their margin; the guard
-// band may follow a penumbra from there into the rest of the mask. V of every traced pixel
-// becomes the ray-traced estimate wherever the light reaches the surface; everywhere else V is
-// the method's. Every other layer (mask included) stays the method's. With settings.extraLayers
+// band may follow a penumbra from there. The check covers every pixel, not only the method's
+// mask (outside it the method's V is 1: sweep shades its receiver plane only). V of every traced
+// pixel becomes the ray-traced estimate wherever the light reaches the surface, and the pixel
+// joins the mask; everywhere else V is the method's. Every other layer stays the method's. With settings.extraLayers
 // adds "rays" (shadow rays traced per pixel, the check's included) and "refined" (1 where the
 // pixels were traced adaptively).
 void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
