@@ -128,8 +128,11 @@ void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<plana
     };
     std::unordered_map<std::pair<double, double>, uint32_t, PosHash> corner;
     std::vector<double> weights;
+    corner.reserve(mesh.indices.size() / 4);
+    weights.reserve(mesh.indices.size() / 4 * (n + 1));
     auto weightsAt = [&](const planar::ShadowVertex& c) -> const double* {
-        auto [it, inserted] = corner.emplace(std::pair{c.x, c.y}, uint32_t(weights.size() / (n + 1)));
+        // try_emplace allocates a node only for a new position (emplace would for every visit).
+        auto [it, inserted] = corner.try_emplace(std::pair{c.x, c.y}, uint32_t(weights.size() / (n + 1)));
         if (inserted) {
             glm::dvec3 p = plane.toWorld(snap.toU(c.x), snap.toV(c.y));
             double all = 0;
