@@ -57,21 +57,25 @@ struct Tracer {
 // Rounds after the first until the point is decided; `sums` holds the first round's samples.
 // A pixel whose rays all agree stops once the round passes the target and it has traced
 // `agreeingRays` rays (the guard band's pixels: beside a disagreeing pixel, a faint penumbra may
-// hide between a few rays); any other after two passing rounds in a row.
+// hide between a few rays); any other once the round passes the target and the round before
+// was on track for it (kOnTrack). A round with fewer than minSamples / 2 rays in all (a surface
+// almost turned away from the light) estimates nothing: two or three rays that agree say 0.
 void continueRounds(const std::function<void(uint32_t, uint32_t, SampleSums*)>& add, const AdaptiveSampling& a,
                     float pixelTarget, int agreeingRays, SampleSums* sums) {
-    int n = a.minSamples, passed = 0;
+    int n = a.minSamples;
+    bool previousOnTrack = false;
     while (n < a.maxSamples) {
         const int next = std::min(2 * n, a.maxSamples);
         const SampleSums before = *sums;
         add(uint32_t(n), uint32_t(next), sums);
         n = next;
         const double roundWeight = sums->weight - before.weight;
-        if (!(before.weight > 0.0) || !(roundWeight > 0.0)) continue;
+        if (!(before.weight > 0.0) || !(roundWeight > 0.0) || 2 * sums->rays < a.minSamples) continue;
         const double roundV = (sums->visible - before.visible) / roundWeight;
         const double error = 0.5 * std::abs(before.visibility() - roundV);
-        passed = error <= pixelTarget ? passed + 1 : 0;
-        if (decidedByAgreement(*sums, a) ? passed >= 1 && sums->rays >= agreeingRays : passed >= 2) break;
+        const bool passes = error <= pixelTarget;
+        if (decidedByAgreement(*sums, a) ? passes && sums->rays >= agreeingRays : passes && previousOnTrack) break;
+        previousOnTrack = error <= AdaptiveSampling::kOnTrack * pixelTarget;
     }
 }
 

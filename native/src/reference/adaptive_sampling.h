@@ -23,9 +23,10 @@ namespace ss {
 //   within `guardBand` pixels disagrees: thin casters and shadow edges hide between samples.
 //   A pixel the band took in that disagrees after its further rounds takes in its own
 //   neighbours, in waves, so the band follows a faint penumbra outwards.
-// - Every other pixel stops when its estimated error is at most the pixel target twice in a row
-//   or at `maxSamples`; one passing round suffices while every sample so far agrees, once the
-//   pixel has traced enough rays to trust the agreement (raysToTrustAgreement). The estimate of a round is half
+// - Every other pixel stops when its estimated error is at most the pixel target and the round
+//   before was on track for it (kOnTrack), or at `maxSamples`; one passing round suffices while
+//   every sample so far agrees, once the pixel has traced enough rays to trust the agreement
+//   (raysToTrustAgreement). Rounds count only once the pixel has traced minSamples / 2 rays. The estimate of a round is half
 //   the difference between V of the samples before it and V of the round's own samples (each a
 //   power-of-two prefix or block of a (0,2)-sequence, so both are stratified estimates).
 // - `errorTarget` is the RMSE over the mask the rounds aim at: decided pixels are exact, so the
@@ -33,6 +34,10 @@ namespace ss {
 //   kMaxPixelError (and never less than errorTarget).
 struct AdaptiveSampling {
     static constexpr float kMaxPixelError = 0.05f;
+    // A round's estimate is of twice the samples of the round before it, and a stratified
+    // estimate's error falls about as N^-0.75: the round before is on track for the pixel target
+    // when its estimate is at most 2^0.75 times it.
+    static constexpr double kOnTrack = 1.6817928305074290;
     int minSamples = 16;
     int maxSamples = 1024;
     float errorTarget = 0.005f;
