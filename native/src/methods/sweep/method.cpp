@@ -92,7 +92,8 @@ private:
               o.irradianceWeights};
         if (!cached_ || !(key_ == k)) {
             settings.report(0.0f, "sweep: geometry");
-            cached_ = computeSweepShadow(scene, lightIndex, o);
+            cached_.reset();  // its memory is free before the new shadow is made
+            cached_ = computeSweepShadow(scene, lightIndex, o, &projections_);
             key_ = k;
         }
         return *cached_;
@@ -100,6 +101,8 @@ private:
 
     Key key_;
     std::optional<SweepShadow> cached_;
+    // Each occluder's projections per light: a move or an edit projects that mesh again only.
+    SweepProjectionCache projections_;
 };
 
 }  // namespace

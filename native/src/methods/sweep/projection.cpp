@@ -70,49 +70,54 @@ std::vector<int> sweepOccluders(const Scene& scene, const ReceiverPlane& plane) 
 
 bool usesSilhouettes(const Mesh& mesh) { return mesh.report.closedManifold(); }
 
+bool castsOntoPlane(const ReceiverPlane& plane, const LightSample& sample) {
+    return sample.directional ? glm::dot(sample.toLight, plane.normal) > 1e-9 : plane.height(sample.point) > 0;
+}
+
+void projectMeshSample(const Mesh& m, const ReceiverPlane& plane, const planar::Snap& snap,
+                       const LightSample& sample, std::vector<planar::DirectedEdge>* out, ProjectionStats* stats) {
+    double sampleHeight = sample.directional ? 1.0 : plane.height(sample.point);
+    Projector pr{plane, sample, sampleHeight};
+    double maxHeight = sample.directional ? 1e300 : kMaxHeightFraction * sampleHeight;
+    auto pos = [&](uint32_t v) { return glm::dvec3(m.positions[v]); };
+    bool silhouettes = usesSilhouettes(m);
+    if (silhouettes && !sample.directional)
+        for (const glm::vec3& p : m.positions)
+            if (plane.height(glm::dvec3(p)) >= maxHeight) {
+                silhouettes = false;  // the closed outline would cross the clip height
+                break;
+            }
+    std::vector<char> front(m.triangles.size(), 0);
+    for (size_t f = 0; f < m.triangles.size(); ++f) {
+        const glm::uvec3& t = m.triangles[f];
+        front[f] = pr.facing(pos(t[0]), pos(t[1]), pos(t[2])) > 0;
+    }
+    if (!silhouettes) {
+        for (size_t f = 0; f < m.triangles.size(); ++f)
+            if (front[f]) {
+                const glm::uvec3& t = m.triangles[f];
+                addTriangle(pr, snap, pos(t[0]), pos(t[1]), pos(t[2]), maxHeight, out);
+                if (stats) ++stats->fallbackTriangles;
+            }
+        return;
+    }
+    // Interior edges between two front faces cancel in the sum of projected front faces;
+    // what remains are the edges where facing changes, walked as the back face walks them.
+    for (const Edge& e : m.adjacency.edges) {
+        bool f0 = front[e.faces[0]], f1 = front[e.faces[1]];
+        if (f0 == f1) continue;
+        bool frontForward = f0 ? e.forward[0] : e.forward[1];
+        if (frontForward) addEdge(pr, snap, pos(e.v1), pos(e.v0), out);
+        else addEdge(pr, snap, pos(e.v0), pos(e.v1), out);
+        if (stats) ++stats->silhouetteEdges;
+    }
+}
+
 bool projectSample(const Scene& scene, const std::vector<int>& occluders, const ReceiverPlane& plane,
                    const planar::Snap& snap, const LightSample& sample,
                    std::vector<planar::DirectedEdge>* out, ProjectionStats* stats) {
-    double sampleHeight = sample.directional ? 1.0 : plane.height(sample.point);
-    if (sample.directional ? !(glm::dot(sample.toLight, plane.normal) > 1e-9) : !(sampleHeight > 0)) return false;
-    Projector pr{plane, sample, sampleHeight};
-    double maxHeight = sample.directional ? 1e300 : kMaxHeightFraction * sampleHeight;
-    std::vector<char> front;
-    for (int mi : occluders) {
-        const Mesh& m = scene.meshes()[mi];
-        auto pos = [&](uint32_t v) { return glm::dvec3(m.positions[v]); };
-        bool silhouettes = usesSilhouettes(m);
-        if (silhouettes && !sample.directional)
-            for (const glm::vec3& p : m.positions)
-                if (plane.height(glm::dvec3(p)) >= maxHeight) {
-                    silhouettes = false;  // the closed outline would cross the clip height
-                    break;
-                }
-        front.assign(m.triangles.size(), 0);
-        for (size_t f = 0; f < m.triangles.size(); ++f) {
-            const glm::uvec3& t = m.triangles[f];
-            front[f] = pr.facing(pos(t[0]), pos(t[1]), pos(t[2])) > 0;
-        }
-        if (!silhouettes) {
-            for (size_t f = 0; f < m.triangles.size(); ++f)
-                if (front[f]) {
-                    const glm::uvec3& t = m.triangles[f];
-                    addTriangle(pr, snap, pos(t[0]), pos(t[1]), pos(t[2]), maxHeight, out);
-                    if (stats) ++stats->fallbackTriangles;
-                }
-            continue;
-        }
-        // Interior edges between two front faces cancel in the sum of projected front faces;
-        // what remains are the edges where facing changes, walked as the back face walks them.
-        for (const Edge& e : m.adjacency.edges) {
-            bool f0 = front[e.faces[0]], f1 = front[e.faces[1]];
-            if (f0 == f1) continue;
-            bool frontForward = f0 ? e.forward[0] : e.forward[1];
-            if (frontForward) addEdge(pr, snap, pos(e.v1), pos(e.v0), out);
-            else addEdge(pr, snap, pos(e.v0), pos(e.v1), out);
-            if (stats) ++stats->silhouetteEdges;
-        }
-    }
+    if (!castsOntoPlane(plane, sample)) return false;
+    for (int mi : occluders) projectMeshSample(scene.meshes()[mi], plane, snap, sample, out, stats);
     return true;
 }
 

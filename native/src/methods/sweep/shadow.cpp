@@ -61,25 +61,28 @@ std::vector<LightCluster> splitLight(const Light& light, int clusters) {
 namespace {
 
 // One cluster's shadow mesh (intensities not yet weighted) and the samples it used.
-planar::ShadowMesh clusterShadow(const Scene& scene, const std::vector<int>& occluders, const Light& light,
-                                 const LightSampleOptions& so, const SweepOptions& options, SweepShadow* out,
-                                 int* used) {
-    std::vector<LightSample> samples = placeLightSamples(light, so);
-    std::vector<std::vector<planar::DirectedEdge>> outlines;
+planar::ShadowMesh clusterShadow(const Scene& scene, int lightIndex, int cluster, const std::vector<int>& occluders,
+                                 const Light& light, const LightSampleOptions& so, const SweepOptions& options,
+                                 SweepProjectionCache& cache, SweepShadow* out, int* used) {
     std::vector<LightSample> usedSamples;
+    for (const LightSample& s : placeLightSamples(light, so))
+        if (castsOntoPlane(out->plane, s)) usedSamples.push_back(s);
+    std::vector<std::vector<planar::DirectedEdge>> outlines;
     std::vector<planar::DirectedEdge> edges;
-    for (const LightSample& s : samples) {
+    SweepProjectionCache::Pass projections =
+        cache.begin(lightIndex, cluster, scene, occluders, out->plane, out->snap, usedSamples);
+    for (size_t s = 0; s < usedSamples.size(); ++s) {
         if (options.cancel && options.cancel->load(std::memory_order_relaxed))
             fail(SS_ERROR_CANCELLED, "cancelled during sweep: light samples");
         edges.clear();
         auto t0 = Clock::now();
-        if (!projectSample(scene, occluders, out->plane, out->snap, s, &edges, &out->projection)) continue;
+        projections.append(s, &edges);
         out->timings.silhouettesMs += msSince(t0);
         auto t1 = Clock::now();
-        usedSamples.push_back(s);
         outlines.push_back(planar::hardOutline(edges));
         out->timings.sweepMs += msSince(t1);
     }
+    projections.finish(&out->projection);
     *used = int(outlines.size());
     if (outlines.empty()) return {};
     auto t2 = Clock::now();
@@ -98,9 +101,13 @@ planar::ShadowMesh clusterShadow(const Scene& scene, const std::vector<int>& occ
 
 }  // namespace
 
-SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOptions& options) {
+SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOptions& options,
+                               SweepProjectionCache* cache) {
     const Light& light = scene.light(lightIndex);
+    SweepProjectionCache uncached(0);
+    SweepProjectionCache& projections = cache ? *cache : uncached;
     std::vector<LightCluster> clusters = splitLight(light, options.clusters);
+    projections.keep(int(scene.lights().size()), lightIndex, int(clusters.size()));
     SweepShadow out;
     out.plane = findReceiverPlane(scene, light, options.receiver);
     out.snap = planar::Snap(out.plane.cu, out.plane.cv, out.plane.half);
@@ -115,7 +122,7 @@ SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOp
     so.viewFrom = ob.empty() ? out.plane.origin : glm::dvec3(ob.center());
     if (clusters.size() == 1) {
         so.count = options.samples;
-        out.mesh = clusterShadow(scene, occluders, light, so, options, &out, &out.samplesUsed);
+        out.mesh = clusterShadow(scene, lightIndex, 0, occluders, light, so, options, projections, &out, &out.samplesUsed);
         return out;
     }
     // Clusters: each its own soft shadow from its share of the samples (at least one), merged
@@ -129,7 +136,8 @@ SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOp
         so.count = std::max(1, int(std::lround(options.samples * clusters[k].weight)));
         so.seed = options.seed + uint32_t(k) * 7919u;
         int used = 0;
-        planar::ShadowMesh m = clusterShadow(scene, occluders, clusters[k].light, so, options, &out, &used);
+        planar::ShadowMesh m =
+            clusterShadow(scene, lightIndex, int(k), occluders, clusters[k].light, so, options, projections, &out, &used);
         if (used == 0) continue;
         out.samplesUsed += used;
         total += clusters[k].weight;

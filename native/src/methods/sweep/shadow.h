@@ -9,6 +9,7 @@
 #include "core/scene.h"
 #include "methods/method.h"
 #include "methods/sweep/projection.h"
+#include "methods/sweep/projection_cache.h"
 #include "methods/sweep/receiver.h"
 #include "planar/penumbra_fill.h"
 
@@ -74,6 +75,10 @@ struct SweepShadow {
     }
 };
 
-SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOptions& options);
+// `cache` (may be null: nothing kept) holds each occluder's projections from earlier shadows of
+// this light: meshes whose version, receiver plane and samples are unchanged are not projected
+// again (projection.meshesReused counts them); the result is the same either way, bit for bit.
+SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOptions& options,
+                               SweepProjectionCache* cache = nullptr);
 
 }  // namespace ss

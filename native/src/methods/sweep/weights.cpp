@@ -5,8 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <unordered_map>
+#include <cstring>
 #include <utility>
 
 namespace ss {
@@ -85,6 +84,69 @@ private:
 
 namespace {
 
+// Which slot each distinct corner position has: open addressing with linear probing on a
+// power-of-two table (a node-based map spends most of the weights stage allocating and chasing
+// nodes). Positions compare as doubles do (0 and -0 are one position).
+class CornerIndex {
+public:
+    explicit CornerIndex(size_t expected) {
+        size_t capacity = 16;
+        while (capacity < 2 * expected) capacity *= 2;
+        slots_.resize(capacity);
+    }
+    // The slot of (x, y); a new position gets `next` and sets *added.
+    uint32_t find(double x, double y, uint32_t next, bool* added) {
+        if (2 * (used_ + 1) > slots_.size()) grow();
+        const size_t mask = slots_.size() - 1;
+        for (size_t i = hash(x, y) & mask;; i = (i + 1) & mask) {
+            Slot& s = slots_[i];
+            if (s.index == kEmpty) {
+                s = Slot{x, y, next};
+                ++used_;
+                *added = true;
+                return next;
+            }
+            if (s.x == x && s.y == y) {
+                *added = false;
+                return s.index;
+            }
+        }
+    }
+
+private:
+    static constexpr uint32_t kEmpty = 0xFFFFFFFFu;
+    struct Slot {
+        double x = 0, y = 0;
+        uint32_t index = kEmpty;
+    };
+    static uint64_t bits(double v) {
+        if (v == 0.0) return 0;  // -0 equals 0
+        uint64_t b;
+        std::memcpy(&b, &v, sizeof b);
+        return b;
+    }
+    static size_t hash(double x, double y) {
+        uint64_t h = bits(x) * 0x9E3779B97F4A7C15ull ^ bits(y);
+        h ^= h >> 32;
+        h *= 0xD6E8FEB86659FD93ull;
+        h ^= h >> 32;
+        return size_t(h);
+    }
+    void grow() {
+        std::vector<Slot> old = std::move(slots_);
+        slots_.assign(old.size() * 2, Slot{});
+        const size_t mask = slots_.size() - 1;
+        for (const Slot& s : old) {
+            if (s.index == kEmpty) continue;
+            size_t i = hash(s.x, s.y) & mask;
+            while (slots_[i].index != kEmpty) i = (i + 1) & mask;
+            slots_[i] = s;
+        }
+    }
+    std::vector<Slot> slots_;
+    size_t used_ = 0;
+};
+
 // sampleIrradianceWeight with the emitter's direction computed once (null: no cosine there).
 double weightTowards(const glm::dvec3* emits, const LightSample& s, const glm::dvec3& p, const glm::dvec3& n) {
     if (s.directional) return std::max(0.0, glm::dot(n, s.toLight));
@@ -121,16 +183,13 @@ void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<plana
     const glm::dvec3* emits = light.isArea() ? &emitDir : nullptr;
     // The fill emits every triangle's corners separately; a corner's n weights are computed once
     // per distinct position (about a sixth of the corners) and kept in `weights`.
-    struct PosHash {
-        size_t operator()(const std::pair<double, double>& k) const {
-            return std::hash<double>()(k.first) * 0x9E3779B97F4A7C15ull ^ std::hash<double>()(k.second);
-        }
-    };
-    std::unordered_map<std::pair<double, double>, uint32_t, PosHash> corner;
+    CornerIndex corner(mesh.indices.size() / 4);
     std::vector<double> weights;
+    weights.reserve(mesh.indices.size() / 4 * (n + 1));
     auto weightsAt = [&](const planar::ShadowVertex& c) -> const double* {
-        auto [it, inserted] = corner.emplace(std::pair{c.x, c.y}, uint32_t(weights.size() / (n + 1)));
-        if (inserted) {
+        bool added = false;
+        const uint32_t slot = corner.find(c.x, c.y, uint32_t(weights.size() / (n + 1)), &added);
+        if (added) {
             glm::dvec3 p = plane.toWorld(snap.toU(c.x), snap.toV(c.y));
             double all = 0;
             for (size_t s = 0; s < n; ++s) {
@@ -139,7 +198,7 @@ void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<plana
             }
             weights.push_back(all);
         }
-        return weights.data() + size_t(it->second) * (n + 1);
+        return weights.data() + size_t(slot) * (n + 1);
     };
     std::vector<planar::ShadowVertex> out;
     out.reserve(mesh.indices.size());

@@ -1,0 +1,94 @@
+// Which shadow edges each occluder casts for each light sample, kept per mesh across renders so
+// that after an edit only the moved or edited meshes are projected again.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "core/scene.h"
+#include "methods/sweep/projection.h"
+#include "methods/sweep/receiver.h"
+#include "planar/snap.h"
+#include "sampling/light_samples.h"
+
+namespace ss {
+
+// One occluder's shadow edges for each sample that casts onto the plane (in the samples' order).
+struct MeshProjection {
+    std::vector<std::vector<planar::DirectedEdge>> edges;
+    ProjectionStats stats;  // silhouetteEdges and fallbackTriangles of this mesh
+    size_t bytes() const;
+};
+
+// The projections of the occluders of the last shadow computed per (light index, cluster): a
+// mesh is projected again only when its Mesh::version (a move or an edit), the receiver plane or
+// the samples changed. A set keeps only the occluders of its last shadow, so a removed, moved or
+// edited mesh's projections go with the next shadow of that light; keep() drops the sets of
+// lights and clusters the caller no longer has. What is held stays within a byte budget: a mesh
+// that does not fit is projected sample by sample for the shadow at hand and not kept (as with a
+// budget of 0, which keeps nothing). Not thread-safe (one per method object).
+class SweepProjectionCache {
+public:
+    // Silhouette edges are a few thousand per sample for a 100k-triangle closed mesh (about
+    // 1 MiB over 16 samples); meshes projected face by face (open ones) hold far more, and those
+    // the budget sheds.
+    static constexpr size_t kDefaultBudget = size_t(64) << 20;
+    explicit SweepProjectionCache(size_t budgetBytes = kDefaultBudget) : budget_(budgetBytes) {}
+
+    // One shadow's projections: every occluder's edges, sample by sample.
+    class Pass {
+    public:
+        // Appends the edges of every occluder for casting sample `s`, in the occluders' order:
+        // taken from the cache, or projected now.
+        void append(size_t s, std::vector<planar::DirectedEdge>* out);
+        // After the last sample: the meshes projected whole are kept (within the budget), and
+        // the projection stats (meshes projected and reused, edges, fallback triangles) added to
+        // *stats. A pass abandoned before (cancelled) keeps nothing new.
+        void finish(ProjectionStats* stats);
+
+    private:
+        friend class SweepProjectionCache;
+        Pass(SweepProjectionCache& cache, const Scene& scene, const std::vector<int>& occluders,
+             const ReceiverPlane& plane, const planar::Snap& snap, const std::vector<LightSample>& samples,
+             std::pair<int, int> set);
+        SweepProjectionCache& cache_;
+        const Scene& scene_;
+        const std::vector<int>& occluders_;
+        const ReceiverPlane& plane_;
+        const planar::Snap& snap_;
+        const std::vector<LightSample>& samples_;
+        std::pair<int, int> set_;
+        // Per occluder: its cached projection, or the one being made (null once it outgrew the
+        // room left in the budget), and its stats.
+        std::vector<std::shared_ptr<const MeshProjection>> cached_;
+        std::vector<std::unique_ptr<MeshProjection>> making_;
+        std::vector<ProjectionStats> stats_;
+        size_t pendingBytes_ = 0;
+        int reused_ = 0;
+    };
+
+    // `samples`: those of the cluster that cast onto `plane`. The references must outlive the pass.
+    Pass begin(int lightIndex, int cluster, const Scene& scene, const std::vector<int>& occluders,
+               const ReceiverPlane& plane, const planar::Snap& snap, const std::vector<LightSample>& samples);
+    // Drops the sets of lights at index `lights` and beyond, and those of light `lightIndex`'s
+    // clusters at `clusters` and beyond.
+    void keep(int lights, int lightIndex, int clusters);
+    size_t bytes() const { return held_; }
+
+private:
+    struct Set {
+        ReceiverPlane plane;
+        std::vector<LightSample> samples;
+        std::unordered_map<uint64_t, std::shared_ptr<const MeshProjection>> meshes;  // by Mesh::version
+    };
+    void drop(Set& set);
+    size_t budget_;
+    size_t held_ = 0;
+    std::map<std::pair<int, int>, Set> sets_;  // by (light index, cluster)
+};
+
+}  // namespace ss
