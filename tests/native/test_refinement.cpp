@@ -86,6 +86,26 @@ TEST(Refinement, CloserToA4096SampleReferenceThanTheGlMethodAlone) {
     }
 }
 
+// A refined result's estimate: the check where the GL pass was kept, the error target where the
+// rounds traced. It bounds the measured error from above, by no more than the target, at two
+// targets (the check's own rays, scored against the refined V, had made it several times the
+// error where much of the image is traced).
+TEST(Refinement, TheEstimateOfARefinedResultBoundsItsErrorWithinTheTarget) {
+    Scene scene = test::sceneBox(smallSoftScene());
+    const Layers truth = test::renderWith(scene, "reference", {}, 4096);
+    for (const char* target : {"0.005", "0.01"}) {
+        RenderSettings s;
+        s.options = {{"refine", "on"}, {"error_target", target}, {"estimate_rmse", "1"}};
+        double estimate = -1.0;
+        const Layers refined = test::sharedRenderer().render(scene, 0, "pcss", s, nullptr, &estimate);
+        const double measured =
+            compareVisibility(layer(refined, "V"), layer(truth, "V"), &layer(truth, "mask")).rmse;
+        std::printf("error_target %s: estimate %.4f, measured %.4f\n", target, estimate, measured);
+        EXPECT_GE(estimate, measured) << target;
+        EXPECT_LE(estimate, measured + std::stod(target)) << target;
+    }
+}
+
 // A GL pass that is wrongly certain everywhere (V = 1 over a soft shadow, or V = 0 over lit
 // ground): the verification rays find the shadow, or the light, and the refinement traces it.
 TEST(Refinement, RecoversFromAGlPassThatIsWronglyCertain) {

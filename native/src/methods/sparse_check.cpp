@@ -83,19 +83,21 @@ double errorLowerBound(const SparseCheck& check, const std::string& method, cons
     return n ? std::sqrt(sum / double(n)) : 0.0;
 }
 
-double estimatedRmse(const SparseCheck& check, const Layers& layers) {
+double estimatedRmse(const SparseCheck& check, const Layers& layers, const Image* traced, double tracedRmse) {
     const Image* v = layers.find("V");
     if (!v) return std::numeric_limits<double>::quiet_NaN();
     double sum = 0.0;
     size_t n = 0;
     for (const PixelVisibility& p : check.truth) {
         if (!p.inMask) continue;
+        ++n;
+        if (traced && traced->at(p.x, p.y) != 0.0f) continue;
         const float value = v->at(p.x, p.y);
         const double d = std::isfinite(value) ? double(value) - double(p.visibility) : 1.0;
         sum += d * d;
-        ++n;
     }
-    return n ? std::sqrt(sum / double(n)) : std::numeric_limits<double>::quiet_NaN();
+    if (!n) return std::numeric_limits<double>::quiet_NaN();
+    return std::sqrt(sum / double(n) + (traced ? tracedRmse * tracedRmse : 0.0));
 }
 
 }  // namespace ss

@@ -80,8 +80,8 @@ Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSetti
     return wrong;
 }
 
-void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
-                           TraceSceneCache& cache, Layers& layers) {
+Refinement refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
+                                 TraceSceneCache& cache, Layers& layers) {
     const int margin = settings.integer("refine_margin", 3, 0, 32);
     const int samples = settings.integer("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16);
     const int verify = settings.integer("refine_verify", kRefineDefaultVerifyRays, 0, 1024);
@@ -117,10 +117,12 @@ void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSetti
     traceAdaptive(scene, lightIndex, *trace, sampling, settings, {&select, verify > 0 ? &everywhere : mask},
                   {visibility, mask, &tracedRays, &refined});
     for (size_t i = 0; i < rays.pixels.size(); ++i) rays.pixels[i] += tracedRays.pixels[i];
+    Refinement out{refined, sampling.errorTarget};
     if (settings.extraLayers) {
         layers.add("rays", std::move(rays));
         layers.add("refined", std::move(refined));
     }
+    return out;
 }
 
 }  // namespace ss

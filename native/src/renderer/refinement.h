@@ -43,7 +43,13 @@ Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSetti
 // joins the mask; everywhere else V is the method's. Every other layer stays the method's. With settings.extraLayers
 // adds "rays" (shadow rays traced per pixel, the check's included) and "refined" (1 where the
 // pixels were traced adaptively).
-void refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
-                           TraceSceneCache& cache, Layers& layers);
+// Returns the pixels traced adaptively (1 there) and the error target their rounds aimed at:
+// what the result's estimated RMSE needs (estimatedRmse).
+struct Refinement {
+    Image traced;
+    float errorTarget = 0.0f;
+};
+Refinement refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
+                                 TraceSceneCache& cache, Layers& layers);
 
 }  // namespace ss

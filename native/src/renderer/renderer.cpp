@@ -223,7 +223,7 @@ bool clearlyBetter(double a, double b) { return a < b * 0.97 - 0.0005; }
 }  // namespace
 
 Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::string& name,
-                              const RenderSettings& settings) {
+                              const RenderSettings& settings, Refinement* refined) {
     auto& cached = impl_->cacheFor(scene);
     auto it = cached.methods.find(name);
     if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
@@ -252,7 +252,10 @@ Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::str
     checkLayers(layers, scene.camera(), name);
     // Refinement traces on the caller's thread (progress may call Python); the reference is
     // exact already, so it has nothing to refine.
-    if (refine && m.needsGl()) refineUncertainPixels(scene, lightIndex, settings, frame.traceScenes(), layers);
+    if (refine && m.needsGl()) {
+        Refinement r = refineUncertainPixels(scene, lightIndex, settings, frame.traceScenes(), layers);
+        if (refined) *refined = std::move(r);
+    }
     return layers;
 }
 
@@ -346,20 +349,24 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
                                                              scene.light(lightIndex).name + "' in this scene");
         }
         if (refine && impl_->cacheFor(scene).methods.at(name)->needsGl()) {
-            refineUncertainPixels(scene, lightIndex, settings, impl_->cacheFor(scene).frame->traceScenes(), layers);
-            if (std::isfinite(estimate)) estimate = estimatedRmse(check, layers);
+            const Refinement r =
+                refineUncertainPixels(scene, lightIndex, settings, impl_->cacheFor(scene).frame->traceScenes(), layers);
+            if (std::isfinite(estimate)) estimate = estimatedRmse(check, layers, &r.traced, r.errorTarget);
         }
         if (trialsOut) *trialsOut = std::move(trials);
     } else {
         RenderSettings own = settings;
         const bool wantEstimate = own.flag(kEstimateKey, false);
         own.options.erase(kEstimateKey);
-        layers = renderMethod(scene, lightIndex, name, own);
+        Refinement refined;
+        layers = renderMethod(scene, lightIndex, name, own, &refined);
         SparseCheck check;
         if (wantEstimate && impl_->cacheFor(scene).methods.at(name)->needsGl() &&
             sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(camera.width, camera.height), 0, settings.seed,
                         &check))
-            estimate = estimatedRmse(check, layers);
+            estimate = refined.traced.pixels.empty()
+                           ? estimatedRmse(check, layers)
+                           : estimatedRmse(check, layers, &refined.traced, refined.errorTarget);
     }
     if (settings.extraLayers) addClassLayers(layers);
     if (methodUsed) *methodUsed = name;

@@ -9,6 +9,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "methods/method.h"
+#include "renderer/refinement.h"
 #include "softshadow/softshadow.h"
 
 namespace ss {
@@ -69,9 +70,10 @@ public:
     void setShadowMapBudget(size_t bytes);
 
 private:
-    // One method as it is (settings keys checked), with the shared frame and GL thread.
+    // One method as it is (settings keys checked), with the shared frame and GL thread; with
+    // "refine=on", what the refinement traced into *refined (when not null).
     Layers renderMethod(const Scene& scene, int lightIndex, const std::string& name,
-                        const RenderSettings& settings);
+                        const RenderSettings& settings, Refinement* refined = nullptr);
     // The sparse exact check of the light; false where it cannot be made (no pixel, no ray
     // tracer, no checked pixel the light reaches).
     bool sparseCheck(const Scene& scene, int lightIndex, int pixels, int samples, uint32_t seed,
