@@ -438,12 +438,13 @@ def main():
         md += exact
     md += ["", "## How it was measured", "",
            "- Scenes built by `bench/scenes.py` in Blender 3.4 (nothing downloaded), exported with the add-on's "
-           "exporter; every renderer sees the same scene, camera and resolution: **%sx%s** (the triangle-count "
-           "series `scaled_*` at %s, its job being time against triangles). `concave` and `scaled_*` are Blender's "
-           "own Suzanne (`primitive_monkey_add`, open: its eyes are separate shells), subdivided; `stepped` is a "
-           "four-step receiver. One light per scene. The full run renders concave, foliage, curved_receiver and "
-           "stepped (bench/scenes.py FULL_SCENES, to fit in about 20 minutes on 2 cores); the others with "
-           "BENCH_SCENES." % (width, height, "256x192" if quick != "1" else "the same size"),
+           "exporter; every renderer sees the same scene, camera and resolution: **%sx%s** (`dense` at 1024x1024, "
+           "the triangle-count series `scaled_*` at %s, its job being time against triangles). `concave`, `dense` "
+           "and `scaled_*` are Blender's own Suzanne (`primitive_monkey_add`, open: its eyes are separate shells), "
+           "subdivided (`dense`: four of them); `stepped` is a four-step receiver. One light per scene. The full run "
+           "renders concave, foliage, curved_receiver, stepped and dense (bench/scenes.py FULL_SCENES, to fit in "
+           "about 20 minutes on 2 cores); the others with BENCH_SCENES." % (
+               width, height, "256x192" if quick != "1" else "the same size"),
            "- Truth: `reference` (Embree) at **%s light samples per pixel**. Errors: `softshadow compare --json` "
            "over every pixel the light reaches (`--mask <light>_reference_mask`, the truth's mask) whatever the "
            "method's own mask, since a composite multiplies by V everywhere (V = 1 outside a method's mask): RMSE, 99th-percentile absolute error, umbra IoU (V<0.05), lit IoU (V>0.95)."

@@ -23,11 +23,12 @@ from softshadow import api  # noqa: E402
 # At 512² on llvmpipe EEVEE takes about 1.4 s per sample: EEVEE-64 (the headline) alone.
 EEVEE_SAMPLES = (64,)
 CYCLES_SAMPLES = (16, 64)
-# What the full run renders at 512², to fit in about 20 minutes on 2 cores (EEVEE-64 ~100 s,
-# Cycles-16/64 ~55 s, the 1024-sample truth ~40 s, ours ~60 s per scene): an open Suzanne under a
-# disk, thin casters under a rectangle, a curved and a stepped receiver. The other scenes run
-# with BENCH_SCENES=name,name.
-FULL_SCENES = ("concave", "foliage", "curved_receiver", "stepped")
+# What the full run renders at 512² (the dense scene at 1024²), to fit in about 20 minutes on 2
+# cores: an open Suzanne under a disk, thin casters under a rectangle, a curved and a stepped
+# receiver, four open Suzannes. The other scenes run with BENCH_SCENES=name,name.
+FULL_SCENES = ("concave", "foliage", "curved_receiver", "stepped", "dense")
+# The dense scene renders at the size a dense shot is looked at.
+DENSE_SIZE = (1024, 1024)
 # The objects shadows fall on (what an artist looks at): the receiver pass marks the pixels that
 # see one of them, and report.py gives every method's error there beside its error over all
 # surfaces (casters' own self-shadowing included).
@@ -183,6 +184,14 @@ def build_stepped():
     primitive(bpy.ops.mesh.primitive_uv_sphere_add, radius=0.45, location=(0.1, 0.0, 2.0))
 
 
+def build_dense():
+    """Four open Suzannes side by side (subdivided twice: about 63k triangles), rendered at
+    DENSE_SIZE: a dense scene at the size it is looked at."""
+    ground()
+    for x, y in ((-1.2, -0.7), (1.2, -0.7), (-1.2, 0.9), (1.2, 0.9)):
+        suzanne(2, location=(x, y, 1.0), scale=0.65)
+
+
 def build_scaled(levels):
     def build():
         ground()
@@ -199,6 +208,7 @@ SCENES = [
     ("foliage", build_foliage, {"shape": "RECTANGLE", "size": 1.5, "size_y": 1.0}),
     ("curved_receiver", build_curved_receiver, {}),
     ("stepped", build_stepped, {}),
+    ("dense", build_dense, {"size": 2.0}),
 ] + [("scaled_%d" % lv, build_scaled(lv), {}) for lv in (1, 2, 3, 4, 5)]
 
 
@@ -368,7 +378,8 @@ def main():
         build()
         area_light(**light_kw)
         camera()
-        size = SCALED_SIZE if name.startswith("scaled") and not quick else (width, height)
+        size = (SCALED_SIZE if name.startswith("scaled") else DENSE_SIZE if name == "dense" else (width, height)) \
+            if not quick else (width, height)
         scene.render.resolution_x, scene.render.resolution_y = size
         scene.render.resolution_percentage = 100
         scene.render.filter_size = 0.0  # EEVEE: no pixel filter, pixel centres as the contract
