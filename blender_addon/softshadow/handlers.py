@@ -18,7 +18,7 @@ import threading
 
 import bpy
 
-from . import api, compositor, native
+from . import api, app_handlers, compositor, native
 
 # Blender exits 0 on success and 1 on its own errors (e.g. a failed --python script); 3 says
 # "the soft-shadow passes of a frame failed".
@@ -158,14 +158,8 @@ _HANDLERS = (("render_init", on_render_init), ("render_pre", on_render_pre))
 
 
 def register():
-    for name, fn in _HANDLERS:
-        handlers = getattr(bpy.app.handlers, name)
-        if fn not in handlers:
-            handlers.append(fn)
+    app_handlers.attach(_HANDLERS)
 
 
 def unregister():
-    for name, fn in _HANDLERS:
-        handlers = getattr(bpy.app.handlers, name)
-        while fn in handlers:
-            handlers.remove(fn)
+    app_handlers.detach(_HANDLERS)

@@ -12,6 +12,8 @@ handlers are registered (Blender evaluates what those change after the handlers 
 reporting it)."""
 import bpy
 
+from . import app_handlers
+
 
 class MeshCache:
     def __init__(self):
@@ -110,16 +112,10 @@ _HANDLERS = (("depsgraph_update_post", _on_depsgraph_update), ("frame_change_pos
 
 
 def register():
-    for name, fn in _HANDLERS:
-        handlers = getattr(bpy.app.handlers, name)
-        if fn not in handlers:
-            handlers.append(fn)
+    app_handlers.attach(_HANDLERS)
 
 
 def unregister():
-    for name, fn in _HANDLERS:
-        handlers = getattr(bpy.app.handlers, name)
-        while fn in handlers:
-            handlers.remove(fn)
+    app_handlers.detach(_HANDLERS)
     for cache in _CACHES:
         cache.clear()

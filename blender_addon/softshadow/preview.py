@@ -18,7 +18,7 @@ import gpu
 import numpy as np
 from gpu_extras.presets import draw_texture_2d
 
-from . import mesh_cache, native, passes, scene_export
+from . import app_handlers, mesh_cache, native, passes, scene_export
 
 PREVIEW_OPACITY = 0.75
 COARSE_DIVISOR = 4    # the coarse image's width and height are the full one's divided by this
@@ -333,11 +333,13 @@ def _poll_redraw():
     return 0.1
 
 
+_HANDLERS = (("depsgraph_update_post", _on_depsgraph_update), ("frame_change_post", _on_frame_change))
+
+
 def register():
     global _draw_handle
     _draw_handle = bpy.types.SpaceView3D.draw_handler_add(_draw, (), "WINDOW", "POST_PIXEL")
-    bpy.app.handlers.depsgraph_update_post.append(_on_depsgraph_update)
-    bpy.app.handlers.frame_change_post.append(_on_frame_change)
+    app_handlers.attach(_HANDLERS)
     bpy.app.timers.register(_poll_redraw, first_interval=0.1, persistent=True)
 
 
@@ -346,10 +348,7 @@ def unregister():
     if _draw_handle is not None:
         bpy.types.SpaceView3D.draw_handler_remove(_draw_handle, "WINDOW")
         _draw_handle = None
-    while _on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
-        bpy.app.handlers.depsgraph_update_post.remove(_on_depsgraph_update)
-    while _on_frame_change in bpy.app.handlers.frame_change_post:
-        bpy.app.handlers.frame_change_post.remove(_on_frame_change)
+    app_handlers.detach(_HANDLERS)
     if bpy.app.timers.is_registered(_poll_redraw):
         bpy.app.timers.unregister(_poll_redraw)
     with _state.lock:

@@ -1,5 +1,6 @@
 # Does a moved object reach the library as its matrix alone, move the shadow, and leave the other meshes' GPU buffers in place?
 # SPDX-License-Identifier: GPL-3.0-or-later
+import contextlib
 import os
 import sys
 
@@ -23,6 +24,20 @@ def _scene():
     scene.objects["Key"].data.softshadow.method = "shadow_map"
     bpy.context.view_layer.update()
     return scene
+
+
+@contextlib.contextmanager
+def _preview_after_a_first_render(scene):
+    """A kept preview scene that has rendered `scene` once: (live scene, depsgraph, camera)."""
+    preview._state.full = True
+    live = passes.LiveScene()
+    try:
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        camera = scene_export.scene_camera(scene, depsgraph)
+        preview._render_job(live, [preview.export_edit(depsgraph, scene)], camera, lambda: False)
+        yield live, depsgraph, camera
+    finally:
+        live.close()
 
 
 def _shadow_alpha(rgba, scene, point):
@@ -79,12 +94,7 @@ def test_moving_one_object_sends_its_matrix_and_moves_the_shadow():
 
 def test_a_renamed_object_is_not_drawn_twice():
     scene = _scene()
-    preview._state.full = True
-    live = passes.LiveScene()
-    try:
-        depsgraph = bpy.context.evaluated_depsgraph_get()
-        camera = scene_export.scene_camera(scene, depsgraph)
-        preview._render_job(live, [preview.export_edit(depsgraph, scene)], camera, lambda: False)
+    with _preview_after_a_first_render(scene) as (live, depsgraph, camera):
         scene.objects["Occluder"].name = "Plate"
         bpy.context.view_layer.update()
         edit = preview.export_edit(depsgraph, scene)
@@ -93,8 +103,6 @@ def test_a_renamed_object_is_not_drawn_twice():
         names = sorted(m["name"] for m in live.meshes)
         sstest.check(names == ["Ground", "Other", "Plate"], "meshes after the rename: %s" % names)
         sstest.check(live.scene.mesh_count() == 3, "the library has 3 meshes: %d" % live.scene.mesh_count())
-    finally:
-        live.close()
 
 
 def test_render_passes_sends_only_the_moved_matrix():
@@ -195,12 +203,7 @@ def test_render_passes_reads_again_only_the_meshes_a_frame_change_animates():
 
 def test_the_preview_follows_a_frame_change_and_reads_only_the_animated_meshes():
     scene = _animated_scene()
-    preview._state.full = True
-    live = passes.LiveScene()
-    try:
-        depsgraph = bpy.context.evaluated_depsgraph_get()
-        camera = scene_export.scene_camera(scene, depsgraph)
-        preview._render_job(live, [preview.export_edit(depsgraph, scene)], camera, lambda: False)
+    with _preview_after_a_first_render(scene) as (live, depsgraph, camera):
         scene.frame_set(2)
         sstest.check({"Occluder", "Other", "Driven"} <= preview._state.geometry,
                      "the frame change's geometry updates are noted: %s" % preview._state.geometry)
@@ -214,8 +217,6 @@ def test_the_preview_follows_a_frame_change_and_reads_only_the_animated_meshes()
         rgba = preview._render_job(live, [edit], camera, lambda: False)
         sstest.check(_shadow_alpha(rgba, scene, sstest.shadow_centre(0.0)) > 0.5, "the shadow followed the frame")
         sstest.check(_shadow_alpha(rgba, scene, sstest.shadow_centre(-1.0)) < 0.05, "and left its old place")
-    finally:
-        live.close()
 
 
 def test_a_frame_change_handler_that_edits_a_mesh_makes_render_passes_read_every_mesh():
