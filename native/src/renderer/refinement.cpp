@@ -57,7 +57,8 @@ Image uncertainPixels(const Image& visibility, const Image& mask, int margin) {
 
 Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
                            const TraceScene& trace, int verifyRays, const Image& visibility,
-                           const Image& mask, const Image& uncertain, int margin, Image* rays) {
+                           const Image& mask, const Image& methodMask, const Image& uncertain, int margin,
+                           Image* rays) {
     const int width = visibility.width, height = visibility.height;
     Image certain(width, height, 0.0f);
     for (size_t i = 0; i < certain.pixels.size(); ++i)
@@ -74,9 +75,12 @@ Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSetti
         return (gl == 1.0f && v < 1.0f) || (gl == 0.0f && v > 0.0f);
     });
     // Fewer than half the rays above the horizon (a surface turned almost away from the light):
-    // too few to vouch for the pass, as for the adaptive rounds' agreement.
+    // too few to vouch for the pass, as for the adaptive rounds' agreement. Only inside the
+    // method's mask: outside it such a pixel (the sky, a surface the light cannot reach) is what
+    // the method said, V = 1.
     for (size_t i = 0; i < wrong.pixels.size(); ++i)
-        if (certain.pixels[i] != 0.0f && 2.0f * checkRays.pixels[i] < float(verifyRays)) wrong.pixels[i] = 1.0f;
+        if (certain.pixels[i] != 0.0f && methodMask.pixels[i] != 0.0f && 2.0f * checkRays.pixels[i] < float(verifyRays))
+            wrong.pixels[i] = 1.0f;
     return wrong;
 }
 
@@ -106,7 +110,7 @@ Refinement refineUncertainPixels(const Scene& scene, int lightIndex, const Rende
     Image rays(width, height, 0.0f);
     if (verify > 0) {
         const Image wrong = wronglyCertainPixels(scene, lightIndex, settings, *trace, verify, *visibility, everywhere,
-                                                 select, margin, &rays);
+                                                 *mask, select, margin, &rays);
         for (size_t i = 0; i < select.pixels.size(); ++i) select.pixels[i] = std::max(select.pixels[i], wrong.pixels[i]);
     }
     for (size_t i = 0; i < mask->pixels.size(); ++i)

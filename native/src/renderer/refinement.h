@@ -27,12 +27,13 @@ Image uncertainPixels(const Image& visibility, const Image& mask, int margin);
 
 // Where `verifyRays` rays per pixel contradict a certain pass (inside the mask, outside
 // `uncertain`): V = 1 and a ray is blocked, or V = 0 and a ray sees the light; grown by `margin`
-// pixels within the mask. Also, on their own, the certain pixels where fewer than half the rays
-// could be traced (light mostly below the horizon, or no receiving surface for the ray tracer).
-// Adds the rays traced per pixel to *rays.
+// pixels within the mask. Also, on their own, the certain pixels of the method's own mask
+// (`methodMask`) where fewer than half the rays could be traced (light mostly below the horizon,
+// or no receiving surface for the ray tracer). Adds the rays traced per pixel to *rays.
 Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
                            const TraceScene& trace, int verifyRays, const Image& visibility,
-                           const Image& mask, const Image& uncertain, int margin, Image* rays);
+                           const Image& mask, const Image& methodMask, const Image& uncertain, int margin,
+                           Image* rays);
 
 // Checks the pixels where the method was certain with "refine_verify" rays each (a GL pass can
 // be certain and wrong: a shadow map's missed caster, a faint penumbra it calls lit), then traces
