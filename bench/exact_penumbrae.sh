@@ -6,7 +6,7 @@
 #   EXACT_SCENES  scenes at 512² (default: the quality scenes of bench/scenes.py)
 #   EXACT_LARGE   scenes at 1024² (default: scaled_4,scaled_5)
 #   EXACT_TRUTH / EXACT_TRUTH_LARGE  samples of the converged reference (default 1024 / 512)
-#   EXACT_TARGETS error targets of our runs (default "0.005 0.02": the default and a looser one)
+#   EXACT_TARGETS error targets of our runs (default "0.01 0.005": the default and a stricter one)
 #   EXACT_REUSE=1 keeps the scene files, Cycles images and truths of the last run (ours rerun)
 # Writes bench/results/exact_penumbrae.md (and .json); EXRs stay in BUILD_DIR/bench_exact.
 set -euo pipefail
@@ -20,7 +20,7 @@ SMALL=${EXACT_SCENES-convex,concave,overlapping,torus,small_occluder,foliage,cur
 LARGE=${EXACT_LARGE-scaled_4,scaled_5}
 TRUTH=${EXACT_TRUTH:-1024}
 TRUTH_LARGE=${EXACT_TRUTH_LARGE:-512}
-TARGETS=${EXACT_TARGETS:-0.005 0.02}
+TARGETS=${EXACT_TARGETS:-0.01 0.005}
 REUSE=${EXACT_REUSE:-0}
 CYCLES=64
 export SOFTSHADOW_LIB="$BUILD_DIR/libsoftshadow.so"

@@ -162,7 +162,8 @@ TEST(ReferenceAdaptive, TracesTheFaintPenumbraOfAnOccluderSmallerThanTheLight) {
 
 // The target is what the rounds aim at, not a bound they keep far from: where the penumbra is a
 // fair share of the mask (so neither the first round's 16 rays nor kMaxPixelError set the error),
-// the mask's RMSE comes within about a factor of 2 below the target.
+// the mask's RMSE comes within about a factor of 2.5 below the target (kPenumbraShare holds a
+// penumbra below a quarter of the mask a little lower).
 TEST(ReferenceAdaptive, TheMasksErrorComesCloseToItsTargetWithoutPassingIt) {
     test::SceneParams p;
     p.width = 128;
@@ -175,7 +176,7 @@ TEST(ReferenceAdaptive, TheMasksErrorComesCloseToItsTargetWithoutPassingIt) {
         std::printf("%s at 128x96, target 0.005: RMSE %.5f (%.2f of the target)\n", named.name.c_str(), c.rmse,
                     c.rmse / 0.005);
         EXPECT_LE(c.rmse, 0.005) << named.name;
-        EXPECT_GE(c.rmse, 0.4 * 0.005) << named.name;
+        EXPECT_GE(c.rmse, 0.35 * 0.005) << named.name;
     }
 }
 
@@ -202,14 +203,18 @@ TEST(ReferenceAdaptive, APixelTheLightReachesIsNotDecidedByAnEmptyFirstRound) {
 }
 
 // The target is the mask's RMSE: the undecided pixels share it, each allowed more error the
-// fewer they are, within [target, kMaxPixelError].
+// fewer they are, within [target, kPenumbraShare x target] and at most kMaxPixelError.
 TEST(ReferenceAdaptive, ThePixelTargetSpreadsTheMasksErrorOverTheUndecidedPixels) {
     AdaptiveSampling a;
     a.errorTarget = 0.005f;
     EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 1000), 0.005f);
+    EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 640), 0.00625f);
     EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 250), 0.01f);
-    EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000000, 1), AdaptiveSampling::kMaxPixelError);
+    // A small penumbra keeps at most twice the image's error.
+    EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000000, 1), AdaptiveSampling::kPenumbraShare * 0.005f);
     EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 0), 0.005f);
+    a.errorTarget = 0.04f;
+    EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 10), AdaptiveSampling::kMaxPixelError);
     a.errorTarget = 0.2f;
     EXPECT_FLOAT_EQ(pixelErrorTarget(a, 1000, 10), 0.2f);
 }

@@ -88,7 +88,8 @@ int raysToTrustAgreement(float pixelTarget) {
 float pixelErrorTarget(const AdaptiveSampling& a, size_t maskPixels, size_t undecidedPixels) {
     if (undecidedPixels == 0) return a.errorTarget;
     const double spread = std::sqrt(double(maskPixels) / double(undecidedPixels));
-    return std::max(a.errorTarget, std::min(float(a.errorTarget * spread), AdaptiveSampling::kMaxPixelError));
+    const float cap = std::min(AdaptiveSampling::kPenumbraShare * a.errorTarget, AdaptiveSampling::kMaxPixelError);
+    return std::max(a.errorTarget, std::min(float(a.errorTarget * spread), cap));
 }
 
 void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, const SurfaceHit& hit,

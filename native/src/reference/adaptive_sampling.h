@@ -31,16 +31,20 @@ namespace ss {
 //   power-of-two prefix or block of a (0,2)-sequence, so both are stratified estimates).
 // - `errorTarget` is the RMSE over the mask the rounds aim at: decided pixels are exact, so the
 //   u undecided pixels of m mask pixels may each err by errorTarget * sqrt(m / u), at most
-//   kMaxPixelError (and never less than errorTarget).
+//   kPenumbraShare times errorTarget and kMaxPixelError (and never less than errorTarget).
 struct AdaptiveSampling {
     static constexpr float kMaxPixelError = 0.05f;
+    // A small penumbra on a large lit receiver would otherwise take the whole mask's budget
+    // (small_occluder: 3.5x the target per pixel) and show as noise where the eye looks: the
+    // penumbra keeps at most twice the image's error.
+    static constexpr float kPenumbraShare = 2.0f;
     // A round's estimate is of twice the samples of the round before it, and a stratified
     // estimate's error falls about as N^-0.75: the round before is on track for the pixel target
     // when its estimate is at most 2^0.75 times it.
     static constexpr double kOnTrack = 1.6817928305074290;
     int minSamples = 16;
     int maxSamples = 1024;
-    float errorTarget = 0.005f;
+    float errorTarget = 0.01f;
     int guardBand = 2;
     // Mask pixels the caller keeps without tracing (refine: where the GL pass was certain);
     // they count in m above.
@@ -62,7 +66,7 @@ void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, cons
                       const SampleSequence& sequence, bool castShadows, const AdaptiveSampling& sampling,
                       SampleSums* sums);
 
-// The keys the adaptive sampling reads: "error_target" (0.0001..0.5, default 0.005) and
+// The keys the adaptive sampling reads: "error_target" (0.0001..0.5, default 0.01) and
 // "guard_band" (pixels, 0..16, default 2); `maxSamples` is the render's sample count.
 std::vector<std::string> adaptiveSamplingKeys();
 AdaptiveSampling adaptiveSampling(const RenderSettings& settings, int maxSamples);
