@@ -14,12 +14,15 @@
 #     layers into numpy and the EXR write of a final render; and the floor: the same render on an
 #     unchanged scene (every cache kept: the method's own passes and the read-back, which no edit
 #     tracking removes);
-# PARTS: comma-separated, of "render" and "preview" (default both): which of the two below run.
+# PARTS: comma-separated, of "render", "preview" and "final" (default all): which of those below run.
 #   - the preview after a move at 960x540 (shadow_map, pcss, occlusion_textures): edit-to-overlay
 #     latency of the coarse image and of the full one (main thread's export of the edit + the
 #     worker's updates, renders and overlays, `preview.progressive_job`) over an animated sequence
 #     of 2 x FRAMES moves, median and 95th percentile, with its stages; and the floor of each image:
 #     a request with no edit (a new view of the same scene costs at least this).
+#   - a final render's frame (auto with refine=on, what F12 and `blender -b -a` give) at SIZE² after
+#     a move: its seconds, the mesh BVHs it built (the ray tracer's scene keeps each mesh's BVH
+#     under a new instance), and the same render on an unchanged scene.
 import math
 import os
 import statistics
@@ -34,7 +37,8 @@ out_path = argv[0] if argv else "warm_render_passes.md"
 size = int(argv[1]) if len(argv) > 1 else 1024
 frames = int(argv[2]) if len(argv) > 2 else 5
 torus_counts = [int(n) for n in (argv[3] if len(argv) > 3 else "1,9").split(",")]
-parts = set((argv[4] if len(argv) > 4 else "render,preview").split(","))
+parts = set((argv[4] if len(argv) > 4 else "render,preview,final").split(","))
+FINAL_FRAMES = 3  # a final frame takes seconds: fewer of them
 
 sys.path.insert(0, os.environ.get("SOFTSHADOW_ADDON_PATH", ""))
 import softshadow  # noqa: E402
@@ -155,6 +159,22 @@ def preview_frame(scene, mover, scenes, camera):
             "coarse": images[0] - t0, "latency": images[1] - t0}
 
 
+def final_frame(scene, mover, live, moved=True):
+    """Seconds of a final render's frame (auto, refine=on) and the mesh BVHs it built."""
+    if moved:
+        move(mover)
+    exported = scene_export.export(bpy.context.evaluated_depsgraph_get(), scene, reuse=mesh_cache.render_meshes)
+    t0 = time.perf_counter()
+    live.sync(exported)
+    before = native.cache_stats()
+    result = live.scene.render(live.light_indices()[exported.lights[0]["name"]], "auto", settings="refine=on")
+    try:
+        result.layers()
+    finally:
+        result.close()
+    return time.perf_counter() - t0, stats_delta(before, native.cache_stats())["mesh_bvh_builds"]
+
+
 def p95(values):
     ordered = sorted(values)
     return ordered[min(len(ordered) - 1, int(math.ceil(0.95 * len(ordered))) - 1)]
@@ -207,7 +227,17 @@ for tori in torus_counts:
               "full render alone %.3f s, floor coarse %.3f s full %.3f s" % (triangles, method, *preview_rows[-1][1:5],
                                                                  stages["full render"], *stages_floor),
               flush=True)
-    report.append((tori, triangles, rows, preview_rows))
+    final = None
+    if "final" in parts:
+        live = passes.LiveScene()
+        first = final_frame(scene, mover, live)  # builds the kept scene and every mesh's BVH
+        runs = [final_frame(scene, mover, live) for _ in range(FINAL_FRAMES)]
+        floor = statistics.median(final_frame(scene, mover, live, moved=False)[0] for _ in range(FINAL_FRAMES))
+        live.close()
+        final = (first, statistics.median(r[0] for r in runs), max(r[1] for r in runs), floor)
+        print("BENCH final %d tris: first %.3f s (%d mesh BVHs), moved %.3f s (%d mesh BVHs), unchanged %.3f s"
+              % (triangles, first[0], first[1], final[1], final[2], floor), flush=True)
+    report.append((tori, triangles, rows, preview_rows, final))
 
 load = os.getloadavg()
 with open(out_path, "w") as f:
@@ -228,7 +258,7 @@ with open(out_path, "w") as f:
             "render and copy-out on an unchanged scene (every cache kept): the method's own passes and read-back "
             "at that size, which every frame redoes whatever changed; where the floor is above the target, "
             "llvmpipe running the method's own passes is the limit.\n\n")
-    for tori, triangles, rows, preview_rows in report:
+    for tori, triangles, rows, preview_rows, final in report:
         if rows:
             target = TARGET_RENDER.get(tori)
             f.write("## %d triangles: render_passes at %d² per light\n\n" % (triangles, size))
@@ -247,6 +277,14 @@ with open(out_path, "w") as f:
                     "rest of each total is the method's own GL or CPU work, which every moved frame redoes.\n\n"
                     % (camera, maps, camera + maps,
                        ", above the target by themselves" if target and camera + maps > target else ""))
+        if final:
+            (first, first_bvhs), moved, moved_bvhs, unchanged = final
+            f.write("### A final render's frame after a move (%d², auto with refine=on), %d triangles\n\n"
+                    "What F12 and `blender -b -a` render per light: the first frame %.2f s (it builds the ray "
+                    "tracer's scene: %d mesh BVHs); a frame after the box moved %.2f s, building %d mesh BVHs (the "
+                    "moved box keeps its BVH: only its instance changes); the same render on an unchanged scene "
+                    "%.2f s. Medians over %d frames.\n\n"
+                    % (size, triangles, first, first_bvhs, moved, moved_bvhs, unchanged, FINAL_FRAMES))
         if not preview_rows:
             continue
         f.write("### The preview after a move (960x540), %d triangles\n\n" % triangles)

@@ -92,7 +92,7 @@ class _CacheStats(ctypes.Structure):
                 ("camera_passes", ctypes.c_int32), ("shadow_maps", ctypes.c_int32),
                 ("upload_ms", ctypes.c_double), ("camera_pass_ms", ctypes.c_double),
                 ("shadow_map_ms", ctypes.c_double), ("method_ms", ctypes.c_double),
-                ("trace_scene_builds", ctypes.c_int32)]
+                ("trace_scene_builds", ctypes.c_int32), ("mesh_bvh_builds", ctypes.c_int32)]
 
 
 _vp = ctypes.c_void_p
@@ -317,8 +317,9 @@ def reset_after_shutdown():
 
 def cache_stats():
     """What the shared context's caches did so far: {frames, mesh_uploads, camera_passes,
-    shadow_maps, trace_scene_builds} (tests count re-uploads and BVH builds with it) and the
-    milliseconds of {upload_ms, camera_pass_ms, shadow_map_ms, method_ms} (the benchmark's stages)."""
+    shadow_maps, trace_scene_builds, mesh_bvh_builds} (tests count re-uploads and BVH builds with
+    it) and the milliseconds of {upload_ms, camera_pass_ms, shadow_map_ms, method_ms} (the
+    benchmark's stages)."""
     stats = _CacheStats()
     _check(lib().ss_context_cache_stats(context(), ctypes.byref(stats)))
     return {name: getattr(stats, name) for name, _ in _CacheStats._fields_}

@@ -313,6 +313,56 @@ TEST(ReferenceRender, EmbreeSceneIsBuiltOncePerGeometry) {
     EXPECT_EQ(cache.builds(), 2);
 }
 
+// Two levels: a moved mesh keeps its BVH (its instance alone changes) and is traced where it is
+// now, as in a scene built with it there; one flattened by its transform (no inverse to trace it
+// in its own coordinates) is traced in world space, from a BVH of its own.
+TEST(ReferenceRender, AMovedMeshKeepsItsBvhAndIsTracedWhereItIsNow) {
+    const test::SceneParams p{1.5f, 4.0f, 0.0f, 48, 36};
+    Scene scene = test::sceneBox(p);
+    ASSERT_EQ(scene.meshes().size(), 2u);
+    TraceSceneCache cache;
+    const Layers before = renderReference(scene, 0, withSamples(16), &cache);
+    EXPECT_EQ(cache.meshBvhBuilds(), 2);
+
+    for (const glm::mat4& transform :
+         {glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, -0.3f, 0.2f)),
+          glm::rotate(glm::mat4(1.0f), 0.4f, glm::vec3(0.0f, 0.0f, 1.0f))}) {
+        scene.setMeshTransform(1, transform);
+        cache.dropStale(scene);  // as the renderer does between renders
+        const Layers moved = renderReference(scene, 0, withSamples(16), &cache);
+        EXPECT_EQ(cache.meshBvhBuilds(), 2);
+
+        Scene fresh = test::sceneBox(p);
+        Mesh box = scene.meshes()[1];
+        box.objectPositions.clear();
+        box.objectToWorld = glm::mat4(1.0f);
+        fresh.updateMesh(1, box);  // the moved coordinates, given as they are
+        const Layers there = renderReference(fresh, 0, withSamples(16));
+        const Image& a = layer(moved, "V");
+        const Image& b = layer(there, "V");
+        int differ = 0, shadowed = 0;
+        for (size_t i = 0; i < a.pixels.size(); ++i) {
+            differ += std::abs(a.pixels[i] - b.pixels[i]) > 1e-6f;
+            shadowed += b.pixels[i] < 1.0f;
+        }
+        EXPECT_GT(shadowed, 50);
+        EXPECT_LE(differ, 2) << "of " << shadowed << " shadowed pixels";
+        EXPECT_EQ(layer(moved, "mask").pixels, layer(there, "mask").pixels);
+        EXPECT_NE(a.pixels, layer(before, "V").pixels);
+    }
+
+    scene.setMeshTransform(1, glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 1.0f, 0.0f)));
+    cache.dropStale(scene);
+    const Layers flat = renderReference(scene, 0, withSamples(16), &cache);
+    EXPECT_EQ(cache.meshBvhBuilds(), 3);
+    Scene fresh = test::sceneBox(p);
+    Mesh box = scene.meshes()[1];
+    box.objectPositions.clear();
+    box.objectToWorld = glm::mat4(1.0f);
+    fresh.updateMesh(1, box);
+    EXPECT_EQ(layer(flat, "V").pixels, layer(renderReference(fresh, 0, withSamples(16)), "V").pixels);
+}
+
 TEST(ReferenceRender, BadLightIndexIsRejected) {
     Scene scene = test::sceneBox({1.5f, 4.0f, 0.0f, 16, 12});
     try {

@@ -401,11 +401,14 @@ TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
     ss_result_destroy(result);
     ASSERT_EQ(ss_context_cache_stats(context, &stats), SS_OK);
     EXPECT_EQ(stats.trace_scene_builds, 1);
+    const int meshBvhs = stats.mesh_bvh_builds;
+    EXPECT_EQ(meshBvhs, 3);  // one per mesh
     ASSERT_EQ(ss_scene_set_mesh_transform(scene, 1, move), SS_OK);
     ASSERT_EQ(ss_render(context, scene, 0, "pcss", &options, &result), SS_OK);
     ss_result_destroy(result);
     ASSERT_EQ(ss_context_cache_stats(context, &stats), SS_OK);
     EXPECT_EQ(stats.trace_scene_builds, 2);
+    EXPECT_EQ(stats.mesh_bvh_builds, meshBvhs);  // a move keeps every mesh's BVH
     EXPECT_EQ(ss_scene_update_light(scene, 1, &light), SS_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(ss_last_error()).find("light index 1"), std::string::npos);
     EXPECT_EQ(ss_scene_remove_mesh(scene, 3), SS_ERROR_INVALID_ARGUMENT);

@@ -126,12 +126,13 @@ SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t
 /* What the context's caches did over its life: frames made (one per scene), meshes uploaded to
    the GPU, camera passes and light shadow maps drawn; the milliseconds spent uploading
    meshes, drawing camera passes and shadow maps (each until the GL finished it), and running GL
-   methods (the shared passes they drew included); and Embree BVHs built (one per scene and
-   geometry edit, shared by reference, refine=on and auto's check). For tests and the benchmark. */
+   methods (the shared passes they drew included); Embree scenes built (one per scene and
+   geometry edit, shared by reference, refine=on and auto's check) and the mesh BVHs they built
+   (one per mesh shape: a moved mesh keeps its BVH). For tests and the benchmark. */
 typedef struct ss_cache_stats {
     int32_t frames, mesh_uploads, camera_passes, shadow_maps;
     double upload_ms, camera_pass_ms, shadow_map_ms, method_ms;
-    int32_t trace_scene_builds;
+    int32_t trace_scene_builds, mesh_bvh_builds;
 } ss_cache_stats;
 SS_API ss_status ss_context_cache_stats(const ss_context* context, ss_cache_stats* out);
 /* Joins every render thread the library started. Call from the host before it exits. */

@@ -76,6 +76,7 @@ SS_API ss_status ss_context_cache_stats(const ss_context* context, ss_cache_stat
         out->shadow_map_ms = s.shadowMapMs;
         out->method_ms = s.methodMs;
         out->trace_scene_builds = s.traceSceneBuilds;
+        out->mesh_bvh_builds = s.meshBvhBuilds;
     });
 }
 

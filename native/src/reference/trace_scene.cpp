@@ -7,36 +7,18 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/error.h"
+#include "reference/mesh_bvh.h"
 
 namespace ss {
 namespace {
 
-// One Embree device for the whole process: it owns the build threads, and devices are
-// expensive to create. Errors are collected per call through rtcGetDeviceError.
-RTCDevice sharedDevice() {
-    static RTCDevice device = [] {
-        RTCDevice d = rtcNewDevice(nullptr);
-        if (!d)
-            fail(SS_ERROR_INTERNAL, "Embree could not create a device (error " +
-                                        std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-        return d;
-    }();
-    return device;
-}
-
-void checkDevice(RTCDevice device, const char* what) {
-    RTCError e = rtcGetDeviceError(device);
-    if (e != RTC_ERROR_NONE)
-        fail(SS_ERROR_INTERNAL, std::string("Embree failed while ") + what + " (error " +
-                                    std::to_string(int(e)) + ")");
-}
-
-// The shadow-ray context: the triangle the ray starts on is ignored.
+// The shadow-ray context: the triangle the ray starts on is ignored. Meshes are instances
+// (instance ID == mesh index), each holding one geometry.
 struct ShadowContext {
     RTCIntersectContext base;
     uint32_t skipMesh, skipTriangle;
@@ -46,7 +28,7 @@ void skipOwnTriangle(const RTCFilterFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const ShadowContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
-        if (RTCHitN_geomID(args->hit, args->N, i) == ctx->skipMesh &&
+        if (RTCHitN_instID(args->hit, args->N, i, 0) == ctx->skipMesh &&
             RTCHitN_primID(args->hit, args->N, i) == ctx->skipTriangle)
             args->valid[i] = 0;
     }
@@ -87,79 +69,90 @@ void occludedPackets(RTCScene scene, ShadowContext* ctx, const glm::vec3& origin
 }  // namespace
 
 struct TraceScene::Impl {
-    struct MeshCopy {
-        std::vector<glm::vec3> positions;
-        std::vector<glm::uvec3> triangles;
-        std::vector<glm::vec3> faceNormals;
+    // One mesh as the rays see it: its BVH and the transform above it.
+    struct Instance {
+        std::shared_ptr<const MeshBvh> bvh;  // null for a mesh without triangles
+        glm::mat4 toWorld{1.0f};
+        glm::mat3 normalToWorld{1.0f};  // inverse transpose of toWorld's linear part
+        glm::mat3 absLinear{1.0f};      // |toWorld's linear part|, for error bounds
+        glm::vec3 absTranslation{0.0f};
     };
-    RTCDevice device = nullptr;
     RTCScene all = nullptr;      // camera rays
     RTCScene casters = nullptr;  // shadow rays
     bool filterSupported = false;
     int packetWidth = 1;  // the widest packet the CPU traces natively
-    std::vector<MeshCopy> meshes;
+    std::vector<Instance> instances;  // per mesh index
 
     ~Impl() {
         if (all) rtcReleaseScene(all);
         if (casters) rtcReleaseScene(casters);
     }
 
-    void attach(RTCScene scene, const Mesh& mesh, uint32_t id) {
-        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
-        auto* t = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangles.size()));
-        if (!v || !t) {
-            rtcReleaseGeometry(g);
-            checkDevice(device, "allocating mesh buffers");
-            fail(SS_ERROR_INTERNAL, "Embree returned no buffer for mesh '" + mesh.name + "'");
-        }
-        for (size_t i = 0; i < mesh.positions.size(); ++i)
-            for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.positions[i][k];
-        for (size_t i = 0; i < mesh.triangles.size(); ++i)
-            for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
+    static void instance(RTCDevice device, RTCScene scene, const Instance& in, uint32_t id) {
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(g, in.bvh->scene());
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &in.toWorld[0][0]);
         rtcCommitGeometry(g);
-        rtcAttachGeometryByID(scene, g, id);  // geomID == mesh index in both scenes
+        rtcAttachGeometryByID(scene, g, id);  // instID == mesh index in both scenes
         rtcReleaseGeometry(g);
-        checkDevice(device, ("adding mesh '" + mesh.name + "'").c_str());
+        checkEmbree(device, "placing a mesh");
     }
 };
 
-TraceScene::TraceScene(const Scene& scene)
+TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<const MeshBvh>>& reusable)
     : impl_(std::make_unique<Impl>()), sceneId_(scene.id()), geometryVersion_(scene.geometryVersion()) {
     Impl& m = *impl_;
-    m.device = sharedDevice();
-    m.filterSupported = rtcGetDeviceProperty(m.device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED) != 0;
-    if (rtcGetDeviceProperty(m.device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) m.packetWidth = 16;
-    else if (rtcGetDeviceProperty(m.device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) m.packetWidth = 8;
-    m.all = rtcNewScene(m.device);
-    m.casters = rtcNewScene(m.device);
-    checkDevice(m.device, "creating scenes");
-    // The reference is the truth: keep Embree's most accurate (watertight) traversal.
+    RTCDevice device = embreeDevice();
+    m.filterSupported = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED) != 0;
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) m.packetWidth = 16;
+    else if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) m.packetWidth = 8;
+    m.all = rtcNewScene(device);
+    m.casters = rtcNewScene(device);
+    checkEmbree(device, "creating scenes");
     rtcSetSceneFlags(m.all, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneFlags(m.casters, RTCSceneFlags(RTC_SCENE_FLAG_ROBUST |
                                               (m.filterSupported ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : 0)));
-    rtcSetSceneBuildQuality(m.casters, RTC_BUILD_QUALITY_HIGH);
 
+    std::unordered_map<uint64_t, std::shared_ptr<const MeshBvh>> kept;
+    for (const auto& bvh : reusable) kept.emplace(bvh->key().packed(), bvh);
     const auto& meshes = scene.meshes();
-    m.meshes.resize(meshes.size());
+    m.instances.resize(meshes.size());
     for (size_t i = 0; i < meshes.size(); ++i) {
         const Mesh& mesh = meshes[i];
         for (const glm::vec3& p : mesh.positions)
             extent_ = std::max(extent_, std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
-        m.meshes[i] = {mesh.positions, mesh.triangles, mesh.faceNormals};
         if (mesh.triangles.empty()) continue;
-        m.attach(m.all, mesh, uint32_t(i));
-        if (mesh.casts()) m.attach(m.casters, mesh, uint32_t(i));
+        Impl::Instance& in = m.instances[i];
+        const MeshBvh::Key key = MeshBvh::keyOf(mesh);
+        if (auto found = kept.find(key.packed()); found != kept.end() && found->second->key() == key)
+            in.bvh = found->second;
+        if (!in.bvh) {
+            in.bvh = std::make_shared<const MeshBvh>(mesh);
+            ++meshBvhBuilds_;
+            kept.emplace(key.packed(), in.bvh);  // a mesh repeated in the scene shares it
+        }
+        in.toWorld = MeshBvh::toWorldOf(mesh);
+        const glm::mat3 linear(in.toWorld);
+        in.normalToWorld = glm::transpose(glm::inverse(linear));
+        for (int c = 0; c < 3; ++c) in.absLinear[c] = glm::abs(linear[c]);
+        in.absTranslation = glm::abs(glm::vec3(in.toWorld[3]));
+        Impl::instance(device, m.all, in, uint32_t(i));
+        if (mesh.casts()) Impl::instance(device, m.casters, in, uint32_t(i));
     }
     rtcCommitScene(m.all);
-    checkDevice(m.device, "building the camera-ray scene");
+    checkEmbree(device, "building the camera-ray scene");
     rtcCommitScene(m.casters);
-    checkDevice(m.device, "building the shadow-ray scene");
+    checkEmbree(device, "building the shadow-ray scene");
 }
 
 TraceScene::~TraceScene() = default;
+
+std::vector<std::shared_ptr<const MeshBvh>> TraceScene::meshBvhs() const {
+    std::vector<std::shared_ptr<const MeshBvh>> out;
+    for (const Impl::Instance& in : impl_->instances)
+        if (in.bvh) out.push_back(in.bvh);
+    return out;
+}
 
 SurfaceHit TraceScene::intersect(const Ray& ray, float tNear, float tFar) const {
     RTCIntersectContext ctx;
@@ -171,25 +164,36 @@ SurfaceHit TraceScene::intersect(const Ray& ray, float tNear, float tFar) const 
     rh.ray.tfar = tFar;
     rh.ray.mask = 0xffffffffu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->all, &ctx, &rh);
 
     SurfaceHit h;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
-    const Impl::MeshCopy& mesh = impl_->meshes[rh.hit.geomID];
-    const glm::uvec3& tri = mesh.triangles[rh.hit.primID];
+    const Impl::Instance& in = impl_->instances[rh.hit.instID[0]];
+    const glm::uvec3& tri = in.bvh->triangles()[rh.hit.primID];
     h.hit = true;
-    h.mesh = rh.hit.geomID;
+    h.mesh = rh.hit.instID[0];
     h.triangle = rh.hit.primID;
-    // Embree's (u, v) weight vertices 1 and 2.
+    // Embree's (u, v) weight vertices 1 and 2; the point in the BVH's coordinates, then in the
+    // world, each step's rounding in the bound (pbrt's, gamma(3) for the matrix product).
     float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
-    glm::vec3 p0 = mesh.positions[tri.x], p1 = mesh.positions[tri.y], p2 = mesh.positions[tri.z];
-    h.point = b0 * p0 + b1 * p1 + b2 * p2;
-    h.pointError = gammaBound(7) * (glm::abs(b0 * p0) + glm::abs(b1 * p1) + glm::abs(b2 * p2));
-    glm::vec3 n = mesh.faceNormals[rh.hit.primID];
-    if (n == glm::vec3(0.0f)) {
-        glm::vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    const std::vector<glm::vec3>& pos = in.bvh->positions();
+    glm::vec3 p0 = pos[tri.x], p1 = pos[tri.y], p2 = pos[tri.z];
+    const glm::vec3 local = b0 * p0 + b1 * p1 + b2 * p2;
+    const glm::vec3 localError = gammaBound(7) * (glm::abs(b0 * p0) + glm::abs(b1 * p1) + glm::abs(b2 * p2));
+    h.point = glm::vec3(in.toWorld * glm::vec4(local, 1.0f));
+    h.pointError = in.absLinear * localError +
+                   gammaBound(4) * (in.absLinear * (glm::abs(local) + localError) + in.absTranslation);
+    glm::vec3 n = in.bvh->faceNormals()[rh.hit.primID];
+    n = n == glm::vec3(0.0f) ? n : in.normalToWorld * n;
+    const float nLen = glm::length(n);
+    if (!(nLen > 0.0f) || !std::isfinite(nLen)) {
+        // Embree leaves an instance hit's Ng in the instanced scene's coordinates.
+        glm::vec3 ng = in.normalToWorld * glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
         float len = glm::length(ng);
         n = len > 0.0f ? ng / len : -ray.direction;  // a sliver: face the viewer
+    } else {
+        n /= nLen;
     }
     h.normal = glm::dot(n, ray.direction) > 0.0f ? -n : n;
     return h;
@@ -217,8 +221,9 @@ void TraceScene::occludedMany(const glm::vec3& origin, const glm::vec3* dirs, co
                               uint8_t* hidden) const {
     ShadowContext ctx;
     rtcInitIntersectContext(&ctx.base);
-    // One pixel's shadow rays share their origin and aim at one light: coherent packets.
-    ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    // One pixel's shadow rays share their origin and aim at one light, yet the packets are
+    // traced without RTC_INTERSECT_CONTEXT_FLAG_COHERENT: with instances, Embree 3.13 looped
+    // without end on some packets in that mode (SparseCheck.EqualsTheReferenceImageAtItsPixels).
     if (impl_->filterSupported) ctx.base.filter = skipOwnTriangle;
     ctx.skipMesh = skipMesh;
     ctx.skipTriangle = skipTriangle;

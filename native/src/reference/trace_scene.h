@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -10,6 +11,8 @@
 #include "core/scene.h"
 
 namespace ss {
+
+class MeshBvh;
 
 // Where a camera ray met the scene. The point is rebuilt from barycentrics (not o + t d) so
 // its rounding error is bounded by the triangle's own coordinates.
@@ -25,9 +28,12 @@ struct SurfaceHit {
 // source Scene except what it copies, so the Scene may change afterwards (the cache key, the
 // scene id and geometry version, then differs and a new TraceScene is built). It holds meshes
 // only: a light or camera edit leaves it valid.
+// Two levels: each mesh's BVH (MeshBvh, in its own coordinates) under an instance with its
+// transform. A new TraceScene takes over each of `reusable` whose mesh kept its shape, so a
+// moved object costs its instance; the camera-ray and shadow-ray scenes share one BVH per mesh.
 class TraceScene {
 public:
-    explicit TraceScene(const Scene& scene);
+    explicit TraceScene(const Scene& scene, const std::vector<std::shared_ptr<const MeshBvh>>& reusable = {});
     ~TraceScene();
     TraceScene(const TraceScene&) = delete;
     TraceScene& operator=(const TraceScene&) = delete;
@@ -36,6 +42,10 @@ public:
     uint64_t geometryVersion() const { return geometryVersion_; }
     // Largest absolute coordinate of any vertex: the scale robust offsets are measured against.
     float extent() const { return extent_; }
+    // Mesh BVHs this TraceScene built (those it took over do not count).
+    int meshBvhBuilds() const { return meshBvhBuilds_; }
+    // The BVHs of its meshes, for a later TraceScene to take over.
+    std::vector<std::shared_ptr<const MeshBvh>> meshBvhs() const;
 
     // Nearest surface of any mesh along the ray with t in [tNear, tFar].
     SurfaceHit intersect(const Ray& ray, float tNear, float tFar) const;
@@ -43,8 +53,8 @@ public:
     // (skipMesh, skipTriangle) is ignored (a flat triangle never shadows its own points).
     bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tFar, uint32_t skipMesh,
                   uint32_t skipTriangle) const;
-    // The same for n rays sharing one origin (one pixel's light samples), traced as coherent
-    // packets; hidden[i] = 1 when ray i is blocked, else 0.
+    // The same for n rays sharing one origin (one pixel's light samples), traced as
+    // packets of the CPU's width; hidden[i] = 1 when ray i is blocked, else 0.
     void occludedMany(const glm::vec3& origin, const glm::vec3* dirs, const float* tFar, size_t n,
                       uint32_t skipMesh, uint32_t skipTriangle, uint8_t* hidden) const;
 
@@ -53,6 +63,7 @@ private:
     std::unique_ptr<Impl> impl_;
     uint64_t sceneId_ = 0, geometryVersion_ = 0;
     float extent_ = 0.0f;
+    int meshBvhBuilds_ = 0;
 };
 
 }  // namespace ss

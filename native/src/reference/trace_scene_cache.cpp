@@ -1,6 +1,10 @@
-// How the per-(scene id, geometry version) TraceScene cache decides to rebuild.
+// How the per-(scene id, geometry version) TraceScene cache decides to rebuild, and what it keeps.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "reference/trace_scene_cache.h"
+
+#include <unordered_set>
+
+#include "reference/mesh_bvh.h"
 
 namespace ss {
 namespace {
@@ -14,21 +18,37 @@ bool shows(const TraceScene& trace, const Scene& scene) {
 std::shared_ptr<const TraceScene> TraceSceneCache::get(const Scene& scene) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!current_ || !shows(*current_, scene)) {
-        current_.reset();  // free the old BVH before building the new one
-        current_ = std::make_shared<const TraceScene>(scene);
+        // The meshes whose shape stayed keep their BVHs; the others' go with the old scene.
+        if (current_) kept_ = current_->meshBvhs();
+        current_.reset();
+        current_ = std::make_shared<const TraceScene>(scene, kept_);
+        kept_.clear();
         ++builds_;
+        meshBvhBuilds_ += current_->meshBvhBuilds();
     }
     return current_;
 }
 
 void TraceSceneCache::dropStale(const Scene& scene) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (current_ && !shows(*current_, scene)) current_.reset();
+    if (!current_ || shows(*current_, scene)) return;
+    // Only the BVHs of meshes that kept their shape stay for the next build.
+    std::unordered_set<uint64_t> shapes;
+    for (const Mesh& mesh : scene.meshes()) shapes.insert(MeshBvh::keyOf(mesh).packed());
+    kept_.clear();
+    for (const auto& bvh : current_->meshBvhs())
+        if (shapes.count(bvh->key().packed())) kept_.push_back(bvh);
+    current_.reset();
 }
 
 int TraceSceneCache::builds() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return builds_;
+}
+
+int TraceSceneCache::meshBvhBuilds() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return meshBvhBuilds_;
 }
 
 }  // namespace ss

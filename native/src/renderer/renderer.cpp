@@ -56,6 +56,7 @@ struct Renderer::Impl {
         into.cameraPassMs += f.stats().cameraPassMs;
         into.shadowMapMs += f.stats().shadowMapMs;
         into.traceSceneBuilds += f.traceScenes().builds();
+        into.meshBvhBuilds += f.traceScenes().meshBvhBuilds();
     }
 
     // ss_shutdown() stopped the thread: everything GL died with its context, so the frame

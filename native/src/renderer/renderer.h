@@ -48,13 +48,14 @@ public:
                   double* estimatedRmse = nullptr, AutoTrials* trials = nullptr);
 
     // How many frames were made (one per scene id) and how often their shared passes were
-    // drawn (meshUploads: meshes uploaded; traceSceneBuilds: Embree BVHs built for the
-    // reference, refine=on and the sparse check together), over the renderer's life (tests of
-    // the frame cache; the benchmark's stage counts).
+    // drawn (meshUploads: meshes uploaded; traceSceneBuilds: Embree scenes built for the
+    // reference, refine=on and the sparse check together, meshBvhBuilds: the mesh BVHs they
+    // built, a moved mesh keeping its own), over the renderer's life (tests of the frame cache;
+    // the benchmark's stage counts).
     struct CacheStats {
         int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0, shadowMapsEvicted = 0;
         int cameraPassesPatched = 0, shadowMapsPatched = 0;  // of those: redrawn where meshes moved only
-        int traceSceneBuilds = 0;
+        int traceSceneBuilds = 0, meshBvhBuilds = 0;
         size_t shadowMapBytesPeak = 0;  // the most the cached shadow maps of one frame held
         // Milliseconds: mesh uploads, camera passes and shadow maps drawn (until the GL finished
         // them), and whole GL method runs (prepare + render, the shared passes they drew included).
