@@ -12,6 +12,7 @@ uniform vec3 uCameraPosition;
 uniform vec3 uCameraForward;
 uniform int uOrthographic;
 uniform int uMeshIndex;
+uniform int uFirstTriangle;  // of the draw: a patch draws runs of a mesh's triangles
 uniform float uReceives;
 
 layout(location = 0) out vec4 oPositionDepth;
@@ -20,11 +21,12 @@ layout(location = 2) out vec4 oIds;
 
 void main() {
     // The face normal from the mesh (exact), not from derivatives (noisy at grazing angles).
-    vec3 n = meshNormalToWorld(faceNormal[gl_PrimitiveID].xyz);
+    int triangle = uFirstTriangle + gl_PrimitiveID;
+    vec3 n = meshNormalToWorld(faceNormal[triangle].xyz);
     vec3 toEye = uOrthographic != 0 ? -uCameraForward : uCameraPosition - vWorld;
     if (dot(n, toEye) < 0.0) n = -n;
     float viewDepth = -(uWorldToView * vec4(vWorld, 1.0)).z;
     oPositionDepth = vec4(vWorld, max(viewDepth, 1e-30));
     oNormalReceive = vec4(n, uReceives);
-    oIds = vec4(float(uMeshIndex), float(gl_PrimitiveID), 0.0, 0.0);
+    oIds = vec4(float(uMeshIndex), float(triangle), 0.0, 0.0);
 }

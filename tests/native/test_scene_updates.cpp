@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/method_names.h"
+#include "frame/frame.h"
 #include "methods/method.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
@@ -199,6 +200,41 @@ TEST(SceneUpdates, EveryGlMethodDrawsAMovedMeshWithItsMatrixAndTheShadowFollows)
         EXPECT_GT(vAtShadowOf(after, scene, light, centre), 0.9f) << method << ": the old shadow is gone";
         EXPECT_LT(vAtShadowOf(after, scene, light, centre + shift), 0.1f) << method << ": the shadow moved";
     }
+}
+
+// A small box moved beside a large mesh: the patches draw only the large mesh's clusters that
+// reach the box's old and new place, and every method renders as a fresh scene with the box there.
+TEST(SceneUpdates, APatchDrawsOnlyTheClustersOfALargeMeshThatReachTheMove) {
+    const glm::vec3 light(-0.5f, 0.3f, 4.0f);
+    const Mesh torus = test::makeTorus({0.8f, 0.0f, 0.6f}, 0.9f, 0.3f, 96, 48, kBoth);
+    ASSERT_GT(torus.triangles.size(), 8 * size_t(GpuMesh::kClusterTriangles));
+    const glm::vec3 centre(-2.2f, -1.0f, 0.5f);
+    const glm::mat4 move = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.6f, 0.0f));
+    auto build = [&](const glm::mat4& boxPlace) {
+        Scene s;
+        s.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
+        s.addMesh(torus);
+        Mesh box = test::makeBox(centre - glm::vec3(0.15f), centre + glm::vec3(0.15f), kBoth);
+        for (glm::vec3& p : box.positions) p = glm::vec3(boxPlace * glm::vec4(p, 1.0f));
+        s.addMesh(box);
+        s.addLight(test::makeDiskLight(light, 0.6f, "Key"));
+        s.setCamera(test::makeTopCamera(96, 72));
+        return s;
+    };
+    Scene scene = build(glm::mat4(1.0f));
+    Renderer renderer(SS_BACKEND_AUTO);
+    for (const std::string& method : glMethods()) renderer.render(scene, 0, method, RenderSettings{}, nullptr);
+    const Renderer::CacheStats before = renderer.cacheStats();
+
+    scene.setMeshTransform(2, move);
+    expectSameAsFresh(renderer, scene, build(move));
+    const Renderer::CacheStats after = renderer.cacheStats();
+    const int patches = (after.cameraPassesPatched - before.cameraPassesPatched) +
+                        (after.shadowMapsPatched - before.shadowMapsPatched);
+    ASSERT_GT(patches, 0);
+    // Each patch drew the ground, the box and at most a few of the torus's clusters.
+    EXPECT_LT(after.patchTriangles - before.patchTriangles, size_t(patches) * torus.triangles.size() / 4)
+        << patches << " patches";
 }
 
 TEST(SceneUpdates, ACameraChangeKeepsTheShadowMapsAndTheMeshes) {

@@ -82,6 +82,20 @@ std::vector<glm::vec4> objectFaceNormals(const Mesh& mesh) {
     return normals;
 }
 
+std::vector<GpuMesh::Cluster> clustersOf(const Mesh& mesh) {
+    const std::vector<glm::vec3>& p = mesh.objectPositions.empty() ? mesh.positions : mesh.objectPositions;
+    std::vector<GpuMesh::Cluster> clusters;
+    for (size_t first = 0; first < mesh.triangles.size(); first += GpuMesh::kClusterTriangles) {
+        GpuMesh::Cluster c;
+        c.firstTriangle = uint32_t(first);
+        c.triangleCount = uint32_t(std::min<size_t>(GpuMesh::kClusterTriangles, mesh.triangles.size() - first));
+        for (size_t f = first; f < first + c.triangleCount; ++f)
+            for (int k = 0; k < 3; ++k) c.bounds.extend(p[mesh.triangles[f][k]]);
+        clusters.push_back(c);
+    }
+    return clusters;
+}
+
 void place(GpuMesh& gm, const Mesh& mesh) {
     gm.objectToWorld = mesh.objectToWorld;
     gm.transformed = !mesh.objectPositions.empty() && mesh.objectToWorld != glm::mat4(1.0f);
@@ -118,6 +132,7 @@ const std::vector<GpuMesh>& Frame::meshes() {
         place(gm, mesh);
         gm.positions = gl::makeBuffer(positions.data(), positions.size() * sizeof(glm::vec3));
         gm.indices = gl::makeBuffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
+        gm.clusters = clustersOf(mesh);
         std::vector<glm::vec4> normals = objectFaceNormals(mesh);
         gm.faceNormals = gl::makeBuffer(normals.data(), normals.size() * sizeof(glm::vec4));
         GLuint vao = 0;
@@ -140,23 +155,60 @@ const std::vector<GpuMesh>& Frame::meshes() {
 
 void Frame::drawMeshes(const gl::Program& program, uint32_t requiredFlags,
                        const std::function<void(const GpuMesh&)>& before) {
-    drawMeshesWhere(program, requiredFlags, {}, before);
+    drawMeshesWhere(program, requiredFlags, std::nullopt, before);
 }
 
+namespace {
+
+// Whether the box (object space, placed by `m`) may cover a pixel of the region's rectangle; a
+// box reaching behind the eye may cover anything.
+bool reaches(const PatchRegion& region, const GpuMesh& m, const Bounds& objectBox) {
+    Bounds world = objectBox;
+    if (m.transformed) {
+        world = Bounds{};
+        for (const glm::vec3& corner : objectBox.corners()) world.extend(glm::vec3(m.objectToWorld * glm::vec4(corner, 1.0f)));
+    }
+    std::optional<PixelRect> r = boxesOnScreen({world}, region.worldToClip, region.width, region.height);
+    const PixelRect& rect = region.rect;
+    return !r || (r->x0 < rect.x1 && rect.x0 < r->x1 && r->y0 < rect.y1 && rect.y0 < r->y1);
+}
+
+}  // namespace
+
 void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
-                            const std::function<bool(const GpuMesh&)>& include,
+                            const std::optional<PatchRegion>& region,
                             const std::function<void(const GpuMesh&)>& before) {
     const gl::Functions& g = gl();
+    auto draw = [&](uint32_t firstTriangle, uint32_t triangles) {
+        if (region) stats_.patchTriangles += triangles;
+        program.set("uFirstTriangle", int(firstTriangle));
+        g.DrawElements(GL_TRIANGLES, GLsizei(3 * triangles), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(size_t(firstTriangle) * 3 * sizeof(uint32_t)));
+    };
     for (const GpuMesh& m : meshes()) {
         if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0) continue;
-        if (include && !include(m)) continue;
         program.set("uTransformed", m.transformed ? 1 : 0);
         program.set("uObjectToWorld", m.objectToWorld);
         program.set("uNormalToWorld", m.normalToWorld);
         if (before) before(m);
         g.BindVertexArray(m.vao.id());
         g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.faceNormals.id());
-        g.DrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+        if (!region) {
+            draw(0, uint32_t(m.indexCount / 3));
+            continue;
+        }
+        // Consecutive clusters that reach the rectangle go in one draw.
+        uint32_t runFirst = 0, runTriangles = 0;
+        for (const GpuMesh::Cluster& c : m.clusters) {
+            if (reaches(*region, m, c.bounds)) {
+                if (runTriangles == 0) runFirst = c.firstTriangle;
+                runTriangles += c.triangleCount;
+            } else if (runTriangles > 0) {
+                draw(runFirst, runTriangles);
+                runTriangles = 0;
+            }
+        }
+        if (runTriangles > 0) draw(runFirst, runTriangles);
     }
     g.BindVertexArray(0);
 }
@@ -182,22 +234,16 @@ void scissor(const gl::Functions& g, const std::optional<PixelRect>& rect) {
     g.Scissor(rect->x0, rect->y0, rect->x1 - rect->x0, rect->y1 - rect->y0);
 }
 
-// Whether a mesh placed as `placement` may cover a pixel of `rect` (always without a rectangle:
-// a whole pass draws everything).
-std::function<bool(const GpuMesh&)> touching(const std::optional<PixelRect>& rect,
-                                             const std::vector<MeshPlacement>& now, const glm::mat4& worldToClip,
-                                             int width, int height) {
-    if (!rect) return {};
-    return [=, &now](const GpuMesh& m) {
-        std::optional<PixelRect> r = boxesOnScreen({now.at(size_t(m.meshIndex)).bounds}, worldToClip, width, height);
-        return !r || (r->x0 < rect->x1 && rect->x0 < r->x1 && r->y0 < rect->y1 && rect->y0 < r->y1);
-    };
+// The region a patch of a width x height pass redraws: nothing without a rectangle (a whole pass).
+std::optional<PatchRegion> patchRegion(const std::optional<PixelRect>& rect, const glm::mat4& worldToClip,
+                                              int width, int height) {
+    if (!rect) return std::nullopt;
+    return PatchRegion{*rect, worldToClip, width, height};
 }
 
 }  // namespace
 
-void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect,
-                           const std::vector<MeshPlacement>& now) {
+void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect) {
     const gl::Functions& g = gl();
     const Camera& cam = camera();
     const gl::Framebuffer& fb = pass.framebuffer;
@@ -217,7 +263,7 @@ void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rec
     prog.set("uCameraPosition", glm::vec3(cameraToWorld[3]));
     prog.set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
     prog.set("uOrthographic", cam.isOrthographic() ? 1 : 0);
-    drawMeshesWhere(prog, 0, touching(rect, now, cam.worldToClip(), pass.width, pass.height), [&](const GpuMesh& m) {
+    drawMeshesWhere(prog, 0, patchRegion(rect, cam.worldToClip(), pass.width, pass.height), [&](const GpuMesh& m) {
         prog.set("uMeshIndex", m.meshIndex);
         prog.set("uReceives", m.receives() ? 1.0f : 0.0f);
     });
@@ -238,10 +284,10 @@ const CameraPass& Frame::cameraPass() {
         std::optional<PixelRect> rect;
         if (moved) rect = boxesOnScreen(*moved, camera().worldToClip(), camera_->width, camera_->height);
         if (rect) {
-            if (!rect->empty()) drawCameraPass(*camera_, rect, now);
+            if (!rect->empty()) drawCameraPass(*camera_, rect);
             ++stats_.cameraPassesPatched;
         } else {
-            drawCameraPass(*camera_, std::nullopt, now);
+            drawCameraPass(*camera_, std::nullopt);
         }
     } else {
         const Camera& cam = camera();
@@ -250,7 +296,7 @@ const CameraPass& Frame::cameraPass() {
         pass->height = cam.height;
         pass->framebuffer = gl::Framebuffer(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F},
                                             GL_DEPTH_COMPONENT32F);
-        drawCameraPass(*pass, std::nullopt, now);
+        drawCameraPass(*pass, std::nullopt);
         camera_ = std::move(pass);
     }
     gl().Finish();
@@ -277,8 +323,7 @@ const CameraImages& Frame::cameraImages() {
     return *cameraImages_;
 }
 
-void Frame::drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect,
-                          const std::vector<MeshPlacement>& now) {
+void Frame::drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect) {
     const gl::Functions& g = gl();
     gl::Framebuffer fb(map.size, map.size, {});
     fb.attachColor(0, map.distance.id());
@@ -292,7 +337,7 @@ void Frame::drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect,
     prog.use();
     prog.set("uWorldToClip", map.worldToClip());
     bindShadowMapUniforms(prog, map);
-    drawMeshesWhere(prog, SS_MESH_CAST, touching(rect, now, map.worldToClip(), map.size, map.size), {});
+    drawMeshesWhere(prog, SS_MESH_CAST, patchRegion(rect, map.worldToClip(), map.size, map.size), {});
     g.Disable(GL_SCISSOR_TEST);
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing a shadow map");
@@ -312,7 +357,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
             const auto start = Clock::now();
             ShadowMap& map = *entry.map;
             std::optional<PixelRect> rect = boxesOnScreen(entry.pending, map.worldToClip(), map.size, map.size);
-            if (!rect || !rect->empty()) drawShadowMap(map, rect, shadowMapPlacements_);
+            if (!rect || !rect->empty()) drawShadowMap(map, rect);
             if (rect) ++stats_.shadowMapsPatched;
             entry.pending.clear();
             gl().Finish();
@@ -327,7 +372,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     auto map = std::make_unique<ShadowMap>(fitShadowMap(L, shadowMapBounds_, size));
     map->distance = gl::Texture(size, size, GL_R32F, GL_NEAREST);
     map->depth = gl::Texture(size, size, GL_DEPTH_COMPONENT32F, GL_NEAREST);
-    drawShadowMap(*map, std::nullopt, shadowMapPlacements_);
+    drawShadowMap(*map, std::nullopt);
     gl().Finish();
     stats_.shadowMapMs += msSince(start);
     ++stats_.shadowMaps;

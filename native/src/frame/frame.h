@@ -39,6 +39,15 @@ struct GpuMesh {
     gl::BufferHandle positions;    // vec3 per vertex, object space
     gl::BufferHandle indices;      // uint32 x3 per triangle
     gl::BufferHandle faceNormals;  // SSBO, vec4 per triangle (xyz unit in object space, 0 for degenerate)
+    // Runs of consecutive triangles (kClusterTriangles each, the last fewer) with their bounds in
+    // object space: a patch of a pass draws only the runs that reach its rectangle, so a small
+    // object moved beside a large mesh does not redraw all of it.
+    struct Cluster {
+        uint32_t firstTriangle = 0, triangleCount = 0;
+        Bounds bounds;
+    };
+    static constexpr uint32_t kClusterTriangles = 1024;
+    std::vector<Cluster> clusters;
     bool casts() const;
     bool receives() const;
 };
@@ -116,6 +125,8 @@ struct FrameStats {
     // Of cameraPasses and shadowMaps: those redrawn only inside the screen rectangle that moved
     // meshes touched (the rest of the pass kept).
     int cameraPassesPatched = 0, shadowMapsPatched = 0;
+    // Triangles those patches drew (only the clusters that reach their rectangles).
+    size_t patchTriangles = 0;
 };
 
 class Frame {
@@ -192,12 +203,13 @@ private:
     std::vector<MeshPlacement> placements() const;  // of the scene's meshes now
     // Draws the camera pass (or the shadow map) into its own targets, inside `rect` only when
     // one is given.
-    // With a rectangle, meshes whose bounds in `now` fall outside it are not drawn.
-    void drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect,
-                        const std::vector<MeshPlacement>& now);
-    void drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect, const std::vector<MeshPlacement>& now);
+    void drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect);
+    void drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect);
+    // Draws as drawMeshes does; with a region, only the clusters whose bounds, where their mesh
+    // is now, may cover a pixel of its rectangle (uFirstTriangle tells the shader which triangle
+    // a run starts at: gl_PrimitiveID restarts with every draw).
     void drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
-                         const std::function<bool(const GpuMesh&)>& include,
+                         const std::optional<PatchRegion>& region,
                          const std::function<void(const GpuMesh&)>& before);
     const Scene* scene_;
     std::vector<GpuMesh> meshes_;

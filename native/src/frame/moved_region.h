@@ -25,6 +25,13 @@ struct PixelRect {
     bool empty() const { return x1 <= x0 || y1 <= y0; }
 };
 
+// What a patch of a width x height pass drawn with worldToClip redraws: the pixels of `rect`.
+struct PatchRegion {
+    PixelRect rect;
+    glm::mat4 worldToClip{1.0f};
+    int width = 0, height = 0;
+};
+
 // The world boxes the moves from `drawn` to `now` touched (old and new place of each moved
 // mesh), or nothing when more than moves happened (a mesh added, removed or reshaped).
 std::optional<std::vector<Bounds>> movedBoxes(const std::vector<MeshPlacement>& drawn,

@@ -52,6 +52,7 @@ struct Renderer::Impl {
         into.shadowMapBytesPeak = std::max(into.shadowMapBytesPeak, f.stats().shadowMapBytesPeak);
         into.cameraPassesPatched += f.stats().cameraPassesPatched;
         into.shadowMapsPatched += f.stats().shadowMapsPatched;
+        into.patchTriangles += f.stats().patchTriangles;
         into.uploadMs += f.stats().uploadMs;
         into.cameraPassMs += f.stats().cameraPassMs;
         into.shadowMapMs += f.stats().shadowMapMs;
