@@ -9,6 +9,10 @@
 #include <gtest/gtest.h>
 
 #include "methods/sweep/shadow.h"
+#include "methods/sweep/weights.h"
+#include "planar/outline.h"
+#include "planar/rings.h"
+#include "sampling/light_samples.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
@@ -214,6 +218,54 @@ TEST(SweepProjectionCache, AMoveWeighsOnlyTrianglesNearWhatChanged) {
     SweepShadow again = computeSweepShadow(scene, 0, SweepOptions{}, &none);
     EXPECT_EQ(again.weighting.trianglesReused, 0u);
     EXPECT_EQ(none.bytes(), 0u);
+}
+
+// The guard of the reuse: two samples' outlines swapped leave the merged outlines, and so the
+// fill's triangles, as they were, but not which samples shadow each triangle. The triangles inside
+// the swapped outlines are weighed again, and the result is a fresh weighing's.
+TEST(SweepProjectionCache, KeptWeightsFollowTheSamplesNotTheTriangles) {
+    Scene scene = torusAndBox(shiftX(0.0f));
+    const Light& light = scene.light(0);
+    ReceiverPlane plane = findReceiverPlane(scene, light, "");
+    planar::Snap snap(plane.cu, plane.cv, plane.half);
+    LightSampleOptions so;
+    so.count = 16;
+    so.borderShare = 0.25;
+    so.viewFrom = plane.origin;
+    std::vector<LightSample> samples;
+    for (const LightSample& s : placeLightSamples(light, so))
+        if (castsOntoPlane(plane, s)) samples.push_back(s);
+    ASSERT_EQ(samples.size(), 16u);
+    std::vector<std::vector<planar::DirectedEdge>> outlines;
+    for (const LightSample& s : samples) {
+        std::vector<planar::DirectedEdge> edges;
+        ProjectionStats stats;
+        for (int i : sweepOccluders(scene, plane)) projectMeshSample(scene.meshes()[i], plane, snap, s, &edges, &stats);
+        outlines.push_back(planar::hardOutline(edges));
+    }
+    const planar::ShadowMesh filled =
+        planar::fillShadow(planar::mergeOutlines(outlines), int(samples.size()), planar::FillMode::Smooth);
+    WeightedTriangles kept;
+    planar::ShadowMesh first = filled;
+    WeightStats firstStats;
+    weighShadowMesh(first, outlines, samples, light, plane, snap, planar::FillMode::Smooth, kept, &firstStats);
+    EXPECT_EQ(firstStats.trianglesReused, 0u);
+
+    std::vector<std::vector<planar::DirectedEdge>> swapped = outlines;
+    std::swap(swapped[0], swapped[15]);  // a border sample and an inner one
+    planar::ShadowMesh warm = filled, cold = filled;
+    WeightStats warmStats;
+    weighShadowMesh(warm, swapped, samples, light, plane, snap, planar::FillMode::Smooth, kept, &warmStats);
+    weighShadowMesh(cold, swapped, samples, light, plane, snap, planar::FillMode::Smooth);
+    EXPECT_GT(warmStats.trianglesWeighed, 0u);
+    ASSERT_EQ(warm.vertices.size(), cold.vertices.size());
+    size_t differ = 0, changed = 0;
+    for (size_t i = 0; i < warm.vertices.size(); ++i) {
+        differ += warm.vertices[i].intensity != cold.vertices[i].intensity;
+        changed += first.vertices[i].intensity != cold.vertices[i].intensity;
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(changed, 0u) << "the swap changed no weight: the check above could not fail";
 }
 
 }  // namespace
