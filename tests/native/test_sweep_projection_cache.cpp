@@ -1,6 +1,7 @@
 // Does sweep project again only the meshes an edit moved or changed, keep the others' projections
 // within its budget, and still give a fresh scene's shadow bit for bit?
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,10 @@
 #include <gtest/gtest.h>
 
 #include "methods/sweep/shadow.h"
+#include "methods/sweep/weights.h"
+#include "planar/outline.h"
+#include "planar/rings.h"
+#include "sampling/light_samples.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
@@ -62,8 +67,9 @@ TEST(SweepProjectionCache, AMoveProjectsOnlyTheMovedMeshAndMatchesAFreshScene) {
         SweepShadow first = computeSweepShadow(scene, 0, o, &cache);
         EXPECT_EQ(first.projection.meshesProjected, 2 * clusters);
         EXPECT_EQ(first.projection.meshesReused, 0);
-        const size_t held = cache.bytes();
+        const size_t held = cache.bytes() - cache.weightedBytes();
         EXPECT_GT(held, 0u);
+        EXPECT_GT(cache.weightedBytes(), 0u);
 
         for (int frame = 1; frame <= 3; ++frame) {
             scene.setMeshTransform(2, shiftX(0.15f * float(frame)));
@@ -76,7 +82,7 @@ TEST(SweepProjectionCache, AMoveProjectsOnlyTheMovedMeshAndMatchesAFreshScene) {
             expectSameShadow(warm, cold);
         }
         // The moved box's earlier projections were dropped, not added to.
-        EXPECT_EQ(cache.bytes(), held);
+        EXPECT_EQ(cache.bytes() - cache.weightedBytes(), held);
     }
 }
 
@@ -133,15 +139,16 @@ TEST(SweepProjectionCache, ABudgetTooSmallProjectsSampleBySampleWithTheSameResul
     ASSERT_GT(full.bytes(), 0u);
     // Room for the box's projections but not the torus's (the torus is projected first, so
     // it outgrows the room part way and is dropped; the box then fits).
-    SweepProjectionCache small(full.bytes() / 4);
+    const size_t room = (full.bytes() - full.weightedBytes()) / 4;
+    SweepProjectionCache small(room);
     SweepShadow a = computeSweepShadow(scene, 0, o, &small);
-    EXPECT_LE(small.bytes(), full.bytes() / 4);
+    EXPECT_LE(small.bytes(), room);
     EXPECT_GT(small.bytes(), 0u);
     scene.setMeshTransform(2, shiftX(0.2f));
     SweepShadow b = computeSweepShadow(scene, 0, o, &small);
     EXPECT_EQ(b.projection.meshesReused, 0) << "the torus did not fit, the box moved";
     EXPECT_EQ(b.projection.meshesProjected, 2);
-    EXPECT_LE(small.bytes(), full.bytes() / 4);
+    EXPECT_LE(small.bytes(), room);
     expectSameShadow(b, computeSweepShadow(scene, 0, o));
     SweepProjectionCache none(0);
     expectSameShadow(computeSweepShadow(scene, 0, o, &none), b);
@@ -169,6 +176,96 @@ TEST(SweepProjectionCache, AnAnimatedMoveRendersAsAFreshRenderer) {
         }
         scene.setMeshTransform(2, shiftX(0.0f));
     }
+}
+
+// The irradiance weights of a moved frame: triangles away from where the outlines changed keep
+// their weights, the rest are weighed again, and the shadow and the rendered V and mask are a
+// fresh scene's bit for bit.
+TEST(SweepProjectionCache, AMoveWeighsOnlyTrianglesNearWhatChanged) {
+    for (planar::FillMode fill : {planar::FillMode::Smooth, planar::FillMode::Steps, planar::FillMode::Rings}) {
+        SCOPED_TRACE(int(fill));
+        SweepOptions o;
+        o.fill = fill;
+        Scene scene = torusAndBox(shiftX(0.0f));
+        SweepProjectionCache cache;
+        SweepShadow first = computeSweepShadow(scene, 0, o, &cache);
+        EXPECT_EQ(first.weighting.trianglesReused, 0u);
+        EXPECT_EQ(first.weighting.trianglesWeighed, first.mesh.indices.size() / 3);
+
+        // Unchanged: every triangle reused.
+        SweepShadow same = computeSweepShadow(scene, 0, o, &cache);
+        EXPECT_EQ(same.weighting.trianglesWeighed, 0u);
+        EXPECT_EQ(same.weighting.trianglesReused, same.mesh.indices.size() / 3);
+        expectSameShadow(same, first);
+
+        for (int frame = 1; frame <= 3; ++frame) {
+            scene.setMeshTransform(2, shiftX(0.15f * float(frame)));
+            SweepShadow warm = computeSweepShadow(scene, 0, o, &cache);
+            const size_t triangles = warm.mesh.indices.size() / 3;
+            EXPECT_EQ(warm.weighting.trianglesWeighed + warm.weighting.trianglesReused, triangles);
+            EXPECT_GT(warm.weighting.trianglesWeighed, 0u) << "the box's shadow moved";
+            EXPECT_GT(warm.weighting.trianglesReused, triangles / 2) << "the torus's shadow was weighed again";
+            Scene fresh = torusAndBox(shiftX(0.15f * float(frame)));
+            SweepShadow cold = computeSweepShadow(fresh, 0, o);
+            EXPECT_EQ(cold.weighting.trianglesReused, 0u);
+            expectSameShadow(warm, cold);
+        }
+    }
+    // A budget of 0 keeps nothing: every triangle weighed.
+    Scene scene = torusAndBox(shiftX(0.0f));
+    SweepProjectionCache none(0);
+    computeSweepShadow(scene, 0, SweepOptions{}, &none);
+    SweepShadow again = computeSweepShadow(scene, 0, SweepOptions{}, &none);
+    EXPECT_EQ(again.weighting.trianglesReused, 0u);
+    EXPECT_EQ(none.bytes(), 0u);
+}
+
+// The guard of the reuse: two samples' outlines swapped leave the merged outlines, and so the
+// fill's triangles, as they were, but not which samples shadow each triangle. The triangles inside
+// the swapped outlines are weighed again, and the result is a fresh weighing's.
+TEST(SweepProjectionCache, KeptWeightsFollowTheSamplesNotTheTriangles) {
+    Scene scene = torusAndBox(shiftX(0.0f));
+    const Light& light = scene.light(0);
+    ReceiverPlane plane = findReceiverPlane(scene, light, "");
+    planar::Snap snap(plane.cu, plane.cv, plane.half);
+    LightSampleOptions so;
+    so.count = 16;
+    so.borderShare = 0.25;
+    so.viewFrom = plane.origin;
+    std::vector<LightSample> samples;
+    for (const LightSample& s : placeLightSamples(light, so))
+        if (castsOntoPlane(plane, s)) samples.push_back(s);
+    ASSERT_EQ(samples.size(), 16u);
+    std::vector<std::vector<planar::DirectedEdge>> outlines;
+    for (const LightSample& s : samples) {
+        std::vector<planar::DirectedEdge> edges;
+        ProjectionStats stats;
+        for (int i : sweepOccluders(scene, plane)) projectMeshSample(scene.meshes()[i], plane, snap, s, &edges, &stats);
+        outlines.push_back(planar::hardOutline(edges));
+    }
+    const planar::ShadowMesh filled =
+        planar::fillShadow(planar::mergeOutlines(outlines), int(samples.size()), planar::FillMode::Smooth);
+    WeightedTriangles kept;
+    planar::ShadowMesh first = filled;
+    WeightStats firstStats;
+    weighShadowMesh(first, outlines, samples, light, plane, snap, planar::FillMode::Smooth, kept, &firstStats);
+    EXPECT_EQ(firstStats.trianglesReused, 0u);
+
+    std::vector<std::vector<planar::DirectedEdge>> swapped = outlines;
+    std::swap(swapped[0], swapped[15]);  // a border sample and an inner one
+    planar::ShadowMesh warm = filled, cold = filled;
+    WeightStats warmStats;
+    weighShadowMesh(warm, swapped, samples, light, plane, snap, planar::FillMode::Smooth, kept, &warmStats);
+    weighShadowMesh(cold, swapped, samples, light, plane, snap, planar::FillMode::Smooth);
+    EXPECT_GT(warmStats.trianglesWeighed, 0u);
+    ASSERT_EQ(warm.vertices.size(), cold.vertices.size());
+    size_t differ = 0, changed = 0;
+    for (size_t i = 0; i < warm.vertices.size(); ++i) {
+        differ += warm.vertices[i].intensity != cold.vertices[i].intensity;
+        changed += first.vertices[i].intensity != cold.vertices[i].intensity;
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(changed, 0u) << "the swap changed no weight: the check above could not fail";
 }
 
 }  // namespace

@@ -37,6 +37,9 @@ size_t MeshProjection::bytes() const {
 void SweepProjectionCache::drop(Set& set) {
     for (const auto& [version, p] : set.meshes) held_ -= p->bytes();
     set.meshes.clear();
+    held_ -= set.weightedBytes;
+    set.weighted.clear();
+    set.weightedBytes = 0;
 }
 
 SweepProjectionCache::Pass SweepProjectionCache::begin(int lightIndex, int cluster, const Scene& scene,
@@ -126,6 +129,21 @@ void SweepProjectionCache::Pass::finish(ProjectionStats* stats) {
     pendingBytes_ = 0;
     stats->meshesReused += reused_;
     stats->meshesProjected += int(occluders_.size()) - reused_;
+}
+
+WeightedTriangles* SweepProjectionCache::Pass::weighted() {
+    return cache_.budget_ > 0 ? &cache_.sets_.at(set_).weighted : nullptr;
+}
+
+void SweepProjectionCache::Pass::weighed() {
+    Set& set = cache_.sets_.at(set_);
+    cache_.held_ -= set.weightedBytes;
+    set.weightedBytes = set.weighted.bytes();
+    if (cache_.held_ + set.weightedBytes > cache_.budget_) {
+        set.weighted.clear();
+        set.weightedBytes = 0;
+    }
+    cache_.held_ += set.weightedBytes;
 }
 
 void SweepProjectionCache::keep(int lights, int lightIndex, int clusters) {

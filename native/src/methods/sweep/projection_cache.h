@@ -1,5 +1,6 @@
 // Which shadow edges each occluder casts for each light sample, kept per mesh across renders so
-// that after an edit only the moved or edited meshes are projected again.
+// that after an edit only the moved or edited meshes are projected again; and the weighted
+// triangles of the last shadow, so that only those near what changed are weighed again.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include "core/scene.h"
 #include "methods/sweep/projection.h"
 #include "methods/sweep/receiver.h"
+#include "methods/sweep/weights.h"
 #include "planar/snap.h"
 #include "sampling/light_samples.h"
 
@@ -26,7 +28,8 @@ struct MeshProjection {
 
 // The projections of the occluders of the last shadow computed per (light index, cluster): a
 // mesh is projected again only when its Mesh::version (a move or an edit), the receiver plane or
-// the samples changed. A set keeps only the occluders of its last shadow, so a removed, moved or
+// the samples changed. The same set holds the last shadow's weighted triangles (weights.h), which
+// the next shadow of the same plane and samples reuses where its outlines did not change. A set keeps only the occluders of its last shadow, so a removed, moved or
 // edited mesh's projections go with the next shadow of that light; keep() drops the sets of
 // lights and clusters the caller no longer has. What is held stays within a byte budget: a mesh
 // that does not fit is projected sample by sample for the shadow at hand and not kept (as with a
@@ -49,6 +52,10 @@ public:
         // the projection stats (meshes projected and reused, edges, fallback triangles) added to
         // *stats. A pass abandoned before (cancelled) keeps nothing new.
         void finish(ProjectionStats* stats);
+        // The weighted triangles of this set's last shadow, to pass to weighShadowMesh (null when
+        // the budget is 0); weighed() after that call keeps the new ones within the budget.
+        WeightedTriangles* weighted();
+        void weighed();
 
     private:
         friend class SweepProjectionCache;
@@ -78,12 +85,19 @@ public:
     // clusters at `clusters` and beyond.
     void keep(int lights, int lightIndex, int clusters);
     size_t bytes() const { return held_; }
+    size_t weightedBytes() const {  // the part of bytes() the weighted triangles hold
+        size_t b = 0;
+        for (const auto& [key, set] : sets_) b += set.weightedBytes;
+        return b;
+    }
 
 private:
     struct Set {
         ReceiverPlane plane;
         std::vector<LightSample> samples;
         std::unordered_map<uint64_t, std::shared_ptr<const MeshProjection>> meshes;  // by Mesh::version
+        WeightedTriangles weighted;
+        size_t weightedBytes = 0;  // counted in held_
     };
     void drop(Set& set);
     size_t budget_;

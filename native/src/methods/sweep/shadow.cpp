@@ -93,7 +93,13 @@ planar::ShadowMesh clusterShadow(const Scene& scene, int lightIndex, int cluster
     out->timings.fillMs += msSince(t3);
     if (options.irradianceWeights && *used > 1) {
         auto t4 = Clock::now();
-        weighShadowMesh(mesh, outlines, usedSamples, light, out->plane, out->snap, options.fill);
+        if (WeightedTriangles* kept = projections.weighted()) {
+            weighShadowMesh(mesh, outlines, usedSamples, light, out->plane, out->snap, options.fill, *kept,
+                            &out->weighting);
+            projections.weighed();
+        } else {
+            weighShadowMesh(mesh, outlines, usedSamples, light, out->plane, out->snap, options.fill, &out->weighting);
+        }
         out->timings.weightsMs += msSince(t4);
     }
     return mesh;

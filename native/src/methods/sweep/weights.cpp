@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <tuple>
 #include <utility>
 
 namespace ss {
@@ -171,9 +172,97 @@ double sampleIrradianceWeight(const Light& light, const LightSample& s, const gl
     return weightTowards(light.isArea() ? &emits : nullptr, s, p, n);
 }
 
-void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<planar::DirectedEdge>> outlines,
-                     std::span<const LightSample> samples, const Light& light, const ReceiverPlane& plane,
-                     const planar::Snap& snap, planar::FillMode fill) {
+namespace {
+
+// Where two outlines of one sample differ, as multisets of edges: the bounding box of the edges
+// either has and the other has not (`any` false when they are the same).
+struct ChangedBox {
+    bool any = false;
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    void extend(const planar::DirectedEdge& e) {
+        const double ex0 = double(std::min(e.a.x, e.b.x)), ex1 = double(std::max(e.a.x, e.b.x));
+        const double ey0 = double(std::min(e.a.y, e.b.y)), ey1 = double(std::max(e.a.y, e.b.y));
+        if (!any) {
+            x0 = ex0, x1 = ex1, y0 = ey0, y1 = ey1, any = true;
+            return;
+        }
+        x0 = std::min(x0, ex0), x1 = std::max(x1, ex1), y0 = std::min(y0, ey0), y1 = std::max(y1, ey1);
+    }
+    // Strictly outside: on the box's border counts as inside.
+    bool outside(double x, double y) const { return !any || x < x0 || x > x1 || y < y0 || y > y1; }
+};
+
+auto edgeTuple(const planar::DirectedEdge& e) { return std::tuple(e.a.x, e.a.y, e.b.x, e.b.y, e.weight); }
+
+ChangedBox changedBox(std::span<const planar::DirectedEdge> before, std::span<const planar::DirectedEdge> now) {
+    std::vector<planar::DirectedEdge> a(before.begin(), before.end()), b(now.begin(), now.end());
+    auto less = [](const planar::DirectedEdge& p, const planar::DirectedEdge& q) { return edgeTuple(p) < edgeTuple(q); };
+    std::sort(a.begin(), a.end(), less);
+    std::sort(b.begin(), b.end(), less);
+    ChangedBox box;
+    size_t i = 0, j = 0;
+    while (i < a.size() || j < b.size()) {
+        if (j == b.size() || (i < a.size() && less(a[i], b[j]))) box.extend(a[i++]);
+        else if (i == a.size() || less(b[j], a[i])) box.extend(b[j++]);
+        else ++i, ++j;
+    }
+    return box;
+}
+
+uint64_t keyBits(double v) {
+    if (v == 0.0) v = 0.0;  // -0 equals 0
+    uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+}
+
+size_t triangleHash(const WeightedTriangles::Triangle& t) {
+    uint64_t h = 0x84222325CBF29CE4ull;
+    auto mix = [&](uint64_t v) {
+        h ^= v;
+        h *= 0x9E3779B97F4A7C15ull;
+        h ^= h >> 29;
+    };
+    for (int k = 0; k < 3; ++k) {
+        mix(keyBits(t.x[k]));
+        mix(keyBits(t.y[k]));
+        mix(keyBits(double(t.in[k])));
+    }
+    return size_t(h);
+}
+
+bool sameCorners(const WeightedTriangles::Triangle& a, const WeightedTriangles::Triangle& b) {
+    for (int k = 0; k < 3; ++k)
+        if (a.x[k] != b.x[k] || a.y[k] != b.y[k] || a.in[k] != b.in[k]) return false;
+    return true;
+}
+
+// The kept triangle with the corners of `t`, or null.
+const WeightedTriangles::Triangle* findKept(const WeightedTriangles& kept, const WeightedTriangles::Triangle& t) {
+    if (kept.slots.empty()) return nullptr;
+    const size_t mask = kept.slots.size() - 1;
+    for (size_t i = triangleHash(t) & mask; kept.slots[i] != 0; i = (i + 1) & mask) {
+        const WeightedTriangles::Triangle& k = kept.triangles[kept.slots[i] - 1];
+        if (sameCorners(k, t)) return &k;
+    }
+    return nullptr;
+}
+
+void indexTriangles(WeightedTriangles& kept) {
+    size_t capacity = 16;
+    while (capacity < 2 * kept.triangles.size()) capacity *= 2;
+    kept.slots.assign(capacity, 0);
+    const size_t mask = capacity - 1;
+    for (size_t t = 0; t < kept.triangles.size(); ++t) {
+        size_t i = triangleHash(kept.triangles[t]) & mask;
+        while (kept.slots[i] != 0) i = (i + 1) & mask;
+        kept.slots[i] = uint32_t(t + 1);
+    }
+}
+
+void weigh(planar::ShadowMesh& mesh, std::span<const std::vector<planar::DirectedEdge>> outlines,
+           std::span<const LightSample> samples, const Light& light, const ReceiverPlane& plane,
+           const planar::Snap& snap, planar::FillMode fill, WeightedTriangles* kept, WeightStats* stats) {
     const size_t n = samples.size();
     if (n == 0 || outlines.size() != n) return;
     std::vector<BandedOutline> bands;
@@ -181,6 +270,14 @@ void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<plana
     for (size_t s = 0; s < n; ++s) bands.emplace_back(outlines[s]);
     const glm::dvec3 emitDir(light.direction());
     const glm::dvec3* emits = light.isArea() ? &emitDir : nullptr;
+    const glm::dvec3 emitKey = emits ? emitDir : glm::dvec3(0.0);
+    // What the earlier call left applies only to the same fill, emitter and number of samples
+    // (the cache drops it when the plane or the samples change).
+    const bool reuse = kept && kept->fill == fill && kept->emits == emitKey && kept->outlines.size() == n;
+    std::vector<ChangedBox> changed(reuse ? n : 0);
+    for (size_t s = 0; s < changed.size(); ++s) changed[s] = changedBox(kept->outlines[s], outlines[s]);
+    std::vector<WeightedTriangles::Triangle> made;
+    if (kept) made.reserve(mesh.indices.size() / 3);
     // The fill emits every triangle's corners separately; a corner's n weights are computed once
     // per distinct position (about a sixth of the corners) and kept in `weights`.
     CornerIndex corner(mesh.indices.size() / 4);
@@ -207,32 +304,79 @@ void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<plana
         const planar::ShadowVertex* v[3] = {&mesh.vertices[mesh.indices[t]], &mesh.vertices[mesh.indices[t + 1]],
                                             &mesh.vertices[mesh.indices[t + 2]]};
         double cx = (v[0]->x + v[1]->x + v[2]->x) / 3.0, cy = (v[0]->y + v[1]->y + v[2]->y) / 3.0;
-        int count = 0;
-        for (size_t s = 0; s < n; ++s) {
-            bool in = bands[s].winding(cx, cy) != 0;
-            inShadow[s] = in;
-            count += in;
-        }
-        for (const planar::ShadowVertex* c : v) {
-            planar::ShadowVertex o = *c;
-            // The umbra (every sample) keeps 1 and the lit part 0 whatever the weights.
-            if (count > 0 && size_t(count) < n) {
-                const double* w = weightsAt(*c);
-                double all = w[n], shadowed = 0;
-                for (size_t s = 0; s < n; ++s)
-                    if (inShadow[s]) shadowed += w[s];
-                // A corner every sample is below the horizon of keeps its count-based value.
-                double share = all > 0 ? shadowed / all : double(count) / double(n);
-                double value = fill == planar::FillMode::Steps ? share
-                                                                : c->intensity * share * double(n) / double(count);
-                o.intensity = float(std::clamp(value, 0.0, 1.0));
+        WeightedTriangles::Triangle tri;
+        for (int k = 0; k < 3; ++k) tri.x[k] = v[k]->x, tri.y[k] = v[k]->y, tri.in[k] = v[k]->intensity;
+        const WeightedTriangles::Triangle* earlier = nullptr;
+        if (reuse && std::all_of(changed.begin(), changed.end(), [&](const ChangedBox& b) { return b.outside(cx, cy); }))
+            earlier = findKept(*kept, tri);
+        if (earlier) {
+            for (int k = 0; k < 3; ++k) tri.out[k] = earlier->out[k];
+            if (stats) ++stats->trianglesReused;
+        } else {
+            int count = 0;
+            for (size_t s = 0; s < n; ++s) {
+                bool in = bands[s].winding(cx, cy) != 0;
+                inShadow[s] = in;
+                count += in;
             }
+            for (int k = 0; k < 3; ++k) {
+                const planar::ShadowVertex* c = v[k];
+                tri.out[k] = c->intensity;
+                // The umbra (every sample) keeps 1 and the lit part 0 whatever the weights.
+                if (count > 0 && size_t(count) < n) {
+                    const double* w = weightsAt(*c);
+                    double all = w[n], shadowed = 0;
+                    for (size_t s = 0; s < n; ++s)
+                        if (inShadow[s]) shadowed += w[s];
+                    // A corner every sample is below the horizon of keeps its count-based value.
+                    double share = all > 0 ? shadowed / all : double(count) / double(n);
+                    double value = fill == planar::FillMode::Steps ? share
+                                                                    : c->intensity * share * double(n) / double(count);
+                    tri.out[k] = float(std::clamp(value, 0.0, 1.0));
+                }
+            }
+            if (stats) ++stats->trianglesWeighed;
+        }
+        for (int k = 0; k < 3; ++k) {
+            planar::ShadowVertex o = *v[k];
+            o.intensity = tri.out[k];
             out.push_back(o);
         }
+        if (kept) made.push_back(tri);
     }
     mesh.vertices = std::move(out);
     mesh.indices.resize(mesh.vertices.size());
     for (size_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = uint32_t(i);
+    if (kept) {
+        kept->fill = fill;
+        kept->emits = emitKey;
+        kept->outlines.assign(outlines.begin(), outlines.end());
+        kept->triangles = std::move(made);
+        indexTriangles(*kept);
+    }
+}
+
+}  // namespace
+
+size_t WeightedTriangles::bytes() const {
+    size_t b = sizeof(*this) + outlines.capacity() * sizeof(outlines[0]) + triangles.capacity() * sizeof(Triangle) +
+               slots.capacity() * sizeof(uint32_t);
+    for (const auto& o : outlines) b += o.capacity() * sizeof(planar::DirectedEdge);
+    return b;
+}
+
+void WeightedTriangles::clear() { *this = WeightedTriangles{}; }
+
+void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<planar::DirectedEdge>> outlines,
+                     std::span<const LightSample> samples, const Light& light, const ReceiverPlane& plane,
+                     const planar::Snap& snap, planar::FillMode fill, WeightStats* stats) {
+    weigh(mesh, outlines, samples, light, plane, snap, fill, nullptr, stats);
+}
+
+void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<planar::DirectedEdge>> outlines,
+                     std::span<const LightSample> samples, const Light& light, const ReceiverPlane& plane,
+                     const planar::Snap& snap, planar::FillMode fill, WeightedTriangles& kept, WeightStats* stats) {
+    weigh(mesh, outlines, samples, light, plane, snap, fill, &kept, stats);
 }
 
 }  // namespace ss

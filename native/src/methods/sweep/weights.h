@@ -18,6 +18,31 @@ namespace ss {
 // / d^2 (a sphere's disk facing the occluders), cos_receiver (sun). 0 below p's horizon.
 double sampleIrradianceWeight(const Light& light, const LightSample& s, const glm::dvec3& p, const glm::dvec3& n);
 
+// What one weighting of a light's shadow leaves for the next (SweepProjectionCache keeps it per
+// light and cluster): each sample's outline and each weighted triangle, looked up by its corners.
+// A triangle is weighed again unless the same triangle was weighed last time and its centroid
+// lies outside, for every sample, the bounding box of the outline edges that changed since: the
+// edges that differ form closed cycles, which wind zero times around any point outside their
+// box, so the samples shadowing the centroid, and with them the triangle's weights, are the same.
+struct WeightedTriangles {
+    planar::FillMode fill = planar::FillMode::Smooth;
+    glm::dvec3 emits{0.0};  // the emitter's direction (0 for no cosine there)
+    std::vector<std::vector<planar::DirectedEdge>> outlines;
+    struct Triangle {
+        double x[3], y[3];
+        float in[3], out[3];  // corner intensities before and after weighing
+    };
+    std::vector<Triangle> triangles;
+    std::vector<uint32_t> slots;  // open addressing by corners: triangle index + 1, 0 = empty
+    size_t bytes() const;
+    void clear();
+};
+
+// Triangles weighed by one call, and those taken from WeightedTriangles instead.
+struct WeightStats {
+    size_t trianglesWeighed = 0, trianglesReused = 0;
+};
+
 // Reweights `mesh` (from fillShadow over these samples' outlines, in the same order): each
 // triangle's shadowing samples S are found at its centroid (strictly inside one trapezoid, so on
 // no outline); at each corner v, with W_S(v) and W(v) the weights of S and of all samples there,
@@ -27,6 +52,11 @@ double sampleIrradianceWeight(const Light& light, const LightSample& s, const gl
 // Corners are unshared afterwards (each triangle gets its own three vertices).
 void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<planar::DirectedEdge>> outlines,
                      std::span<const LightSample> samples, const Light& light, const ReceiverPlane& plane,
-                     const planar::Snap& snap, planar::FillMode fill);
+                     const planar::Snap& snap, planar::FillMode fill, WeightStats* stats = nullptr);
+// The same, reusing what `kept` holds from an earlier call with these samples, light, plane and
+// snap (the result is the same bit for bit), and leaving this call's triangles in it.
+void weighShadowMesh(planar::ShadowMesh& mesh, std::span<const std::vector<planar::DirectedEdge>> outlines,
+                     std::span<const LightSample> samples, const Light& light, const ReceiverPlane& plane,
+                     const planar::Snap& snap, planar::FillMode fill, WeightedTriangles& kept, WeightStats* stats);
 
 }  // namespace ss
