@@ -160,12 +160,15 @@ def test_preview_under_xvfb():
     scene.objects["Key"].data.softshadow.method = "shadow_map"
     blend = os.path.join(folder, "preview.blend")
     bpy.ops.wm.save_as_mainfile(filepath=blend)
-    points = {"shadow": list(sstest.shadow_centre(-1.0)), "far": [-3.5, -2.8, 0.0]}
+    # The occluder then moves 1.5 along y: its shadow (twice as far from the light) 3.
+    moved_centre = list(sstest.shadow_centre(-1.0))
+    moved_centre[1] += 3.0
+    points = {"shadow": list(sstest.shadow_centre(-1.0)), "far": [-3.5, -2.8, 0.0], "moved": moved_centre}
     addon_args, env = sstest.child_blender(folder)
     fbdir = os.path.join(folder, "screen")
     os.makedirs(fbdir)
     env.update(SOFTSHADOW_PREVIEW_OUT=folder, SOFTSHADOW_PREVIEW_POINTS=json.dumps(points),
-               SOFTSHADOW_XVFB_FBDIR=fbdir)
+               SOFTSHADOW_PREVIEW_MOVE=json.dumps(["Occluder", [0.0, 1.5, 0.0]]), SOFTSHADOW_XVFB_FBDIR=fbdir)
     child = os.path.join(os.path.dirname(os.path.abspath(__file__)), "viewport_child.py")
     run = subprocess.run([*xvfb_screen.command(fbdir), bpy.app.binary_path, blend,
                           *addon_args, "--python", child],
@@ -198,6 +201,21 @@ def test_preview_under_xvfb():
     change = abs(at(on, "far") - at(off, "far"))
     sstest.check(change <= UNCHANGED, "a lit pixel stays as it was (changed %.3f)" % change)
     print("   shadow darkened by %.2f, lit pixel changed %.3f" % (removed, change))
+
+    # The occluder moved in the running Blender: the overlay's shadow follows to its new place,
+    # the old place is lit again, and only images of the newest request were handed over.
+    sstest.check(info["error_after_move"] == "", "no preview error after the move: %s" % info["error_after_move"])
+    after = info["delivered_after_move"]
+    sstest.check(len(after) >= 2 and all(g > info["generation_before_move"] for g, _size in after)
+                 and after[-1][0] == info["generation"],
+                 "after the move only newer images were handed over, the last of the newest request: %s (move "
+                 "after generation %d, now %d)" % (after, info["generation_before_move"], info["generation"]))
+    moved = _screenshot(os.path.join(folder, "moved.xwd"))
+    relit = abs(at(moved, "shadow") - at(off, "shadow"))
+    sstest.check(relit <= UNCHANGED, "the old shadow is gone after the move (changed %.3f from the lit ground)" % relit)
+    followed = 1.0 - at(moved, "moved") / at(off, "moved")
+    sstest.check(followed >= DARKENED, "the shadow followed the occluder: its new centre darkened by %.2f" % followed)
+    print("   after the move: old centre %.3f from lit, new centre darkened by %.2f" % (relit, followed))
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 # How the viewport-preview test drives a real Blender window (run by test_viewport_preview.py).
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Top view over the scene; a screenshot with the preview off, then one with it on once the
-preview worker has delivered its full image; writes the region, the projected test points and the
+preview worker has delivered its full image, then one after the occluder moved (as an artist
+drags it) and the preview delivered again; writes the region, the projected test points and the
 preview's record of the images it handed over as JSON."""
 import json
 import os
@@ -18,7 +19,8 @@ import xvfb_screen  # noqa: E402
 
 OUT = os.environ["SOFTSHADOW_PREVIEW_OUT"]
 POINTS = json.loads(os.environ["SOFTSHADOW_PREVIEW_POINTS"])
-state = {"step": 0, "t": time.time()}
+MOVE = json.loads(os.environ["SOFTSHADOW_PREVIEW_MOVE"])  # [object name, [dx, dy, dz]]
+state = {"step": 0, "t": time.time(), "info": None}
 
 
 def _view():
@@ -52,7 +54,7 @@ def step():
         scene.softshadow.preview = True
         area.tag_redraw()
         state["t"] = time.time()
-    elif s == 2:
+    elif s in (2, 5):
         if not softshadow.preview.full_image_delivered() and time.time() - state["t"] < 60:
             area.tag_redraw()
             return 0.5  # still computing
@@ -63,11 +65,26 @@ def step():
         info = {"region": [region.x, region.y, region.width, region.height],
                 "window": [win.width, win.height], "error": softshadow.preview._state.error,
                 "done": len(softshadow.preview._state.done),
-                "delivered": softshadow.preview._state.delivered,
+                "delivered": list(softshadow.preview._state.delivered),
                 "full": list(next(iter(softshadow.preview._state.keys.values()))[1:3])}
         for name, p in POINTS.items():
             xy = location_3d_to_region_2d(region, rv3d, Vector(p))
             info[name] = [xy.x, xy.y] if xy is not None else None
+        state["info"] = info
+    elif s == 4:
+        name, offset = MOVE
+        state["info"]["generation_before_move"] = softshadow.preview._state.generation
+        scene.objects[name].location += Vector(offset)
+        bpy.context.view_layer.update()  # the add-on's depsgraph handler notes the move
+        area.tag_redraw()
+        state["t"] = time.time()
+    elif s == 6:
+        _shot("moved.xwd")
+        info = state["info"]
+        info["error_after_move"] = softshadow.preview._state.error
+        info["delivered_after_move"] = [entry for entry in softshadow.preview._state.delivered
+                                        if entry not in info["delivered"]]
+        info["generation"] = softshadow.preview._state.generation
         with open(os.path.join(OUT, "info.json"), "w") as f:
             json.dump(info, f)
         bpy.ops.wm.quit_blender()
