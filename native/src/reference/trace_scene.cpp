@@ -129,7 +129,6 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<con
         if (!in.bvh) {
             in.bvh = std::make_shared<const MeshBvh>(mesh);
             ++meshBvhBuilds_;
-            kept.emplace(key.packed(), in.bvh);  // a mesh repeated in the scene shares it
         }
         in.toWorld = MeshBvh::toWorldOf(mesh);
         const glm::mat3 linear(in.toWorld);
