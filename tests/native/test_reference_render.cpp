@@ -323,6 +323,15 @@ TEST(ReferenceRender, AMovedMeshKeepsItsBvhAndIsTracedWhereItIsNow) {
     TraceSceneCache cache;
     const Layers before = renderReference(scene, 0, withSamples(16), &cache);
     EXPECT_EQ(cache.meshBvhBuilds(), 2);
+    // A scene built with the box's moved coordinates given as they are.
+    auto builtThere = [&](const Scene& moved) {
+        Scene fresh = test::sceneBox(p);
+        Mesh box = moved.meshes()[1];
+        box.objectPositions.clear();
+        box.objectToWorld = glm::mat4(1.0f);
+        fresh.updateMesh(1, box);
+        return fresh;
+    };
 
     for (const glm::mat4& transform :
          {glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, -0.3f, 0.2f)),
@@ -332,12 +341,7 @@ TEST(ReferenceRender, AMovedMeshKeepsItsBvhAndIsTracedWhereItIsNow) {
         const Layers moved = renderReference(scene, 0, withSamples(16), &cache);
         EXPECT_EQ(cache.meshBvhBuilds(), 2);
 
-        Scene fresh = test::sceneBox(p);
-        Mesh box = scene.meshes()[1];
-        box.objectPositions.clear();
-        box.objectToWorld = glm::mat4(1.0f);
-        fresh.updateMesh(1, box);  // the moved coordinates, given as they are
-        const Layers there = renderReference(fresh, 0, withSamples(16));
+        const Layers there = renderReference(builtThere(scene), 0, withSamples(16));
         const Image& a = layer(moved, "V");
         const Image& b = layer(there, "V");
         int differ = 0, shadowed = 0;
@@ -355,12 +359,7 @@ TEST(ReferenceRender, AMovedMeshKeepsItsBvhAndIsTracedWhereItIsNow) {
     cache.dropStale(scene);
     const Layers flat = renderReference(scene, 0, withSamples(16), &cache);
     EXPECT_EQ(cache.meshBvhBuilds(), 3);
-    Scene fresh = test::sceneBox(p);
-    Mesh box = scene.meshes()[1];
-    box.objectPositions.clear();
-    box.objectToWorld = glm::mat4(1.0f);
-    fresh.updateMesh(1, box);
-    EXPECT_EQ(layer(flat, "V").pixels, layer(renderReference(fresh, 0, withSamples(16)), "V").pixels);
+    EXPECT_EQ(layer(flat, "V").pixels, layer(renderReference(builtThere(scene), 0, withSamples(16)), "V").pixels);
 }
 
 TEST(ReferenceRender, BadLightIndexIsRejected) {
