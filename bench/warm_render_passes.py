@@ -19,7 +19,9 @@
 #     latency of the coarse image and of the full one (main thread's export of the edit + the
 #     worker's updates, renders and overlays, `preview.progressive_job`) over an animated sequence
 #     of 2 x FRAMES moves, median and 95th percentile, with its stages; and the floor of each image:
-#     a request with no edit (a new view of the same scene costs at least this).
+#     a request with no edit (a new view of the same scene costs at least this); then a camera
+#     orbit: 2 x FRAMES views, each the last turned 2 degrees about the scene's vertical axis
+#     (nothing moved: the camera pass is redrawn whole, the shadow maps kept).
 #   - a final render's frame (auto with refine=on, what F12 and `blender -b -a` give) at SIZE² after
 #     a move: its seconds, the mesh BVHs it built (the ray tracer's scene keeps each mesh's BVH
 #     under a new instance), and the same render on an unchanged scene.
@@ -175,6 +177,20 @@ def final_frame(scene, mover, live, moved=True):
     return time.perf_counter() - t0, stats_delta(before, native.cache_stats())["mesh_bvh_builds"]
 
 
+def orbit_frame(scene, scenes, step):
+    """Seconds from a camera turned by `step` radians about the vertical axis to the coarse and
+    to the full image."""
+    from mathutils import Matrix
+    scene.camera.matrix_world = Matrix.Rotation(step, 4, "Z") @ scene.camera.matrix_world
+    bpy.context.view_layer.update()
+    t0 = time.perf_counter()
+    camera = scene_export.scene_camera(scene, bpy.context.evaluated_depsgraph_get(), 960, 540)
+    images = []
+    preview.progressive_job(scenes, {"coarse": [], "full": []}, [], camera, lambda: False,
+                            lambda rgba: images.append(time.perf_counter()))
+    return images[0] - t0, images[1] - t0
+
+
 def p95(values):
     ordered = sorted(values)
     return ordered[min(len(ordered) - 1, int(math.ceil(0.95 * len(ordered))) - 1)]
@@ -216,13 +232,18 @@ for tori in torus_counts:
         runs = [preview_frame(scene, mover, scenes, camera) for _ in range(2 * frames)]
         floors = [preview_floor(scenes, camera) for _ in range(frames)]
         stages_floor = (statistics.median(f[0] for f in floors), statistics.median(f[1] for f in floors))
+        home = scene.camera.matrix_world.copy()
+        orbit = [orbit_frame(scene, scenes, math.radians(2.0)) for _ in range(2 * frames)]
+        scene.camera.matrix_world = home
+        bpy.context.view_layer.update()
         for live in scenes.values():
             live.close()
         latencies = [r["latency"] for r in runs]
         coarse = [r["coarse"] for r in runs]
         stages = {k: statistics.median(r[k] for r in runs) for k in PREVIEW_COLUMNS}
         preview_rows.append((method, statistics.median(coarse), p95(coarse), statistics.median(latencies),
-                             p95(latencies), stages, stages_floor))
+                             p95(latencies), stages, stages_floor,
+                             tuple(f([o[k] for o in orbit]) for k in (0, 1) for f in (statistics.median, p95))))
         print("BENCH preview %d tris %s: coarse median %.3f s p95 %.3f s, full median %.3f s p95 %.3f s, "
               "full render alone %.3f s, floor coarse %.3f s full %.3f s" % (triangles, method, *preview_rows[-1][1:5],
                                                                  stages["full render"], *stages_floor),
@@ -300,9 +321,15 @@ with open(out_path, "w") as f:
         f.write("| method | coarse median | coarse floor | coarse p95 | full median | full floor | full p95 | "
                 + " | ".join(PREVIEW_COLUMNS) + " |\n")
         f.write("|---" * (len(PREVIEW_COLUMNS) + 7) + "|\n")
-        for method, coarse, coarse_high, median, high, stages, floor in preview_rows:
+        for method, coarse, coarse_high, median, high, stages, floor, _orbit in preview_rows:
             f.write("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | " % (method, coarse, floor[0], coarse_high,
                                                                       median, floor[1], high)
                     + " | ".join("%.3f" % stages[k] for k in PREVIEW_COLUMNS) + " |\n")
+        f.write("\nA camera orbit (%d views, each turned 2° about the vertical axis from the last; nothing "
+                "moved: the camera pass is redrawn whole, the shadow maps are kept), view-to-overlay seconds "
+                "(the same targets):\n\n" % (2 * frames))
+        f.write("| method | coarse median | coarse p95 | full median | full p95 |\n|---|---|---|---|---|\n")
+        for row in preview_rows:
+            f.write("| %s | %.3f | %.3f | %.3f | %.3f |\n" % (row[0], *row[7]))
         f.write("\n")
 print("BENCH-WARM-OK")
