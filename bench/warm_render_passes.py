@@ -131,13 +131,16 @@ def render_floor(scene, method, live):
     return time.perf_counter() - t0
 
 
-def preview_floor(scenes, camera):
-    """Seconds to the coarse and to the full image of a request with no edit."""
+def preview_request(scenes, camera):
+    """Seconds to the coarse and to the full image of a request with no edit (at a new camera:
+    a new view), and the seconds of the camera passes it drew."""
     t0 = time.perf_counter()
     images = []
+    before = native.cache_stats()
     preview.progressive_job(scenes, {"coarse": [], "full": []}, [], camera, lambda: False,
                             lambda rgba: images.append(time.perf_counter()))
-    return images[0] - t0, images[1] - t0
+    camera_passes = stats_delta(before, native.cache_stats())["camera_pass_ms"] / 1e3
+    return images[0] - t0, images[1] - t0, camera_passes
 
 
 def preview_frame(scene, mover, scenes, camera):
@@ -179,16 +182,15 @@ def final_frame(scene, mover, live, moved=True):
 
 def orbit_frame(scene, scenes, step):
     """Seconds from a camera turned by `step` radians about the vertical axis to the coarse and
-    to the full image."""
+    to the full image, and the camera passes' seconds of both (drawn whole: the view changed)."""
     from mathutils import Matrix
     scene.camera.matrix_world = Matrix.Rotation(step, 4, "Z") @ scene.camera.matrix_world
     bpy.context.view_layer.update()
     t0 = time.perf_counter()
     camera = scene_export.scene_camera(scene, bpy.context.evaluated_depsgraph_get(), 960, 540)
-    images = []
-    preview.progressive_job(scenes, {"coarse": [], "full": []}, [], camera, lambda: False,
-                            lambda rgba: images.append(time.perf_counter()))
-    return images[0] - t0, images[1] - t0
+    view = time.perf_counter() - t0
+    coarse, full, camera_passes = preview_request(scenes, camera)
+    return view + coarse, view + full, camera_passes
 
 
 def p95(values):
@@ -230,7 +232,7 @@ for tori in torus_counts:
         preview.progressive_job(scenes, {"coarse": [], "full": []}, [preview.export_edit(depsgraph, scene)],
                                 camera, lambda: False, lambda rgba: None)
         runs = [preview_frame(scene, mover, scenes, camera) for _ in range(2 * frames)]
-        floors = [preview_floor(scenes, camera) for _ in range(frames)]
+        floors = [preview_request(scenes, camera) for _ in range(frames)]
         stages_floor = (statistics.median(f[0] for f in floors), statistics.median(f[1] for f in floors))
         home = scene.camera.matrix_world.copy()
         orbit = [orbit_frame(scene, scenes, math.radians(2.0)) for _ in range(2 * frames)]
@@ -243,7 +245,8 @@ for tori in torus_counts:
         stages = {k: statistics.median(r[k] for r in runs) for k in PREVIEW_COLUMNS}
         preview_rows.append((method, statistics.median(coarse), p95(coarse), statistics.median(latencies),
                              p95(latencies), stages, stages_floor,
-                             tuple(f([o[k] for o in orbit]) for k in (0, 1) for f in (statistics.median, p95))))
+                             tuple(f([o[k] for o in orbit]) for k in (0, 1) for f in (statistics.median, p95))
+                             + (statistics.median(o[2] for o in orbit),)))
         print("BENCH preview %d tris %s: coarse median %.3f s p95 %.3f s, full median %.3f s p95 %.3f s, "
               "full render alone %.3f s, floor coarse %.3f s full %.3f s" % (triangles, method, *preview_rows[-1][1:5],
                                                                  stages["full render"], *stages_floor),
@@ -327,9 +330,11 @@ with open(out_path, "w") as f:
                     + " | ".join("%.3f" % stages[k] for k in PREVIEW_COLUMNS) + " |\n")
         f.write("\nA camera orbit (%d views, each turned 2° about the vertical axis from the last; nothing "
                 "moved: the camera pass is redrawn whole, the shadow maps are kept), view-to-overlay seconds "
-                "(the same targets):\n\n" % (2 * frames))
-        f.write("| method | coarse median | coarse p95 | full median | full p95 |\n|---|---|---|---|---|\n")
+                "(the same targets), and the median seconds of the two camera passes a view draws (the coarse "
+                "image's and the full one's, until the GL finished them):\n\n" % (2 * frames))
+        f.write("| method | coarse median | coarse p95 | full median | full p95 | camera passes |\n"
+                "|---|---|---|---|---|---|\n")
         for row in preview_rows:
-            f.write("| %s | %.3f | %.3f | %.3f | %.3f |\n" % (row[0], *row[7]))
+            f.write("| %s | %.3f | %.3f | %.3f | %.3f | %.3f |\n" % (row[0], *row[7]))
         f.write("\n")
 print("BENCH-WARM-OK")
