@@ -29,11 +29,12 @@ struct MeshProjection {
 // The projections of the occluders of the last shadow computed per (light index, cluster): a
 // mesh is projected again only when its Mesh::version (a move or an edit), the receiver plane or
 // the samples changed. The same set holds the last shadow's weighted triangles (weights.h), which
-// the next shadow of the same plane and samples reuses where its outlines did not change. A set keeps only the occluders of its last shadow, so a removed, moved or
-// edited mesh's projections go with the next shadow of that light; keep() drops the sets of
-// lights and clusters the caller no longer has. What is held stays within a byte budget: a mesh
-// that does not fit is projected sample by sample for the shadow at hand and not kept (as with a
-// budget of 0, which keeps nothing). Not thread-safe (one per method object).
+// the next shadow of the same plane and samples reuses where its outlines did not change. A set
+// keeps only the occluders of its last shadow, so a removed, moved or edited mesh's projections
+// go with the next shadow of that light; keep() drops the sets of lights and clusters the caller
+// no longer has. What is held stays within a byte budget: a mesh that does not fit is projected
+// sample by sample for the shadow at hand and not kept (as with a budget of 0, which keeps
+// nothing). Not thread-safe (one per method object).
 class SweepProjectionCache {
 public:
     // Silhouette edges are a few thousand per sample for a 100k-triangle closed mesh (about
