@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "core/mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <unordered_map>
@@ -43,21 +44,27 @@ EdgeAdjacency buildEdgeAdjacency(const std::vector<glm::uvec3>& triangles) {
 namespace {
 
 void computeFaceNormals(Mesh& mesh) {
-    mesh.faceNormals.resize(mesh.triangles.size());
-    mesh.report.degenerateFaces = 0;
-    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
-        const glm::uvec3& t = mesh.triangles[f];
-        const auto& p = mesh.positions;
-        glm::vec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
-        float len = glm::length(n);
-        bool degenerate = t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(len > 0.0f) ||
-                          !std::isfinite(len);
-        mesh.faceNormals[f] = degenerate ? glm::vec3(0.0f) : n / len;
-        if (degenerate) ++mesh.report.degenerateFaces;
-    }
+    mesh.faceNormals = faceNormalsOf(mesh.positions, mesh.triangles);
+    mesh.report.degenerateFaces = size_t(std::count(mesh.faceNormals.begin(), mesh.faceNormals.end(), glm::vec3(0.0f)));
 }
 
 }  // namespace
+
+std::vector<glm::vec3> faceNormalsOf(const std::vector<glm::vec3>& p, const std::vector<glm::uvec3>& triangles) {
+    std::vector<glm::vec3> normals(triangles.size());
+    for (size_t f = 0; f < triangles.size(); ++f) {
+        const glm::uvec3& t = triangles[f];
+        glm::vec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
+        float len = glm::length(n);
+        bool degenerate = t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(len > 0.0f) || !std::isfinite(len);
+        normals[f] = degenerate ? glm::vec3(0.0f) : n / len;
+    }
+    return normals;
+}
+
+std::vector<glm::vec3> objectFaceNormals(const Mesh& mesh) {
+    return mesh.objectPositions.empty() ? mesh.faceNormals : faceNormalsOf(mesh.objectPositions, mesh.triangles);
+}
 
 void Mesh::setTransform(const glm::mat4& transform) {
     for (int c = 0; c < 4; ++c)

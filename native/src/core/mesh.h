@@ -73,5 +73,10 @@ struct Mesh {
 };
 
 EdgeAdjacency buildEdgeAdjacency(const std::vector<glm::uvec3>& triangles);
+// The unit normal of each triangle, zero for a degenerate one (a repeated vertex, no area).
+std::vector<glm::vec3> faceNormalsOf(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles);
+// The face normals in the mesh's coordinates as given (its world normals when it has no
+// transform): what the GPU and the ray tracer keep across moves.
+std::vector<glm::vec3> objectFaceNormals(const Mesh& mesh);
 
 }  // namespace ss

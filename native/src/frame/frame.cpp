@@ -62,23 +62,10 @@ void Frame::dropStalePasses() {
 
 namespace {
 
-// Unit face normals of the mesh's coordinates as given (the world normals when it has no
-// transform), zero for degenerate faces, as vec4 for the SSBO.
-std::vector<glm::vec4> objectFaceNormals(const Mesh& mesh) {
-    std::vector<glm::vec4> normals(mesh.triangles.size(), glm::vec4(0.0f));
-    if (mesh.objectPositions.empty()) {
-        for (size_t f = 0; f < mesh.faceNormals.size() && f < normals.size(); ++f)
-            normals[f] = glm::vec4(mesh.faceNormals[f], 0.0f);
-        return normals;
-    }
-    const auto& p = mesh.objectPositions;
-    for (size_t f = 0; f < normals.size(); ++f) {
-        const glm::uvec3& t = mesh.triangles[f];
-        glm::vec3 n = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
-        float len = glm::length(n);
-        if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2] && len > 0.0f && std::isfinite(len))
-            normals[f] = glm::vec4(n / len, 0.0f);
-    }
+// objectFaceNormals as vec4, the SSBO's layout.
+std::vector<glm::vec4> faceNormalBuffer(const Mesh& mesh) {
+    std::vector<glm::vec4> normals;
+    for (const glm::vec3& n : objectFaceNormals(mesh)) normals.emplace_back(n, 0.0f);
     return normals;
 }
 
@@ -133,7 +120,7 @@ const std::vector<GpuMesh>& Frame::meshes() {
         gm.positions = gl::makeBuffer(positions.data(), positions.size() * sizeof(glm::vec3));
         gm.indices = gl::makeBuffer(mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
         gm.clusters = clustersOf(mesh);
-        std::vector<glm::vec4> normals = objectFaceNormals(mesh);
+        std::vector<glm::vec4> normals = faceNormalBuffer(mesh);
         gm.faceNormals = gl::makeBuffer(normals.data(), normals.size() * sizeof(glm::vec4));
         GLuint vao = 0;
         g.CreateVertexArrays(1, &vao);

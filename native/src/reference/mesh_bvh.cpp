@@ -52,14 +52,9 @@ glm::mat4 MeshBvh::toWorldOf(const Mesh& mesh) {
 }
 
 MeshBvh::MeshBvh(const Mesh& mesh) : key_(keyOf(mesh)), triangles_(mesh.triangles) {
-    positions_ = key_.objectSpace && !mesh.objectPositions.empty() ? mesh.objectPositions : mesh.positions;
-    faceNormals_.resize(triangles_.size());
-    for (size_t f = 0; f < triangles_.size(); ++f) {
-        const glm::uvec3& t = triangles_[f];
-        const glm::vec3 n = glm::cross(positions_[t.y] - positions_[t.x], positions_[t.z] - positions_[t.x]);
-        const float len = glm::length(n);
-        faceNormals_[f] = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f);
-    }
+    const bool asGiven = key_.objectSpace && !mesh.objectPositions.empty();
+    positions_ = asGiven ? mesh.objectPositions : mesh.positions;
+    faceNormals_ = asGiven ? objectFaceNormals(mesh) : mesh.faceNormals;
 
     RTCDevice device = embreeDevice();
     scene_.reset(rtcNewScene(device));
