@@ -19,6 +19,38 @@ namespace ss {
 
 namespace {
 
+// What drawSweepShadow() gives, computed on the CPU: one lookup per cluster's mesh, their weighted
+// intensities added.
+Layers lookUpSweepShadow(const CameraImages& cam, const Light& light, const SweepShadow& shadow) {
+    const int w = cam.width, h = cam.height;
+    Image V(w, h, 1.0f), mask(w, h, 0.0f);
+    std::vector<ShadowLookup> lookups;
+    if (shadow.parts.empty()) lookups.emplace_back(shadow.mesh);
+    else
+        for (const planar::ShadowMesh& part : shadow.parts) lookups.emplace_back(part);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            size_t i = cam.index(x, y);
+            // Pixels that do not see the receiver plane are outside this method's mask.
+            if (!cam.covered(x, y) || !cam.receives(x, y) || int(cam.ids[i].x) != shadow.plane.mesh) continue;
+            glm::vec3 P = cam.position(x, y);
+            if (!lightReaches(light, P, cam.normal(x, y))) continue;
+            mask.at(x, y) = 1.0f;
+            glm::dvec2 q = shadow.plane.toPlane(glm::dvec3(P));
+            double gx = (q.x - shadow.plane.cu) * shadow.snap.scale();
+            double gy = (q.y - shadow.plane.cv) * shadow.snap.scale();
+            float intensity = 0.0f;
+            for (const ShadowLookup& l : lookups) intensity += l.intensity(gx, gy);
+            // std::clamp keeps a NaN: a broken shadow mesh shows as V = NaN, which the
+            // finiteness tests catch, instead of passing for lit.
+            V.at(x, y) = 1.0f - std::clamp(intensity, 0.0f, 1.0f);
+        }
+    Layers layers;
+    layers.add("V", std::move(V));
+    layers.add("mask", std::move(mask));
+    return layers;
+}
+
 class SweepMethod final : public Method {
 public:
     // GL for the shared camera pass and for drawing the shadow mesh; the mesh is CPU geometry.
@@ -30,46 +62,13 @@ public:
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const SweepShadow& shadow = shadowFor(frame.scene(), lightIndex, settings);
-        const Light& light = frame.light(lightIndex);
-        settings.report(0.5f, "sweep: camera pass");
-        const CameraImages& cam = frame.cameraImages();
-        const int w = cam.width, h = cam.height;
-        Image V(w, h, 1.0f), mask(w, h, 0.0f);
-        // raster=gl (default): the shadow triangles drawn with the camera's matrices;
-        // raster=cpu: the same triangles looked up per pixel (no GL draw; a cross-check).
+        // raster=gl (default): the shadow triangles drawn with the camera's matrices and resolved
+        // on the GPU; raster=cpu: the same triangles looked up per pixel over the camera pass
+        // read back (no GL draw of the mesh; a cross-check).
         std::string raster = settings.choice("raster", "gl", {"gl", "cpu"});
-        // Clusters: one lookup per cluster's mesh, their weighted intensities added.
-        std::vector<ShadowLookup> lookups;
-        Image drawn;
-        if (raster == "gl") drawn = rasterSweepShadow(frame, shadow);
-        else if (shadow.parts.empty()) lookups.emplace_back(shadow.mesh);
-        else
-            for (const planar::ShadowMesh& part : shadow.parts) lookups.emplace_back(part);
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                size_t i = cam.index(x, y);
-                // Pixels that do not see the receiver plane are outside this method's mask.
-                if (!cam.covered(x, y) || !cam.receives(x, y) || int(cam.ids[i].x) != shadow.plane.mesh) continue;
-                glm::vec3 P = cam.position(x, y);
-                if (!lightReaches(light, P, cam.normal(x, y))) continue;
-                mask.at(x, y) = 1.0f;
-                float intensity;
-                if (!lookups.empty()) {
-                    glm::dvec2 q = shadow.plane.toPlane(glm::dvec3(P));
-                    double gx = (q.x - shadow.plane.cu) * shadow.snap.scale();
-                    double gy = (q.y - shadow.plane.cv) * shadow.snap.scale();
-                    intensity = 0.0f;
-                    for (const ShadowLookup& l : lookups) intensity += l.intensity(gx, gy);
-                } else {
-                    intensity = drawn.at(x, y);
-                }
-                // std::clamp keeps a NaN: a broken shadow mesh shows as V = NaN, which the
-                // finiteness tests catch, instead of passing for lit.
-                V.at(x, y) = 1.0f - std::clamp(intensity, 0.0f, 1.0f);
-            }
-        Layers layers;
-        layers.add("V", std::move(V));
-        layers.add("mask", std::move(mask));
+        settings.report(0.5f, "sweep: camera pass");
+        Layers layers = raster == "gl" ? drawSweepShadow(frame, shadow, lightIndex)
+                                       : lookUpSweepShadow(frame.cameraImages(), frame.light(lightIndex), shadow);
         settings.report(1.0f, "sweep: done");
         return layers;
     }

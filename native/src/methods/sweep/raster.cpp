@@ -1,4 +1,5 @@
-// How the shadow triangles are uploaded and rasterised with the camera's matrices.
+// How the shadow triangles are uploaded and rasterised with the camera's matrices, then resolved
+// over the camera pass into V and mask.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "methods/sweep/raster.h"
 
@@ -19,7 +20,7 @@ struct RasterVertex {
     float intensity;
 };
 
-// No depth test: the caller keeps only pixels whose camera-pass surface is the receiver mesh,
+// No depth test: the resolve keeps only pixels whose camera-pass surface is the receiver mesh,
 // and there the ray through the pixel centre meets the plane exactly where the shadow triangle
 // covering that centre lies — anything in front already took the pixel in the camera pass.
 // Plain overwrite: trapezoids tile the shadow, so no two triangles cover a pixel centre.
@@ -31,13 +32,13 @@ constexpr gl::RenderState kShadowMeshClusters{"sweep_shadow_mesh_clusters", fals
 
 }  // namespace
 
-Image rasterSweepShadow(Frame& frame, const SweepShadow& shadow) {
+Layers drawSweepShadow(Frame& frame, const SweepShadow& shadow, int lightIndex) {
     const gl::Functions& g = frame.gl();
     const CameraPass& cam = frame.cameraPass();
-    gl::Framebuffer& out = gl::scratchFramebuffer("sweep.camera", cam.width, cam.height, {GL_RGBA32F});
-    out.bind();
+    gl::Framebuffer& drawn = gl::scratchFramebuffer("sweep.intensity", cam.width, cam.height, {GL_R32F});
+    drawn.bind();
     gl::apply(shadow.parts.empty() ? kShadowMesh : kShadowMeshClusters);
-    out.clearColor(0, glm::vec4(0.0f));
+    drawn.clearColor(0, glm::vec4(0.0f));
     std::vector<RasterVertex> verts;
     verts.reserve(shadow.mesh.indices.size());
     for (uint32_t i : shadow.mesh.indices) {
@@ -63,9 +64,25 @@ Image rasterSweepShadow(Frame& frame, const SweepShadow& shadow) {
         g.DrawArrays(GL_TRIANGLES, 0, GLsizei(verts.size()));
         g.BindVertexArray(0);
     }
-    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing the sweep shadow mesh");
-    return std::move(out.readChannels(0, 1)[0]);
+
+    gl::Framebuffer& out = gl::scratchFramebuffer("sweep.camera", cam.width, cam.height, {GL_RG32F});
+    out.bind();
+    gl::apply(gl::states::overwrite);
+    const gl::Program& resolve = gl::program("common/fullscreen.vert.glsl", "sweep/resolve.frag.glsl");
+    resolve.use();
+    int unit = frame.bindCameraPass(resolve);
+    resolve.setTexture("uShadowIntensity", unit, drawn.colorId(0));
+    frame.setLightUniforms(resolve, lightIndex);
+    resolve.set("uReceiverMesh", shadow.plane.mesh);
+    frame.drawFullscreen();
+    g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    g.check("resolving the sweep shadow");
+    std::vector<Image> channels = out.readChannels(0, 2);
+    Layers layers;
+    layers.add("V", std::move(channels[0]));
+    layers.add("mask", std::move(channels[1]));
+    return layers;
 }
 
 }  // namespace ss

@@ -1,15 +1,17 @@
-// How the sweep shadow mesh is drawn into the camera view with GL (the camera's own matrices and
-// pixel centres); the caller masks it with the camera pass so occluders in front hide it.
+// How the sweep shadow mesh becomes the camera's V and mask with GL: drawn with the camera's own
+// matrices and pixel centres, then resolved over the camera pass so occluders in front hide it.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-#include "core/image.h"
+#include "methods/method.h"
 #include "methods/sweep/shadow.h"
 #include "frame/frame.h"
 
 namespace ss {
 
-// Shadow intensity per camera pixel (row 0 = top); 0 where no shadow triangle is drawn.
-// Must run on the render thread.
-Image rasterSweepShadow(Frame& frame, const SweepShadow& shadow);
+// Layers "V" and "mask" per camera pixel (row 0 = top): mask where the camera sees the receiver
+// plane's mesh and the light reaches it (the visibility contract), V = 1 - the shadow intensity
+// there. Only these two channels are read back: the camera pass stays on the GPU. Must run on
+// the render thread.
+Layers drawSweepShadow(Frame& frame, const SweepShadow& shadow, int lightIndex);
 
 }  // namespace ss
