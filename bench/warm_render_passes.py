@@ -13,7 +13,8 @@
 #     ss_context_cache_stats), the rest of ss_render (thread hand-off, checks), the copy of the
 #     layers into numpy and the EXR write of a final render; and the floor: the same render on an
 #     unchanged scene (every cache kept: the method's own passes and the read-back, which no edit
-#     tracking removes);
+#     tracking removes); and the sweep once more with the box where its shadow stays apart from
+#     the tori's (then a move fills again only the box's part of the shadow);
 # PARTS: comma-separated, of "render", "preview" and "final" (default all): which of those below run.
 #   - the preview after a move at 960x540 (shadow_map, pcss, occlusion_textures): edit-to-overlay
 #     latency of the coarse image and of the full one (main thread's export of the edit + the
@@ -53,6 +54,10 @@ PREVIEW_METHODS = ("shadow_map", "pcss", "occlusion_textures")
 TARGET_RENDER = {1: 0.100, 9: 1.0}    # render_passes per light (issue 16)
 TARGET_PREVIEW = 0.150                # edit-to-overlay at 960x540 on 1M triangles
 TARGET_COARSE = 0.050                 # edit-to-coarse-overlay on 1M triangles
+# Where the box's shadow stays clear of the tori's while it moves: the sweep fills again only the
+# part of its shadow the move reached (in the main rows the box's shadow meets the torus's).
+BOX_APART = {1: (-4.0, 0.8), 9: (-5.8, -5.8)}
+SWEEP_APART = "sweep, shadows apart"
 
 
 def build_scene(tori):
@@ -118,6 +123,20 @@ def render_passes_frame(scene, mover, method, live, exr_path):
             "method": after["method_ms"] / 1e3 - shared, "ss_render rest": (t3 - t2) - after["method_ms"] / 1e3,
             "copy out": t4 - t3, "total": t4 - t0, "EXR write": t5 - t4,
             "uploads": after["mesh_uploads"]}
+
+
+def render_row(scene, mover, method, triangles):
+    """Median seconds per stage of render_passes over the moved frames, and the floor."""
+    live = passes.LiveScene()
+    render_passes_frame(scene, mover, method, live, exr_path)  # the first frame builds the kept scene
+    runs = [render_passes_frame(scene, mover, method, live, exr_path) for _ in range(frames)]
+    floor = statistics.median(render_floor(scene, method, live) for _ in range(frames))
+    live.close()
+    row = {k: statistics.median(r[k] for r in runs) for k in runs[0]}
+    row["floor"] = floor
+    print("BENCH warm %d tris %s: %s" % (triangles, method, " ".join(
+        "%s=%.3f" % (k, v) for k, v in row.items())), flush=True)
+    return row
 
 
 def render_floor(scene, method, live):
@@ -210,16 +229,13 @@ for tori in torus_counts:
     methods = [m for m in native.method_names() if m != "reference"]
     rows = []
     for method in methods if "render" in parts else ():
-        live = passes.LiveScene()
-        render_passes_frame(scene, mover, method, live, exr_path)  # the first frame builds the kept scene
-        runs = [render_passes_frame(scene, mover, method, live, exr_path) for _ in range(frames)]
-        floor = statistics.median(render_floor(scene, method, live) for _ in range(frames))
-        live.close()
-        row = {k: statistics.median(r[k] for r in runs) for k in runs[0]}
-        row["floor"] = floor
-        rows.append((method, row))
-        print("BENCH warm %d tris %s: %s" % (triangles, method, " ".join(
-            "%s=%.3f" % (k, v) for k, v in row.items())), flush=True)
+        rows.append((method, render_row(scene, mover, method, triangles)))
+    if "render" in parts and "sweep" in methods:
+        home = mover.location.copy()
+        mover.location.x, mover.location.y = BOX_APART[tori]
+        rows.append((SWEEP_APART, render_row(scene, mover, "sweep", triangles)))
+        mover.location = home
+        bpy.context.view_layer.update()
 
     preview_rows = []
     for method in PREVIEW_METHODS if "preview" in parts else ():
@@ -281,7 +297,10 @@ with open(out_path, "w") as f:
             "`render_passes` costs per light; *EXR write* what a final render adds for its pass file; *floor* "
             "render and copy-out on an unchanged scene (every cache kept): the method's own passes and read-back "
             "at that size, which every frame redoes whatever changed; where the floor is above the target, "
-            "llvmpipe running the method's own passes is the limit.\n\n")
+            "llvmpipe running the method's own passes is the limit. *%s*: the sweep with the box moved "
+            "where its shadow does not meet the tori's; the sweep fills again only the part of the shadow "
+            "a move reached (`fillShadowParts`), where in the sweep row above the box's shadow touches the "
+            "torus's and the whole shadow is filled again every frame.\n\n" % SWEEP_APART)
     for tori, triangles, rows, preview_rows, final in report:
         if rows:
             target = TARGET_RENDER.get(tori)
@@ -293,8 +312,8 @@ with open(out_path, "w") as f:
             for method, row in rows:
                 f.write("| %s | " % method + " | ".join("%.3f" % row[k] for k in RENDER_COLUMNS)
                         + " | %s | %.3f | %d |\n" % ("%.3f" % target if target else "-", row["floor"], row["uploads"]))
-            camera = statistics.median(row["camera pass"] for _, row in rows)
-            maps = statistics.median(row["shadow map"] for _, row in rows if row["shadow map"] > 0)
+            camera = statistics.median(row["camera pass"] for m, row in rows if m != SWEEP_APART)
+            maps = statistics.median(row["shadow map"] for m, row in rows if row["shadow map"] > 0)
             f.write("\nThe shared passes a move redraws (only inside the screen rectangle of the box's old and new "
                     "place, drawing the meshes that reach it: `Frame` patches them), medians over the methods that "
                     "draw them: camera pass %.3f s, light-centre shadow map (2048²) %.3f s; together %.3f s%s. The "

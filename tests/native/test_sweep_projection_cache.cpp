@@ -67,7 +67,7 @@ TEST(SweepProjectionCache, AMoveProjectsOnlyTheMovedMeshAndMatchesAFreshScene) {
         SweepShadow first = computeSweepShadow(scene, 0, o, &cache);
         EXPECT_EQ(first.projection.meshesProjected, 2 * clusters);
         EXPECT_EQ(first.projection.meshesReused, 0);
-        const size_t held = cache.bytes() - cache.weightedBytes();
+        const size_t held = cache.bytes() - cache.weightedBytes() - cache.filledBytes();
         EXPECT_GT(held, 0u);
         EXPECT_GT(cache.weightedBytes(), 0u);
 
@@ -82,7 +82,7 @@ TEST(SweepProjectionCache, AMoveProjectsOnlyTheMovedMeshAndMatchesAFreshScene) {
             expectSameShadow(warm, cold);
         }
         // The moved box's earlier projections were dropped, not added to.
-        EXPECT_EQ(cache.bytes() - cache.weightedBytes(), held);
+        EXPECT_EQ(cache.bytes() - cache.weightedBytes() - cache.filledBytes(), held);
     }
 }
 
@@ -139,7 +139,7 @@ TEST(SweepProjectionCache, ABudgetTooSmallProjectsSampleBySampleWithTheSameResul
     ASSERT_GT(full.bytes(), 0u);
     // Room for the box's projections but not the torus's (the torus is projected first, so
     // it outgrows the room part way and is dropped; the box then fits).
-    const size_t room = (full.bytes() - full.weightedBytes()) / 4;
+    const size_t room = (full.bytes() - full.weightedBytes() - full.filledBytes()) / 4;
     SweepProjectionCache small(room);
     SweepShadow a = computeSweepShadow(scene, 0, o, &small);
     EXPECT_LE(small.bytes(), room);
@@ -218,6 +218,37 @@ TEST(SweepProjectionCache, AMoveWeighsOnlyTrianglesNearWhatChanged) {
     SweepShadow again = computeSweepShadow(scene, 0, SweepOptions{}, &none);
     EXPECT_EQ(again.weighting.trianglesReused, 0u);
     EXPECT_EQ(none.bytes(), 0u);
+}
+
+// The box's shadow apart from the torus's: a move fills only the box's part again, and the
+// shadow is a fresh scene's; once the box's shadow meets the torus's they are one part, filled
+// whole.
+TEST(SweepProjectionCache, AMoveFillsOnlyThePartOfTheShadowItReached) {
+    for (planar::FillMode fill : {planar::FillMode::Smooth, planar::FillMode::Steps, planar::FillMode::Rings}) {
+        SCOPED_TRACE(int(fill));
+        SweepOptions o;
+        o.fill = fill;
+        Scene scene = torusAndBox(shiftX(0.0f));
+        SweepProjectionCache cache;
+        SweepShadow first = computeSweepShadow(scene, 0, o, &cache);
+        EXPECT_EQ(first.filling.partsFilled, 2u);
+        EXPECT_EQ(first.filling.partsReused, 0u);
+        EXPECT_GT(cache.filledBytes(), 0u);
+        for (int frame = 1; frame <= 2; ++frame) {
+            scene.setMeshTransform(2, shiftX(0.15f * float(frame)));
+            SweepShadow warm = computeSweepShadow(scene, 0, o, &cache);
+            EXPECT_EQ(warm.filling.partsFilled, 1u) << "the box's part";
+            EXPECT_EQ(warm.filling.partsReused, 1u) << "the torus's part was filled again";
+            Scene fresh = torusAndBox(shiftX(0.15f * float(frame)));
+            expectSameShadow(warm, computeSweepShadow(fresh, 0, o));
+        }
+        scene.setMeshTransform(2, shiftX(1.2f));
+        SweepShadow met = computeSweepShadow(scene, 0, o, &cache);
+        EXPECT_EQ(met.filling.partsFilled, 1u) << "the box's shadow on the torus's: one part";
+        EXPECT_EQ(met.filling.partsReused, 0u);
+        EXPECT_EQ(cache.filledBytes(), 0u) << "one part is not kept";
+        expectSameShadow(met, computeSweepShadow(torusAndBox(shiftX(1.2f)), 0, o));
+    }
 }
 
 // The guard of the reuse: two samples' outlines swapped leave the merged outlines, and so the

@@ -40,6 +40,9 @@ void SweepProjectionCache::drop(Set& set) {
     held_ -= set.weightedBytes;
     set.weighted.clear();
     set.weightedBytes = 0;
+    held_ -= set.partsBytes;
+    set.parts.clear();
+    set.partsBytes = 0;
 }
 
 SweepProjectionCache::Pass SweepProjectionCache::begin(int lightIndex, int cluster, const Scene& scene,
@@ -144,6 +147,21 @@ void SweepProjectionCache::Pass::weighed() {
         set.weightedBytes = 0;
     }
     cache_.held_ += set.weightedBytes;
+}
+
+FilledParts* SweepProjectionCache::Pass::filledParts() {
+    return cache_.budget_ > 0 ? &cache_.sets_.at(set_).parts : nullptr;
+}
+
+void SweepProjectionCache::Pass::filled() {
+    Set& set = cache_.sets_.at(set_);
+    cache_.held_ -= set.partsBytes;
+    set.partsBytes = set.parts.bytes();
+    if (cache_.held_ + set.partsBytes > cache_.budget_) {
+        set.parts.clear();
+        set.partsBytes = 0;
+    }
+    cache_.held_ += set.partsBytes;
 }
 
 void SweepProjectionCache::keep(int lights, int lightIndex, int clusters) {

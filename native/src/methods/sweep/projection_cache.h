@@ -1,6 +1,7 @@
 // Which shadow edges each occluder casts for each light sample, kept per mesh across renders so
-// that after an edit only the moved or edited meshes are projected again; and the weighted
-// triangles of the last shadow, so that only those near what changed are weighed again.
+// that after an edit only the moved or edited meshes are projected again; the filled parts and
+// the weighted triangles of the last shadow, so that only the parts and triangles near what
+// changed are filled and weighed again.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "methods/sweep/filled_parts.h"
 #include "methods/sweep/projection.h"
 #include "methods/sweep/receiver.h"
 #include "methods/sweep/weights.h"
@@ -28,8 +30,9 @@ struct MeshProjection {
 
 // The projections of the occluders of the last shadow computed per (light index, cluster): a
 // mesh is projected again only when its Mesh::version (a move or an edit), the receiver plane or
-// the samples changed. The same set holds the last shadow's weighted triangles (weights.h), which
-// the next shadow of the same plane and samples reuses where its outlines did not change. A set
+// the samples changed. The same set holds the last shadow's filled parts (filled_parts.h) and
+// weighted triangles (weights.h), which the next shadow of the same plane and samples reuses
+// where its outlines did not change. A set
 // keeps only the occluders of its last shadow, so a removed, moved or edited mesh's projections
 // go with the next shadow of that light; keep() drops the sets of lights and clusters the caller
 // no longer has. What is held stays within a byte budget: a mesh that does not fit is projected
@@ -39,8 +42,9 @@ class SweepProjectionCache {
 public:
     // Silhouette edges are a few thousand per sample for a 100k-triangle closed mesh (about
     // 1 MiB over 16 samples); meshes projected face by face (open ones) hold far more, and those
-    // the budget sheds.
-    static constexpr size_t kDefaultBudget = size_t(64) << 20;
+    // the budget sheds. A shadow of 300k triangles (nine such meshes) keeps about 30 MiB of
+    // filled parts and 30 MiB of weighted triangles.
+    static constexpr size_t kDefaultBudget = size_t(128) << 20;
     explicit SweepProjectionCache(size_t budgetBytes = kDefaultBudget) : budget_(budgetBytes) {}
 
     // One shadow's projections: every occluder's edges, sample by sample.
@@ -57,6 +61,9 @@ public:
         // the budget is 0); weighed() after that call keeps the new ones within the budget.
         WeightedTriangles* weighted();
         void weighed();
+        // The same for the filled parts (fillShadowParts) and filled() after that call.
+        FilledParts* filledParts();
+        void filled();
 
     private:
         friend class SweepProjectionCache;
@@ -91,6 +98,11 @@ public:
         for (const auto& [key, set] : sets_) b += set.weightedBytes;
         return b;
     }
+    size_t filledBytes() const {  // the part of bytes() the filled parts hold
+        size_t b = 0;
+        for (const auto& [key, set] : sets_) b += set.partsBytes;
+        return b;
+    }
 
 private:
     struct Set {
@@ -99,6 +111,8 @@ private:
         std::unordered_map<uint64_t, std::shared_ptr<const MeshProjection>> meshes;  // by Mesh::version
         WeightedTriangles weighted;
         size_t weightedBytes = 0;  // counted in held_
+        FilledParts parts;
+        size_t partsBytes = 0;  // counted in held_
     };
     void drop(Set& set);
     size_t budget_;

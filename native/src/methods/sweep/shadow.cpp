@@ -89,7 +89,8 @@ planar::ShadowMesh clusterShadow(const Scene& scene, int lightIndex, int cluster
     std::vector<planar::DirectedEdge> merged = planar::mergeOutlines(outlines);
     out->timings.mergeMs += msSince(t2);
     auto t3 = Clock::now();
-    planar::ShadowMesh mesh = planar::fillShadow(merged, *used, options.fill);
+    planar::ShadowMesh mesh = fillShadowParts(merged, *used, options.fill, projections.filledParts(), &out->filling);
+    projections.filled();
     out->timings.fillMs += msSince(t3);
     if (options.irradianceWeights && *used > 1) {
         auto t4 = Clock::now();

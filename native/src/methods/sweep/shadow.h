@@ -69,6 +69,7 @@ struct SweepShadow {
     int samplesUsed = 0;            // samples above the receiver plane
     ProjectionStats projection;
     WeightStats weighting;  // irradiance weights: triangles weighed, and reused from the cache
+    FillStats filling;      // parts of the shadow filled, and reused from the cache
     SweepTimings timings;
     // World position of a shadow-mesh vertex.
     glm::dvec3 worldVertex(size_t i) const {
@@ -78,9 +79,9 @@ struct SweepShadow {
 
 // `cache` (may be null: nothing kept) holds each occluder's projections from earlier shadows of
 // this light: meshes whose version, receiver plane and samples are unchanged are not projected
-// again (projection.meshesReused counts them), and shadow triangles away from what changed keep
-// their irradiance weights (weighting.trianglesReused); the result is the same either way, bit
-// for bit.
+// again (projection.meshesReused counts them), parts of the shadow whose edges did not change are
+// not filled again (filling.partsReused), and shadow triangles away from what changed keep their
+// irradiance weights (weighting.trianglesReused); the result is the same either way, bit for bit.
 SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOptions& options,
                                SweepProjectionCache* cache = nullptr);
 
