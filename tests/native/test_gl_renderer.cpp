@@ -56,6 +56,23 @@ TEST(GlRendererCache, SharedPassesAreDrawnOnceUntilTheirInputsChange) {
     EXPECT_EQ(renderer.cacheStats().frames, 2);
 }
 
+// Every GL method resolves over the camera pass on the GPU and reads back only its layers: the
+// camera pass itself (48 MB at 1024²) stays there. The sweep's raster=cpu cross-check is the one
+// reader, which shows the count counts.
+TEST(GlRendererCache, NoGlMethodReadsTheCameraPassBack) {
+    Scene scene = twoLightScene();
+    Renderer renderer(SS_BACKEND_AUTO);
+    RenderSettings settings;
+    for (const std::string& name : methodNames()) {
+        if (name == "reference") continue;
+        renderer.render(scene, 0, name, settings, nullptr);
+        EXPECT_EQ(renderer.cacheStats().cameraReadbacks, 0) << name;
+    }
+    settings.options = {{"raster", "cpu"}};
+    renderer.render(scene, 0, "sweep", settings, nullptr);
+    EXPECT_EQ(renderer.cacheStats().cameraReadbacks, 1);
+}
+
 TEST(GlRendererCache, AutoNamesTheMethodItRan) {
     Scene scene = twoLightScene();
     Renderer renderer(SS_BACKEND_AUTO);

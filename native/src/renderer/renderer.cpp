@@ -47,6 +47,7 @@ struct Renderer::Impl {
     void count(const Frame& f, CacheStats& into) const {
         into.meshUploads += f.stats().meshUploads;
         into.cameraPasses += f.stats().cameraPasses;
+        into.cameraReadbacks += f.stats().cameraReadbacks;
         into.shadowMaps += f.stats().shadowMaps;
         into.shadowMapsEvicted += f.stats().shadowMapsEvicted;
         into.shadowMapBytesPeak = std::max(into.shadowMapBytesPeak, f.stats().shadowMapBytesPeak);

@@ -55,6 +55,7 @@ public:
     struct CacheStats {
         int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0, shadowMapsEvicted = 0;
         int cameraPassesPatched = 0, shadowMapsPatched = 0;  // of those: redrawn where meshes moved only
+        int cameraReadbacks = 0;  // camera passes read back to the CPU (48 MB at 1024²)
         size_t patchTriangles = 0;  // triangles those patches drew
         int traceSceneBuilds = 0, meshBvhBuilds = 0;
         size_t shadowMapBytesPeak = 0;  // the most the cached shadow maps of one frame held
