@@ -32,10 +32,10 @@ glm::dmat4 absolute(const glm::dmat4& m) {
 
 // floor and ceil of a value above -4 (SSE2 has no rounding instruction: truncation instead of a
 // libm call).
-int floorOf(double v) { return int(v + 4.0) - 4; }
-int ceilOf(double v) {
+int floorOf(float v) { return int(v + 4.0f) - 4; }
+int ceilOf(float v) {
     const int f = floorOf(v);
-    return f < v ? f + 1 : f;
+    return float(f) < v ? f + 1 : f;
 }
 
 }  // namespace
@@ -95,14 +95,6 @@ void CoveringTriangles::project(uint32_t index, Vertex& out) const {
     out.x = float(x);
     out.y = float(y);
     out.error = float(e);
-    // Pixel centres k + 0.5 of the rectangle within the error square: k in [lx, hx].
-    const PixelRect& r = view_.rect;
-    const double cx = std::clamp(x - 0.5, double(r.x0) - 2.0, double(r.x1) + 1.0);
-    const double cy = std::clamp(y - 0.5, double(r.y0) - 2.0, double(r.y1) + 1.0);
-    out.lx = std::max(ceilOf(cx - e), r.x0);
-    out.hx = std::min(floorOf(cx + e), r.x1 - 1);
-    out.ly = std::max(ceilOf(cy - e), r.y0);
-    out.hy = std::min(floorOf(cy + e), r.y1 - 1);
 }
 
 const CoveringTriangles::Vertex& CoveringTriangles::vertex(uint32_t index) {
@@ -120,6 +112,10 @@ void CoveringTriangles::append(const std::vector<glm::uvec3>& triangles, uint32_
     // is kept): larger triangles nearly always cover one.
     constexpr int kMaxTested = 4;
     const uint32_t end = first + count;
+    // Positions are clamped a little beyond the rectangle before rounding to whole pixels.
+    const PixelRect& r = view_.rect;
+    const float left = float(r.x0) - 2.0f, right = float(r.x1) + 1.0f;
+    const float bottom = float(r.y0) - 2.0f, top = float(r.y1) + 1.0f;
     for (uint32_t t = first; t < end; ++t) {
         const glm::uvec3& tri = triangles[t];
         const Vertex& a = vertex(tri.x);
@@ -130,9 +126,13 @@ void CoveringTriangles::append(const std::vector<glm::uvec3>& triangles, uint32_
             out.push_back(t);
             continue;
         }
-        // The snapped triangle lies inside the bounding box of its vertices' error squares.
-        const int x0 = std::min({a.lx, b.lx, c.lx}), x1 = std::max({a.hx, b.hx, c.hx});
-        const int y0 = std::min({a.ly, b.ly, c.ly}), y1 = std::max({a.hy, b.hy, c.hy});
+        // The snapped triangle lies inside the bounding box of its vertices' error squares: the
+        // pixel centres k + 0.5 of the rectangle in it have k in [x0, x1] x [y0, y1].
+        const float d = std::max({a.error, b.error, c.error});
+        const int x0 = std::max(ceilOf(std::max(std::min({a.x, b.x, c.x}) - 0.5f - d, left)), r.x0);
+        const int x1 = std::min(floorOf(std::min(std::max({a.x, b.x, c.x}) - 0.5f + d, right)), r.x1 - 1);
+        const int y0 = std::max(ceilOf(std::max(std::min({a.y, b.y, c.y}) - 0.5f - d, bottom)), r.y0);
+        const int y1 = std::min(floorOf(std::min(std::max({a.y, b.y, c.y}) - 0.5f + d, top)), r.y1 - 1);
         if (x0 > x1 || y0 > y1) continue;
         if ((x1 - x0 + 1) * (y1 - y0 + 1) >= kMaxTested + 1) {
             out.push_back(t);
@@ -141,7 +141,6 @@ void CoveringTriangles::append(const std::vector<glm::uvec3>& triangles, uint32_
         // Edge functions at each candidate centre, with margins for vertices that move by up
         // to `d` in x and y: |E' - E| <= d (2 |q - a|_1 + |b - a|_1 + 4 d) for the edge a->b.
         // Either orientation counts (the pass draws both faces).
-        const float d = std::max({a.error, b.error, c.error});
         const glm::vec2 pa(a.x, a.y), pb(b.x, b.y), pc(c.x, c.y);
         const glm::vec2 ab = pb - pa, bc = pc - pb, ca = pa - pc;
         const float lab = std::abs(ab.x) + std::abs(ab.y), lbc = std::abs(bc.x) + std::abs(bc.y),

@@ -37,12 +37,11 @@ public:
                 std::vector<uint32_t>& out);
 
 private:
-    // A projected vertex: window position (GL orientation), the bound of its error in pixels,
-    // the pixel centres of the rectangle its error square reaches (lx..hx, ly..hy, may be
-    // empty) and which clip planes it is certainly outside.
+    // A projected vertex: window position (GL orientation), the bound of its error in pixels and
+    // which clip planes it is certainly outside. 16 bytes: the scratch holds one per vertex of
+    // the largest mesh.
     struct Vertex {
         float x = 0.0f, y = 0.0f, error = 0.0f;
-        int32_t lx = 0, hx = 0, ly = 0, hy = 0;
         uint32_t flags = 0;
     };
     const Vertex& vertex(uint32_t index);
