@@ -42,7 +42,8 @@ struct GpuMesh {
     gl::BufferHandle faceNormals;  // SSBO, vec4 per triangle (xyz unit in object space, 0 for degenerate)
     // Runs of consecutive triangles (kClusterTriangles each, the last fewer) with their bounds in
     // object space: a patch of a pass draws only the runs that reach its rectangle, so a small
-    // object moved beside a large mesh does not redraw all of it.
+    // object moved beside a large mesh does not redraw all of it (the camera pass, whole or
+    // patched, tests the triangles of those runs only).
     struct Cluster {
         uint32_t firstTriangle = 0, triangleCount = 0;
         Bounds bounds;
