@@ -4,6 +4,7 @@
 #include "common/mesh_placement.glsl"
 
 in vec3 vWorld;
+flat in int vTriangle;  // index within the mesh (camera/gbuffer.vert.glsl)
 
 layout(std430, binding = 0) readonly buffer FaceNormals { vec4 faceNormal[]; };
 
@@ -12,7 +13,6 @@ uniform vec3 uCameraPosition;
 uniform vec3 uCameraForward;
 uniform int uOrthographic;
 uniform int uMeshIndex;
-uniform int uFirstTriangle;  // of the draw: a patch draws runs of a mesh's triangles
 uniform float uReceives;
 
 layout(location = 0) out vec4 oPositionDepth;
@@ -21,7 +21,7 @@ layout(location = 2) out vec4 oIds;
 
 void main() {
     // The face normal from the mesh (exact), not from derivatives (noisy at grazing angles).
-    int triangle = uFirstTriangle + gl_PrimitiveID;
+    int triangle = vTriangle;
     vec3 n = meshNormalToWorld(faceNormal[triangle].xyz);
     vec3 toEye = uOrthographic != 0 ? -uCameraForward : uCameraPosition - vWorld;
     if (dot(n, toEye) < 0.0) n = -n;

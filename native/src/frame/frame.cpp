@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "core/split_two.h"
 #include "core/stopwatch.h"
 #include "gl/render_state.h"
 
@@ -83,6 +84,12 @@ std::vector<GpuMesh::Cluster> clustersOf(const Mesh& mesh) {
     return clusters;
 }
 
+// The coordinates a mesh is uploaded with (GpuMesh::positions): object space when it has a
+// transform.
+const std::vector<glm::vec3>& uploadedPositions(const Mesh& mesh) {
+    return mesh.objectPositions.empty() ? mesh.positions : mesh.objectPositions;
+}
+
 void place(GpuMesh& gm, const Mesh& mesh) {
     gm.objectToWorld = mesh.objectToWorld;
     gm.transformed = !mesh.objectPositions.empty() && mesh.objectToWorld != glm::mat4(1.0f);
@@ -110,7 +117,7 @@ const std::vector<GpuMesh>& Frame::meshes() {
             uploaded.erase(kept);
             continue;
         }
-        const std::vector<glm::vec3>& positions = mesh.objectPositions.empty() ? mesh.positions : mesh.objectPositions;
+        const std::vector<glm::vec3>& positions = uploadedPositions(mesh);
         GpuMesh gm;
         gm.meshIndex = int(i);
         gm.shapeVersion = mesh.shapeVersion;
@@ -147,6 +154,13 @@ void Frame::drawMeshes(const gl::Program& program, uint32_t requiredFlags,
 
 namespace {
 
+// Sets the uniforms of "common/mesh_placement.glsl" for mesh `m`.
+void setPlacement(const gl::Program& program, const GpuMesh& m) {
+    program.set("uTransformed", m.transformed ? 1 : 0);
+    program.set("uObjectToWorld", m.objectToWorld);
+    program.set("uNormalToWorld", m.normalToWorld);
+}
+
 // Whether the box (object space, placed by `m`) may cover a pixel of the region's rectangle; a
 // box reaching behind the eye may cover anything.
 bool reaches(const PatchRegion& region, const GpuMesh& m, const Bounds& objectBox) {
@@ -168,15 +182,12 @@ void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
     const gl::Functions& g = gl();
     auto draw = [&](uint32_t firstTriangle, uint32_t triangles) {
         if (region) stats_.patchTriangles += triangles;
-        program.set("uFirstTriangle", int(firstTriangle));
         g.DrawElements(GL_TRIANGLES, GLsizei(3 * triangles), GL_UNSIGNED_INT,
                        reinterpret_cast<const void*>(size_t(firstTriangle) * 3 * sizeof(uint32_t)));
     };
     for (const GpuMesh& m : meshes()) {
         if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0) continue;
-        program.set("uTransformed", m.transformed ? 1 : 0);
-        program.set("uObjectToWorld", m.objectToWorld);
-        program.set("uNormalToWorld", m.normalToWorld);
+        setPlacement(program, m);
         if (before) before(m);
         g.BindVertexArray(m.vao.id());
         g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.faceNormals.id());
@@ -200,14 +211,18 @@ void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
     g.BindVertexArray(0);
 }
 
-void Frame::drawFullscreen() {
-    const gl::Functions& g = gl();
+void Frame::bindEmptyVertexArray() {
     if (!emptyVao_) {
         GLuint vao = 0;
-        g.CreateVertexArrays(1, &vao);
+        gl().CreateVertexArrays(1, &vao);
         emptyVao_ = gl::VertexArrayHandle(vao);
     }
-    g.BindVertexArray(emptyVao_.id());
+    gl().BindVertexArray(emptyVao_.id());
+}
+
+void Frame::drawFullscreen() {
+    const gl::Functions& g = gl();
+    bindEmptyVertexArray();
     g.DrawArrays(GL_TRIANGLES, 0, 3);
     g.BindVertexArray(0);
 }
@@ -230,9 +245,80 @@ std::optional<PatchRegion> patchRegion(const std::optional<PixelRect>& rect, con
 
 }  // namespace
 
+void Frame::listCoveringTriangles(const Camera& camera, const PixelRect& rect) {
+    // The runs of triangles to test: per mesh, its consecutive clusters that reach the rectangle.
+    struct Run {
+        size_t mesh;
+        uint32_t first, count;
+        size_t start;  // in the sequence of tested triangles
+    };
+    const PatchRegion region{rect, camera.worldToClip(), camera.width, camera.height};
+    meshes();
+    std::vector<Run> runs;
+    size_t tested = 0;
+    for (size_t i = 0; i < meshes_.size(); ++i) {
+        const GpuMesh& m = meshes_[i];
+        if (m.indexCount == 0) continue;
+        for (const GpuMesh::Cluster& c : m.clusters) {
+            if (!reaches(region, m, c.bounds)) continue;
+            if (!runs.empty() && runs.back().mesh == i && runs.back().first + runs.back().count == c.firstTriangle)
+                runs.back().count += c.triangleCount;
+            else
+                runs.push_back(Run{i, c.firstTriangle, c.triangleCount, tested});
+            tested += c.triangleCount;
+        }
+    }
+    // Two halves of the sequence, each with its own scratch: listed_[0] then listed_[1] is the
+    // list in order, mesh after mesh.
+    std::vector<size_t> perMesh[2] = {std::vector<size_t>(meshes_.size(), 0), std::vector<size_t>(meshes_.size(), 0)};
+    listed_[0].clear();
+    listed_[1].clear();
+    splitTwo(tested, [&](size_t begin, size_t end) {
+        const int part = begin == 0 ? 0 : 1;
+        std::vector<uint32_t>& out = listed_[part];
+        size_t mesh = meshes_.size();
+        for (const Run& run : runs) {
+            const size_t from = std::max(begin, run.start), to = std::min(end, run.start + run.count);
+            if (from >= to) continue;
+            const GpuMesh& m = meshes_[run.mesh];
+            const Mesh& sceneMesh = scene_->meshes()[size_t(m.meshIndex)];
+            if (run.mesh != mesh) {
+                coverage_[part].beginMesh(CoverageView{camera.worldToClip(), m.transformed, m.objectToWorld,
+                                                       camera.width, camera.height, rect},
+                                          uploadedPositions(sceneMesh));
+                mesh = run.mesh;
+            }
+            const size_t before = out.size();
+            coverage_[part].append(sceneMesh.triangles, run.first + uint32_t(from - run.start), uint32_t(to - from), out);
+            perMesh[part][run.mesh] += out.size() - before;
+        }
+    });
+    listedRanges_.clear();
+    size_t first = 0;
+    for (size_t i = 0; i < meshes_.size(); ++i) {
+        const size_t count = perMesh[0][i] + perMesh[1][i];
+        listedRanges_.emplace_back(first, count);
+        first += count;
+    }
+}
+
 void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect) {
     const gl::Functions& g = gl();
     const Camera& cam = camera();
+    listCoveringTriangles(cam, rect ? *rect : PixelRect{0, 0, pass.width, pass.height});
+    const size_t listed = listed_[0].size() + listed_[1].size();
+    stats_.cameraPassTriangles += listed;
+    if (rect) stats_.patchTriangles += listed;
+    if (listed > listedCapacity_) {
+        listedCapacity_ = listed + listed / 4;
+        listedBuffer_ = gl::makeBuffer(nullptr, listedCapacity_ * sizeof(uint32_t), true);
+    }
+    const GLsizeiptr bytes0 = GLsizeiptr(listed_[0].size() * sizeof(uint32_t));
+    if (!listed_[0].empty()) g.NamedBufferSubData(listedBuffer_.id(), 0, bytes0, listed_[0].data());
+    if (!listed_[1].empty())
+        g.NamedBufferSubData(listedBuffer_.id(), bytes0, GLsizeiptr(listed_[1].size() * sizeof(uint32_t)),
+                             listed_[1].data());
+
     const gl::Framebuffer& fb = pass.framebuffer;
     fb.bind();
     scissor(g, rect);
@@ -242,7 +328,7 @@ void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rec
     fb.clearDepth(1.0f);
     gl::apply(gl::states::opaque);
 
-    const gl::Program& prog = gl::program("common/mesh.vert.glsl", "camera/gbuffer.frag.glsl");
+    const gl::Program& prog = gl::program("camera/gbuffer.vert.glsl", "camera/gbuffer.frag.glsl");
     prog.use();
     glm::mat4 cameraToWorld = glm::inverse(cam.worldToCamera);
     prog.set("uWorldToClip", cam.worldToClip());
@@ -250,10 +336,21 @@ void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rec
     prog.set("uCameraPosition", glm::vec3(cameraToWorld[3]));
     prog.set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
     prog.set("uOrthographic", cam.isOrthographic() ? 1 : 0);
-    drawMeshesWhere(prog, 0, patchRegion(rect, cam.worldToClip(), pass.width, pass.height), [&](const GpuMesh& m) {
+    bindEmptyVertexArray();
+    if (listed > 0) g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, listedBuffer_.id());
+    for (size_t i = 0; i < meshes_.size(); ++i) {
+        const auto [first, count] = listedRanges_[i];
+        if (count == 0) continue;
+        const GpuMesh& m = meshes_[i];
+        setPlacement(prog, m);
         prog.set("uMeshIndex", m.meshIndex);
         prog.set("uReceives", m.receives() ? 1.0f : 0.0f);
-    });
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.faceNormals.id());
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.indices.id());
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.positions.id());
+        g.DrawArrays(GL_TRIANGLES, GLint(3 * first), GLsizei(3 * count));
+    }
+    g.BindVertexArray(0);
     g.Disable(GL_SCISSOR_TEST);
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing the camera pass");

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "frame/covering_triangles.h"
 #include "frame/moved_region.h"
 #include "gl/framebuffer.h"
 #include "gl/gl_functions.h"
@@ -41,7 +42,8 @@ struct GpuMesh {
     gl::BufferHandle faceNormals;  // SSBO, vec4 per triangle (xyz unit in object space, 0 for degenerate)
     // Runs of consecutive triangles (kClusterTriangles each, the last fewer) with their bounds in
     // object space: a patch of a pass draws only the runs that reach its rectangle, so a small
-    // object moved beside a large mesh does not redraw all of it.
+    // object moved beside a large mesh does not redraw all of it (the camera pass, whole or
+    // patched, tests the triangles of those runs only).
     struct Cluster {
         uint32_t firstTriangle = 0, triangleCount = 0;
         Bounds bounds;
@@ -127,6 +129,9 @@ struct FrameStats {
     int cameraPassesPatched = 0, shadowMapsPatched = 0;
     // Triangles those patches drew (only the clusters that reach their rectangles).
     size_t patchTriangles = 0;
+    // Triangles the camera passes drew, whole or patched: only those that may cover a pixel
+    // centre of the redrawn rectangle (CoveringTriangles).
+    size_t cameraPassTriangles = 0;
 };
 
 class Frame {
@@ -197,17 +202,23 @@ public:
 
 private:
     void bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const;
+    // Binds a vertex array with no attributes (draws that make their vertices from gl_VertexID).
+    void bindEmptyVertexArray();
     // Drops the camera pass and shadow maps whose inputs changed since they were drawn; after
     // moves alone the passes are kept and patched where the moved meshes were and are.
     void dropStalePasses();
     std::vector<MeshPlacement> placements() const;  // of the scene's meshes now
     // Draws the camera pass (or the shadow map) into its own targets, inside `rect` only when
-    // one is given.
+    // one is given. The camera pass draws only the triangles that may cover a pixel centre of
+    // the rectangle (listCoveringTriangles), fetched by camera/gbuffer.vert.glsl.
     void drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect);
+    // Lists, per mesh in meshes_ order, the triangles of its clusters that reach `rect` that may
+    // cover one of its pixel centres: listed_[0] then listed_[1] (two threads list a half each),
+    // and listedRanges_ gives each mesh's run in that sequence.
+    void listCoveringTriangles(const Camera& camera, const PixelRect& rect);
     void drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect);
     // Draws as drawMeshes does; with a region, only the clusters whose bounds, where their mesh
-    // is now, may cover a pixel of its rectangle (uFirstTriangle tells the shader which triangle
-    // a run starts at: gl_PrimitiveID restarts with every draw).
+    // is now, may cover a pixel of its rectangle.
     void drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
                          const std::optional<PatchRegion>& region,
                          const std::function<void(const GpuMesh&)>& before);
@@ -230,6 +241,11 @@ private:
     std::map<std::pair<uint64_t, int>, CachedShadowMap> shadowMaps_;  // (Light::version, size)
     uint64_t useClock_ = 0;
     gl::VertexArrayHandle emptyVao_;
+    CoveringTriangles coverage_[2];
+    std::vector<uint32_t> listed_[2];                       // triangle indices, mesh after mesh
+    std::vector<std::pair<size_t, size_t>> listedRanges_;  // per mesh: first, count in listed_
+    gl::BufferHandle listedBuffer_;
+    size_t listedCapacity_ = 0;                             // uint32 entries listedBuffer_ holds
     FrameStats stats_;
     TraceSceneCache traceScenes_;
 };

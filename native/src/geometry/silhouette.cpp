@@ -3,27 +3,14 @@
 #include "geometry/silhouette.h"
 
 #include <algorithm>
-#include <thread>
+
+#include "core/split_two.h"
 
 namespace ss {
 
 namespace {
 
 bool degenerate(const glm::vec3& n) { return n.x == 0.0f && n.y == 0.0f && n.z == 0.0f; }
-
-// Runs body(begin, end) over [0, count) on two threads when the work is large enough to pay
-// for a thread start (about 20 µs against ~1 ns per face).
-template <class Body>
-void splitTwo(size_t count, Body body) {
-    if (count < 50000) {
-        body(size_t(0), count);
-        return;
-    }
-    size_t half = count / 2;
-    std::thread other([&] { body(half, count); });
-    body(size_t(0), half);
-    other.join();
-}
 
 // Builds an oriented silhouette edge. `front` is the face of the "more front" class (kNoFace
 // when the edge's faces hold none, only possible for an open edge), `back` the other.

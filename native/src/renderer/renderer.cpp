@@ -54,6 +54,7 @@ struct Renderer::Impl {
         into.cameraPassesPatched += f.stats().cameraPassesPatched;
         into.shadowMapsPatched += f.stats().shadowMapsPatched;
         into.patchTriangles += f.stats().patchTriangles;
+        into.cameraPassTriangles += f.stats().cameraPassTriangles;
         into.uploadMs += f.stats().uploadMs;
         into.cameraPassMs += f.stats().cameraPassMs;
         into.shadowMapMs += f.stats().shadowMapMs;

@@ -57,6 +57,7 @@ public:
         int cameraPassesPatched = 0, shadowMapsPatched = 0;  // of those: redrawn where meshes moved only
         int cameraReadbacks = 0;  // camera passes read back to the CPU (48 MB at 1024²)
         size_t patchTriangles = 0;  // triangles those patches drew
+        size_t cameraPassTriangles = 0;  // triangles the camera passes drew (FrameStats)
         int traceSceneBuilds = 0, meshBvhBuilds = 0;
         size_t shadowMapBytesPeak = 0;  // the most the cached shadow maps of one frame held
         // Milliseconds: mesh uploads, camera passes and shadow maps drawn (until the GL finished

@@ -1,0 +1,138 @@
+// Is the camera pass, drawn from only the triangles that may cover a pixel centre, the pass drawn
+// from every triangle bit for bit (positions, normals, ids and depth), whole and patched?
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cstring>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "frame/frame.h"
+#include "gl/framebuffer.h"
+#include "gl/program.h"
+#include "gl/render_state.h"
+#include "gl/render_thread.h"
+#include "test_scenes.h"
+
+namespace ss {
+namespace {
+
+constexpr uint32_t kBoth = SS_MESH_CAST | SS_MESH_RECEIVE;
+
+struct GBuffer {
+    std::vector<glm::vec4> colour[3];
+    Image depth;
+};
+
+GBuffer read(const gl::Framebuffer& fb) {
+    GBuffer out;
+    for (int i = 0; i < 3; ++i) out.colour[i] = fb.readRgba(i);
+    out.depth = fb.readDepth();
+    return out;
+}
+
+// The camera pass drawn the plain way: every triangle of every mesh, one indexed draw per mesh
+// (tests/shaders/camera/every_triangle.frag.glsl).
+GBuffer drawEveryTriangle(Frame& frame, const Camera& cam) {
+    gl::Framebuffer fb(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
+    fb.bind();
+    fb.clearColor(0, glm::vec4(0.0f));
+    fb.clearColor(1, glm::vec4(0.0f));
+    fb.clearColor(2, glm::vec4(-1.0f, -1.0f, 0.0f, 0.0f));
+    fb.clearDepth(1.0f);
+    gl::apply(gl::states::opaque);
+    const gl::Program& p = gl::program("common/mesh.vert.glsl", "camera/every_triangle.frag.glsl");
+    p.use();
+    const glm::mat4 cameraToWorld = glm::inverse(cam.worldToCamera);
+    p.set("uWorldToClip", cam.worldToClip());
+    p.set("uWorldToView", cam.worldToCamera);
+    p.set("uCameraPosition", glm::vec3(cameraToWorld[3]));
+    p.set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
+    p.set("uOrthographic", cam.isOrthographic() ? 1 : 0);
+    frame.drawMeshes(p, 0, [&](const GpuMesh& m) {
+        p.set("uMeshIndex", m.meshIndex);
+        p.set("uReceives", m.receives() ? 1.0f : 0.0f);
+    });
+    GBuffer out = read(fb);
+    frame.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
+    return out;
+}
+
+// Floats (of the three colours and the depth) whose bits differ.
+size_t differences(const GBuffer& a, const GBuffer& b) {
+    size_t n = 0;
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(a.colour[i].size(), b.colour[i].size());
+        for (size_t p = 0; p < std::min(a.colour[i].size(), b.colour[i].size()); ++p)
+            n += std::memcmp(&a.colour[i][p], &b.colour[i][p], sizeof(glm::vec4)) != 0;
+    }
+    EXPECT_EQ(a.depth.pixels.size(), b.depth.pixels.size());
+    for (size_t p = 0; p < std::min(a.depth.pixels.size(), b.depth.pixels.size()); ++p)
+        n += std::memcmp(&a.depth.pixels[p], &b.depth.pixels[p], sizeof(float)) != 0;
+    return n;
+}
+
+// A dense torus and sphere (most triangles smaller than a pixel at 80 x 60) with a box and a
+// ground; the sphere does not receive.
+Scene denseScene() {
+    Scene s;
+    s.addMesh(test::makeGround(6.0f, 0.0f, kBoth));
+    s.addMesh(test::makeTorus({0.3f, 0.2f, 0.8f}, 1.2f, 0.4f, 256, 128, kBoth));
+    s.addMesh(test::makeUvSphere({-1.5f, -1.0f, 0.6f}, 0.5f, 96, 192, SS_MESH_CAST));
+    s.addMesh(test::makeBox({1.2f, -1.8f, 0.0f}, {1.8f, -1.2f, 0.5f}, kBoth));
+    s.addLight(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f));
+    s.setCamera(test::makeTopCamera(80, 60));
+    return s;
+}
+
+size_t triangleCount(const Scene& s) {
+    size_t n = 0;
+    for (const Mesh& m : s.meshes()) n += m.triangles.size();
+    return n;
+}
+
+TEST(CameraPassCoverage, TheListedTrianglesDrawTheSamePassAsEveryTriangle) {
+    Scene scene = denseScene();
+    const size_t total = triangleCount(scene);
+    gl::RenderThread thread(SS_BACKEND_AUTO);
+    thread.run([&] {
+        Frame frame(scene);
+        auto check = [&](const char* view) {
+            const size_t before = frame.stats().cameraPassTriangles;
+            const GBuffer pass = read(frame.cameraPass().framebuffer);
+            const size_t drawn = frame.stats().cameraPassTriangles - before;
+            EXPECT_EQ(differences(pass, drawEveryTriangle(frame, scene.camera())), 0u) << view;
+            return drawn;
+        };
+        // From above: the torus and the sphere are mostly sub-pixel triangles, left out.
+        EXPECT_LT(check("from above"), total / 3);
+
+        // Low inside the scene: the ground crosses the near plane and reaches behind the eye.
+        scene.setCamera(makeLookAtCamera({-3.5f, -3.0f, 0.25f}, {0.3f, 0.2f, 0.6f}, {0, 0, 1}, glm::radians(60.0f), 80,
+                                         60, 0.5f, 40.0f));
+        check("low, near plane crossing the ground");
+
+        // Orthographic, looking along a slant.
+        Camera ortho;
+        ortho.worldToCamera = glm::lookAt(glm::vec3(4.0f, -5.0f, 4.0f), glm::vec3(0.0f), glm::vec3(0, 0, 1));
+        ortho.projection = glm::ortho(-3.0f, 3.0f, -2.25f, 2.25f, 0.1f, 30.0f);
+        ortho.width = 96;
+        ortho.height = 72;
+        scene.setCamera(ortho);
+        ASSERT_TRUE(scene.camera().isOrthographic());
+        check("orthographic");
+
+        // The torus turned and moved by its matrix: the pass is patched where it was and is.
+        scene.setCamera(test::makeTopCamera(80, 60));
+        check("from above again");
+        const int patched = frame.stats().cameraPassesPatched;
+        scene.setMeshTransform(1, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-0.4f, 0.3f, 0.2f)), 0.4f,
+                                              glm::vec3(0.3f, 0.2f, 1.0f)));
+        frame.setScene(scene);
+        check("torus moved by its matrix");
+        EXPECT_EQ(frame.stats().cameraPassesPatched, patched + 1);
+    });
+}
+
+}  // namespace
+}  // namespace ss
