@@ -134,5 +134,22 @@ TEST(CameraPassCoverage, TheListedTrianglesDrawTheSamePassAsEveryTriangle) {
     });
 }
 
+// What a GPU gets (Frame::CameraCulling::Clusters): every triangle of the clusters that reach
+// the rectangle, the same pass; and Auto on this machine's llvmpipe tests each triangle.
+TEST(CameraPassCoverage, AGpuIsHandedEveryTriangleOfTheClustersAndDrawsTheSamePass) {
+    Scene scene = denseScene();
+    const size_t total = triangleCount(scene);
+    gl::RenderThread thread(SS_BACKEND_AUTO);
+    thread.run([&] {
+        Frame tested(scene), clusters(scene);
+        clusters.setCameraCulling(Frame::CameraCulling::Clusters);
+        const GBuffer a = read(tested.cameraPass().framebuffer);
+        const GBuffer b = read(clusters.cameraPass().framebuffer);
+        EXPECT_EQ(differences(a, b), 0u);
+        EXPECT_LT(tested.stats().cameraPassTriangles, total / 3) << "llvmpipe: each triangle tested";
+        EXPECT_EQ(clusters.stats().cameraPassTriangles, total) << "every mesh is in view from above";
+    });
+}
+
 }  // namespace
 }  // namespace ss

@@ -273,7 +273,18 @@ void Frame::listCoveringTriangles(const Camera& camera, const PixelRect& rect) {
     std::vector<size_t> perMesh[2] = {std::vector<size_t>(meshes_.size(), 0), std::vector<size_t>(meshes_.size(), 0)};
     listed_[0].clear();
     listed_[1].clear();
-    splitTwo(tested, [&](size_t begin, size_t end) {
+    if (culling_ == CameraCulling::Auto) {
+        const GLubyte* name = gl().GetString(GL_RENDERER);
+        const std::string renderer = name ? reinterpret_cast<const char*>(name) : "";
+        culling_ = renderer.find("llvmpipe") != std::string::npos ? CameraCulling::EachTriangle
+                                                                  : CameraCulling::Clusters;
+    }
+    if (culling_ == CameraCulling::Clusters)
+        for (const Run& run : runs) {
+            for (uint32_t t = run.first; t < run.first + run.count; ++t) listed_[0].push_back(t);
+            perMesh[0][run.mesh] += run.count;
+        }
+    auto testEach = [&](size_t begin, size_t end) {
         const int part = begin == 0 ? 0 : 1;
         std::vector<uint32_t>& out = listed_[part];
         size_t mesh = meshes_.size();
@@ -292,7 +303,8 @@ void Frame::listCoveringTriangles(const Camera& camera, const PixelRect& rect) {
             coverage_[part].append(sceneMesh.triangles, run.first + uint32_t(from - run.start), uint32_t(to - from), out);
             perMesh[part][run.mesh] += out.size() - before;
         }
-    });
+    };
+    if (culling_ == CameraCulling::EachTriangle) splitTwo(tested, testEach);
     listedRanges_.clear();
     size_t first = 0;
     for (size_t i = 0; i < meshes_.size(); ++i) {

@@ -148,6 +148,15 @@ public:
 
     const Scene& scene() const { return *scene_; }
     const Camera& camera() const { return scene_->camera(); }
+    // Which triangles the camera pass hands to GL. EachTriangle: those a CPU test finds may
+    // cover a pixel centre (CoveringTriangles): on llvmpipe every triangle handed to a draw
+    // costs about 0.1 µs, several times the test. Clusters: every triangle of the clusters that
+    // reach the redrawn rectangle: a GPU draws 1M triangles in about a millisecond, less than the
+    // test takes. Auto (the default): EachTriangle when GL_RENDERER names llvmpipe (whose
+    // sub-pixel snapping, 1/256 pixel, the test's margins are made for), else Clusters. The pass
+    // is the same bit for bit either way.
+    enum class CameraCulling { Auto, EachTriangle, Clusters };
+    void setCameraCulling(CameraCulling culling) { culling_ = culling; }
     // The same scene (same id) after edits: passes whose inputs changed are redrawn on their
     // next use, the rest are kept (a mesh's buffers by its version, a shadow map by its light's
     // version and the geometry version, the camera pass by the camera and geometry versions).
@@ -241,6 +250,7 @@ private:
     std::map<std::pair<uint64_t, int>, CachedShadowMap> shadowMaps_;  // (Light::version, size)
     uint64_t useClock_ = 0;
     gl::VertexArrayHandle emptyVao_;
+    CameraCulling culling_ = CameraCulling::Auto;  // Auto until the first camera pass resolves it
     CoveringTriangles coverage_[2];
     std::vector<uint32_t> listed_[2];                       // triangle indices, mesh after mesh
     std::vector<std::pair<size_t, size_t>> listedRanges_;  // per mesh: first, count in listed_
