@@ -152,14 +152,17 @@ def render_floor(scene, method, live):
 
 def preview_request(scenes, camera):
     """Seconds to the coarse and to the full image of a request with no edit (at a new camera:
-    a new view), and the seconds of the camera passes it drew."""
+    a new view), and the seconds of the camera pass each image drew."""
     t0 = time.perf_counter()
-    images = []
-    before = native.cache_stats()
-    preview.progressive_job(scenes, {"coarse": [], "full": []}, [], camera, lambda: False,
-                            lambda rgba: images.append(time.perf_counter()))
-    camera_passes = stats_delta(before, native.cache_stats())["camera_pass_ms"] / 1e3
-    return images[0] - t0, images[1] - t0, camera_passes
+    images, passes_ms = [], [native.cache_stats()["camera_pass_ms"]]
+
+    def deliver(rgba):
+        images.append(time.perf_counter())
+        passes_ms.append(native.cache_stats()["camera_pass_ms"])
+
+    preview.progressive_job(scenes, {"coarse": [], "full": []}, [], camera, lambda: False, deliver)
+    return (images[0] - t0, images[1] - t0, (passes_ms[1] - passes_ms[0]) / 1e3,
+            (passes_ms[2] - passes_ms[1]) / 1e3)
 
 
 def preview_frame(scene, mover, scenes, camera):
@@ -208,8 +211,8 @@ def orbit_frame(scene, scenes, step):
     t0 = time.perf_counter()
     camera = scene_export.scene_camera(scene, bpy.context.evaluated_depsgraph_get(), 960, 540)
     view = time.perf_counter() - t0
-    coarse, full, camera_passes = preview_request(scenes, camera)
-    return view + coarse, view + full, camera_passes
+    coarse, full, coarse_pass, full_pass = preview_request(scenes, camera)
+    return view + coarse, view + full, coarse_pass, full_pass
 
 
 def p95(values):
@@ -262,7 +265,7 @@ for tori in torus_counts:
         preview_rows.append((method, statistics.median(coarse), p95(coarse), statistics.median(latencies),
                              p95(latencies), stages, stages_floor,
                              tuple(f([o[k] for o in orbit]) for k in (0, 1) for f in (statistics.median, p95))
-                             + (statistics.median(o[2] for o in orbit),)))
+                             + tuple(statistics.median(o[k] for o in orbit) for k in (2, 3))))
         print("BENCH preview %d tris %s: coarse median %.3f s p95 %.3f s, full median %.3f s p95 %.3f s, "
               "full render alone %.3f s, floor coarse %.3f s full %.3f s" % (triangles, method, *preview_rows[-1][1:5],
                                                                  stages["full render"], *stages_floor),
@@ -349,11 +352,16 @@ with open(out_path, "w") as f:
                     + " | ".join("%.3f" % stages[k] for k in PREVIEW_COLUMNS) + " |\n")
         f.write("\nA camera orbit (%d views, each turned 2° about the vertical axis from the last; nothing "
                 "moved: the camera pass is redrawn whole, the shadow maps are kept), view-to-overlay seconds "
-                "(the same targets), and the median seconds of the two camera passes a view draws (the coarse "
-                "image's and the full one's, until the GL finished them):\n\n" % (2 * frames))
-        f.write("| method | coarse median | coarse p95 | full median | full p95 | camera passes |\n"
-                "|---|---|---|---|---|---|\n")
+                "(the same targets); the median seconds of the camera pass each image draws (until the GL "
+                "finished it); the floors of a new view: the request with no edit above plus the camera "
+                "passes it draws (the coarse image's, and for the full image both):\n\n" % (2 * frames))
+        f.write("| method | coarse median | coarse p95 | coarse camera pass | coarse floor | full median | full p95 "
+                "| full camera pass | full floor |\n|---|---|---|---|---|---|---|---|---|\n")
         for row in preview_rows:
-            f.write("| %s | %.3f | %.3f | %.3f | %.3f | %.3f |\n" % (row[0], *row[7]))
+            coarse_median, coarse_high, full_median, full_high, coarse_pass, full_pass = row[7]
+            floor = row[6]
+            f.write("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f |\n"
+                    % (row[0], coarse_median, coarse_high, coarse_pass, floor[0] + coarse_pass, full_median,
+                       full_high, full_pass, floor[1] + coarse_pass + full_pass))
         f.write("\n")
 print("BENCH-WARM-OK")
