@@ -140,13 +140,7 @@ WeightedTriangles* SweepProjectionCache::Pass::weighted() {
 
 void SweepProjectionCache::Pass::weighed() {
     Set& set = cache_.sets_.at(set_);
-    cache_.held_ -= set.weightedBytes;
-    set.weightedBytes = set.weighted.bytes();
-    if (cache_.held_ + set.weightedBytes > cache_.budget_) {
-        set.weighted.clear();
-        set.weightedBytes = 0;
-    }
-    cache_.held_ += set.weightedBytes;
+    cache_.recount(set.weighted, set.weightedBytes);
 }
 
 FilledParts* SweepProjectionCache::Pass::filledParts() {
@@ -155,13 +149,7 @@ FilledParts* SweepProjectionCache::Pass::filledParts() {
 
 void SweepProjectionCache::Pass::filled() {
     Set& set = cache_.sets_.at(set_);
-    cache_.held_ -= set.partsBytes;
-    set.partsBytes = set.parts.bytes();
-    if (cache_.held_ + set.partsBytes > cache_.budget_) {
-        set.parts.clear();
-        set.partsBytes = 0;
-    }
-    cache_.held_ += set.partsBytes;
+    cache_.recount(set.parts, set.partsBytes);
 }
 
 void SweepProjectionCache::keep(int lights, int lightIndex, int clusters) {

@@ -115,6 +115,18 @@ private:
         size_t partsBytes = 0;  // counted in held_
     };
     void drop(Set& set);
+    // Counts what `kept` holds now in place of the `counted` bytes it held, or clears it when
+    // that does not fit the budget.
+    template <class Kept>
+    void recount(Kept& kept, size_t& counted) {
+        held_ -= counted;
+        counted = kept.bytes();
+        if (held_ + counted > budget_) {
+            kept.clear();
+            counted = 0;
+        }
+        held_ += counted;
+    }
     size_t budget_;
     size_t held_ = 0;
     std::map<std::pair<int, int>, Set> sets_;  // by (light index, cluster)
