@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <utility>
 
 #include <OpenEXR/openexr.h>
 
@@ -71,8 +72,25 @@ DeclaredSize readDeclaredSize(const std::string& path) {
     return d;
 }
 
-// OpenEXR's C++ reader allocates each header attribute at its declared size before reading it:
-// walk the header(s) first and refuse an attribute larger than the rest of the file.
+// The bytes OpenEXR's reader takes for a value of a fixed-size type, whatever the header declares
+// (0: the type's size is the declared one, or is found by reading it: chlist, preview).
+size_t fixedValueBytes(const std::string& type) {
+    static const std::pair<const char*, size_t> kSizes[] = {
+        {"box2i", 16}, {"box2f", 16},   {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
+        {"double", 8}, {"envmap", 1},   {"float", 4},           {"int", 4},         {"keycode", 28},
+        {"lineOrder", 1}, {"m33f", 36}, {"m33d", 72},           {"m44f", 64},       {"m44d", 128},
+        {"rational", 8}, {"tiledesc", 9}, {"timecode", 8},      {"v2i", 8},         {"v2f", 8},
+        {"v2d", 16},   {"v3i", 12},     {"v3f", 12},            {"v3d", 24}};
+    for (const auto& [name, bytes] : kSizes)
+        if (type == name) return bytes;
+    return 0;
+}
+
+// OpenEXR's C++ reader allocates each header attribute at its declared size before reading it,
+// and reads a value of a fixed-size type, a channel list or a preview by its own length, not the
+// declared one: walk the header(s) first as it does, and refuse an attribute larger than the rest
+// of the file or whose declared size is not what the reader will take (after it, the two would
+// part and the reader would take later bytes for sizes).
 void checkAttributeSizes(const std::string& path, uint64_t fileBytes) {
     auto bad = [&](const std::string& what) { fail(SS_ERROR_IO, "cannot read EXR '" + path + "': " + what); };
     constexpr uint64_t kMaxHeaderBytes = 16u << 20;
@@ -100,7 +118,9 @@ void checkAttributeSizes(const std::string& path, uint64_t fileBytes) {
         size_t nameAt = at;
         token("attribute name");
         std::string name = head.substr(nameAt, at - nameAt - 1);
+        const size_t typeAt = at;
         token("attribute type");
+        const std::string type = head.substr(typeAt, at - typeAt - 1);
         if (at + 4 > head.size()) bad("its header ends inside attribute '" + name + "'");
         int32_t size = 0;
         std::memcpy(&size, head.data() + at, 4);
@@ -109,6 +129,26 @@ void checkAttributeSizes(const std::string& path, uint64_t fileBytes) {
             bad("header attribute '" + name + "' declares " + std::to_string(size) + " bytes, more than the " +
                 std::to_string(fileBytes - at) + " left in the file");
         if (at + size_t(size) > head.size()) bad("its header is longer than 16 MiB");
+        size_t taken = fixedValueBytes(type);
+        if (type == "chlist") {
+            // Entries of a name and 16 bytes, up to an empty name.
+            size_t p = at;
+            while (p < at + size_t(size) && head[p] != '\0') {
+                const size_t end = head.find('\0', p);
+                if (end == std::string::npos) break;
+                p = end + 1 + 16;
+            }
+            taken = p + 1 - at;
+        } else if (type == "preview" && size >= 8) {
+            uint32_t w = 0, h = 0;
+            std::memcpy(&w, head.data() + at, 4);
+            std::memcpy(&h, head.data() + at + 4, 4);
+            const uint64_t pixels = uint64_t(w) * uint64_t(h);  // below 2^64
+            taken = pixels > fileBytes ? size_t(size) + 1 : size_t(8 + 4 * pixels);
+        }
+        if (taken != 0 && taken != size_t(size))
+            bad("header attribute '" + name + "' of type '" + type + "' declares " + std::to_string(size) +
+                " bytes where its value takes " + std::to_string(taken));
         at += size_t(size);
     }
     if (at >= head.size()) bad("its header ends early (or is longer than 16 MiB)");
