@@ -1,11 +1,8 @@
-// How a shadow is filled part by part, a part whose edges the last fill had taken from it.
+// How a shadow is filled part by part, a part whose edges did not change taken from the last fill.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "methods/sweep/filled_parts.h"
 
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <algorithm>
 #include <unordered_map>
 #include <utility>
 
