@@ -13,11 +13,23 @@ uniform float uMaxSearchUv;   // cap on the blocker-search radius, in map widths
 
 layout(location = 0) out vec4 oResult;  // V, mask, mean blocker distance (0 none), kernel radius (texels)
 
-// Sample i of n on a unit disk (Vogel spiral: even density), turned by phi.
-vec2 diskSample(int i, int n, float phi) {
-    float r = sqrt((float(i) + 0.5) / float(n));
-    float a = float(i) * 2.39996323 + phi;
-    return r * vec2(cos(a), sin(a));
+// Samples on a unit disk along a Vogel spiral (even density), turned by a per-pixel angle.
+// Each sample's direction is the last one turned by the golden angle: a rotation costs four
+// multiply-adds where cos and sin per sample made the loops several times slower on llvmpipe.
+struct DiskWalk {
+    vec2 dir;   // direction of the next sample
+    int n;
+};
+
+const vec2 kGoldenTurn = vec2(-0.73736887, 0.67549029);  // cos, sin of 2.39996323 rad
+
+DiskWalk diskWalk(int n, float phi) { return DiskWalk(vec2(cos(phi), sin(phi)), n); }
+
+// Sample i of the walk (called for i = 0, 1, 2 ...).
+vec2 nextDiskSample(inout DiskWalk w, int i) {
+    vec2 d = sqrt((float(i) + 0.5) / float(w.n)) * w.dir;
+    w.dir = vec2(w.dir.x * kGoldenTurn.x - w.dir.y * kGoldenTurn.y, w.dir.x * kGoldenTurn.y + w.dir.y * kGoldenTurn.x);
+    return d;
 }
 
 // The map's width in world units at map quantity d.
@@ -53,12 +65,12 @@ void main() {
 
     float sum = 0.0;
     int found = 0;
+    DiskWalk search = diskWalk(uBlockerSamples, phi);
     for (int i = 0; i < uBlockerSamples; ++i) {
-        vec2 q = uv + searchUv * diskSample(i, uBlockerSamples, phi);
+        vec2 q = uv + searchUv * nextDiskSample(search, i);
         ivec2 t = shadowTexel(q);
         float z = texelFetch(uShadowDistance, t, 0).r;
-        float expect = receiverDistanceAt(rp, (vec2(t) + 0.5) / uShadowSize, dP);
-        if (z < expect - receiverTolerance(expect)) {
+        if (inFrontOfReceiver(rp, t, z, dP)) {
             sum += z;
             ++found;
         }
@@ -77,15 +89,22 @@ void main() {
     // part of the light below P's horizon weighs nothing.
     // Without it, curved occluders got V ~ 0.6 along their terminators where the truth is 1:
     // the samples "blocked" there by the occluder itself are light the point cannot see anyway.
-    vec3 right = normalize(uShadowRayBasis[0]), up = normalize(uShadowRayBasis[1]);
+    // With toL = A + d.x B + d.y C (B, C the light's radius along the map's right and up, which
+    // are orthogonal), cos and r^2 per sample are a few multiply-adds of per-pixel dot products.
+    vec3 A = uShadowOrigin - s.position;
+    vec3 B = uLightSize * normalize(uShadowRayBasis[0]), C = uLightSize * normalize(uShadowRayBasis[1]);
+    vec3 nABC = vec3(dot(s.normal, A), dot(s.normal, B), dot(s.normal, C));
+    float aa = dot(A, A), bb = uLightSize * uLightSize;
+    vec2 ab2 = 2.0 * vec2(dot(A, B), dot(A, C));
     float lit = 0.0, total = 0.0;
+    DiskWalk kernel = diskWalk(uPcfSamples, phi);
     for (int i = 0; i < uPcfSamples; ++i) {
-        vec2 d = diskSample(i, uPcfSamples, phi);
+        vec2 d = nextDiskSample(kernel, i);
         float w = 1.0;
         if (uShadowOrthographic == 0) {
-            vec3 toL = uShadowOrigin + uLightSize * (d.x * right + d.y * up) - s.position;
-            float r2 = max(dot(toL, toL), 1e-12);
-            w = max(dot(s.normal, toL), 0.0) / (r2 * sqrt(r2));
+            float r2 = max(aa + dot(d, ab2) + bb * dot(d, d), 1e-12);
+            float inv = inversesqrt(r2);
+            w = max(nABC.x + dot(d, nABC.yz), 0.0) * inv * inv * inv;
         }
         total += w;
         if (w > 0.0 && !blockedAtTexel(rp, shadowTexel(uv + filterUv * d), dP)) lit += w;

@@ -27,35 +27,35 @@ ReceiverPlane receiverPlane(vec3 P, vec3 N) {
     return rp;
 }
 
-// The map's stored quantity for the receiver plane along the ray through uv. Where the ray
-// grazes the plane (beyond ~85 degrees) the plane is taken as tilted no further than that: the
-// exact answer runs to infinity there and makes a curved receiver's own neighbouring facets
-// shadow it (acne along terminators). Where the ray meets the plane behind the light, the
-// answer is `fallback`.
-float receiverDistanceAt(ReceiverPlane rp, vec2 uv, float fallback) {
-    vec2 ndc = uv * 2.0 - 1.0;
-    if (uShadowOrthographic != 0) {
-        // Ray origin O + B0 x + B1 y, direction = axis; the stored quantity is t itself.
-        float t = (rp.k - rp.dots.x * ndc.x - rp.dots.y * ndc.y) / min(rp.dots.z, -0.08);
-        return t > 0.0 ? t : fallback;
-    }
-    float len = sqrt(rp.scale2 * dot(ndc, ndc) + 1.0);  // |B (x, y, 1)|
-    float dn = rp.dots.x * ndc.x + rp.dots.y * ndc.y + rp.dots.z;
-    float t = rp.k * len / min(dn, -0.08 * len);
-    return t > 0.0 ? t : fallback;
-}
-
-// Tolerance of a depth comparison at distance d: rasterisation and rounding of 32F distances
+// Relative tolerance of a depth comparison: rasterisation and rounding of 32F distances
 // (relative 1e-5 at most here) are far below it; one in a thousand keeps acne off curved
 // receivers whose plane guess is off by curvature x texel^2.
-float receiverTolerance(float d) { return 1e-3 * d; }
+const float kReceiverTolerance = 1e-3;
+
+// True when the map's quantity z at `texel` is in front of the receiver plane: z is below the
+// quantity the map would store for the plane along the ray through the texel's centre, less the
+// tolerance. Where that ray grazes the plane (beyond ~85 degrees) the plane is taken as tilted
+// no further than that: the exact quantity runs to infinity there and makes a curved receiver's
+// own neighbouring facets shadow it (acne along terminators). Where the ray meets the plane
+// behind the light (or not at all), the quantity is dP. Along the ray B (x, y, 1) (perspective)
+// the plane's quantity is k |B (x, y, 1)| / (B (x, y, 1)).N; along the axis from origin +
+// B (x, y, 0) (orthographic) it is (k - x B0.N - y B1.N) / B2.N. The comparisons are multiplied
+// out by the (negative) denominators: pcss runs this for every kernel sample.
+bool inFrontOfReceiver(ReceiverPlane rp, ivec2 texel, float z, float dP) {
+    vec2 ndc = (vec2(texel) + 0.5) * (2.0 / uShadowSize) - 1.0;
+    const float keep = 1.0 - kReceiverTolerance;
+    if (uShadowOrthographic != 0) {
+        float num = rp.k - rp.dots.x * ndc.x - rp.dots.y * ndc.y;
+        return num < 0.0 ? z * min(rp.dots.z, -0.08) > keep * num : z < keep * dP;
+    }
+    float len = sqrt(rp.scale2 * dot(ndc, ndc) + 1.0);
+    float dn = rp.dots.x * ndc.x + rp.dots.y * ndc.y + rp.dots.z;
+    return rp.k < 0.0 ? z * min(dn, -0.08 * len) > keep * rp.k * len : z < keep * dP;
+}
 
 // True when the map says a caster is in front of the receiver plane at texel `texel`.
 bool blockedAtTexel(ReceiverPlane rp, ivec2 texel, float dP) {
-    vec2 uvCentre = (vec2(texel) + 0.5) / uShadowSize;
-    float expect = receiverDistanceAt(rp, uvCentre, dP);
-    float z = texelFetch(uShadowDistance, texel, 0).r;
-    return z < expect - receiverTolerance(expect);
+    return inFrontOfReceiver(rp, texel, texelFetch(uShadowDistance, texel, 0).r, dP);
 }
 
 ivec2 shadowTexel(vec2 uv) {
