@@ -8,7 +8,8 @@
 #include <cstdint>
 #include <memory>
 #include <numeric>
-#include <unordered_map>
+#include <span>
+#include <tuple>
 
 #include "planar/ring_fill.h"
 
@@ -21,10 +22,8 @@ struct Incident;
 struct Run {
     RatX x0, x1;
     int lo = 0, hi = 0;  // counts on its two sides, lo < hi, clamped to [0, n]
-    // The edges meeting at each end (filled once the vertex table is complete; the table's
-    // nodes never move, so the pointers stay valid).
-    const std::vector<Incident>* at0 = nullptr;
-    const std::vector<Incident>* at1 = nullptr;
+    // The edges meeting at each end: ranges of the vertex table (filled once it is complete).
+    uint32_t at0 = 0, count0 = 0, at1 = 0, count1 = 0;
 };
 
 i128 gcd128(i128 a, i128 b) {
@@ -46,16 +45,7 @@ i128 gcd128(i128 a, i128 b) {
 struct PointKey {
     i128 xp, xq, yn, yd;
     bool operator==(const PointKey&) const = default;
-};
-struct PointKeyHash {
-    size_t operator()(const PointKey& k) const {
-        uint64_t h = 1469598103934665603ull;
-        for (i128 v : {k.xp, k.xq, k.yn, k.yd}) {
-            h = (h ^ uint64_t(v)) * 1099511628211ull;
-            h = (h ^ uint64_t(v >> 64)) * 1099511628211ull;
-        }
-        return size_t(h);
-    }
+    bool operator<(const PointKey& o) const { return std::tie(xp, xq, yn, yd) < std::tie(o.xp, o.xq, o.yn, o.yd); }
 };
 
 PointKey keyOf(const ISeg& s, const RatX& x) {
@@ -118,9 +108,16 @@ public:
                                        [](int64_t X, const Vertical& v) { return X < v.x; });
             return std::pair<size_t, size_t>{size_t(lo - verticals.begin()), size_t(hi - verticals.begin())};
         };
-        std::vector<bool> open(segs.size(), false);
+        // The slab that last extended each segment's runs (0: none yet); a run goes on only
+        // into the next slab, and only when that slab starts where the last one ended.
+        std::vector<size_t> lastSlab(segs.size(), 0);
+        size_t slab = 0;
+        RatX lastXr;
         sweep(segs, [&](const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups) {
             if (also) also->onSlab(xl, xr, groups);
+            ++slab;
+            const bool touchesLast = slab > 1 && compareX(lastXr, xl) == 0;
+            lastXr = xr;
             auto [r0, r1] = verticalsAt(xl);
             for (size_t i = r0; i < r1; ++i)
                 verticals[i].right = windingAt(segs, groups, xl, verticals[i].y0 + verticals[i].y1);
@@ -134,31 +131,15 @@ public:
                 if (below == above) continue;
                 Run r{xl, xr, std::min(below, above), std::max(below, above)};
                 auto& list = runs_[g.seg];
-                if (open[g.seg] && !list.empty() && list.back().lo == r.lo && list.back().hi == r.hi &&
-                    compareX(list.back().x1, xl) == 0) {
+                if (touchesLast && lastSlab[g.seg] == slab - 1 && list.back().lo == r.lo && list.back().hi == r.hi) {
                     list.back().x1 = xr;
                 } else {
                     list.push_back(r);
                 }
-                open[g.seg] = true;
+                lastSlab[g.seg] = slab;
             }
         });
-        for (size_t s = 0; s < runs_.size(); ++s)
-            for (const Run& r : runs_[s]) {
-                vertices_[keyOf(segs_[s].seg, r.x0)].push_back(Incident{r.lo, r.hi, Leaves::Right, int(s)});
-                vertices_[keyOf(segs_[s].seg, r.x1)].push_back(Incident{r.lo, r.hi, Leaves::Left, int(s)});
-            }
-        for (const Vertical& e : verticals) {
-            int lo = std::clamp(std::min(e.left, e.right), 0, n_), hi = std::clamp(std::max(e.left, e.right), 0, n_);
-            if (lo == hi) continue;
-            vertices_[PointKey{e.x, 1, e.y0, 1}].push_back(Incident{lo, hi, Leaves::Up, -1});
-            vertices_[PointKey{e.x, 1, e.y1, 1}].push_back(Incident{lo, hi, Leaves::Down, -1});
-        }
-        for (size_t s = 0; s < runs_.size(); ++s)
-            for (Run& r : runs_[s]) {
-                r.at0 = &vertices_.find(keyOf(segs_[s].seg, r.x0))->second;
-                r.at1 = &vertices_.find(keyOf(segs_[s].seg, r.x1))->second;
-            }
+        buildVertexTable(verticals);
     }
 
     // The intensity at x on segment group `seg`, seen from a region of count c whose side there
@@ -170,20 +151,63 @@ public:
         float own = ringIntensity(ring, n_);
         if (it == list.end()) return own;  // not on a ring: cannot happen for a trapezoid side
         const Run& r = *it;
-        if (compareX(x, r.x0) == 0) return vertex(*r.at0, c, own);
-        if (compareX(x, r.x1) == 0) return vertex(*r.at1, c, own);
+        if (compareX(x, r.x0) == 0) return vertex(startOf(r), c, own);
+        if (compareX(x, r.x1) == 0) return vertex(endOf(r), c, own);
         if (r.hi - r.lo == 1) return own;
         // Coincident rings: interpolate between the points where they part.
         double t = (x.toDouble() - r.x0.toDouble()) / (r.x1.toDouble() - r.x0.toDouble());
-        float v0 = vertex(*r.at0, c, own), v1 = vertex(*r.at1, c, own);
+        float v0 = vertex(startOf(r), c, own), v1 = vertex(endOf(r), c, own);
         return float(v0 + t * (v1 - v0));
     }
 
 private:
+    // Every end of a run and of a vertical ring edge, sorted by point: the edges meeting at a
+    // point are one range of `incident_`, which each run keeps for its two ends.
+    void buildVertexTable(std::span<const Vertical> verticals) {
+        struct End {
+            PointKey at;
+            Incident incident;
+            Run* run;  // null for a vertical edge
+        };
+        std::vector<End> ends;
+        for (size_t s = 0; s < runs_.size(); ++s)
+            for (Run& r : runs_[s]) {
+                ends.push_back(End{keyOf(segs_[s].seg, r.x0), Incident{r.lo, r.hi, Leaves::Right, int(s)}, &r});
+                ends.push_back(End{keyOf(segs_[s].seg, r.x1), Incident{r.lo, r.hi, Leaves::Left, int(s)}, &r});
+            }
+        for (const Vertical& e : verticals) {
+            int lo = std::clamp(std::min(e.left, e.right), 0, n_), hi = std::clamp(std::max(e.left, e.right), 0, n_);
+            if (lo == hi) continue;
+            ends.push_back(End{PointKey{e.x, 1, e.y0, 1}, Incident{lo, hi, Leaves::Up, -1}, nullptr});
+            ends.push_back(End{PointKey{e.x, 1, e.y1, 1}, Incident{lo, hi, Leaves::Down, -1}, nullptr});
+        }
+        std::sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.at < b.at; });
+        incident_.reserve(ends.size());
+        for (const End& e : ends) incident_.push_back(e.incident);
+        for (size_t i = 0; i < ends.size();) {
+            size_t j = i + 1;
+            while (j < ends.size() && ends[j].at == ends[i].at) ++j;
+            for (size_t k = i; k < j; ++k) {
+                Run* r = ends[k].run;
+                if (!r) continue;
+                // A run leaving to the right starts here; one leaving to the left ends here.
+                if (ends[k].incident.dir == Leaves::Right) {
+                    r->at0 = uint32_t(i), r->count0 = uint32_t(j - i);
+                } else {
+                    r->at1 = uint32_t(i), r->count1 = uint32_t(j - i);
+                }
+            }
+            i = j;
+        }
+    }
+
+    std::span<const Incident> startOf(const Run& r) const { return {incident_.data() + r.at0, r.count0}; }
+    std::span<const Incident> endOf(const Run& r) const { return {incident_.data() + r.at1, r.count1}; }
+
     // A ring of level L has a corner at a vertex unless exactly two of its edges meet there and
     // go straight on. The region's rings (c, c+1) with a corner here give the vertex its value,
     // their mean when both do (the paper's intersection point); otherwise the side's own ring.
-    float vertex(const std::vector<Incident>& incident, int c, float own) const {
+    float vertex(std::span<const Incident> incident, int c, float own) const {
         double sum = 0;
         int count = 0;
         for (int level : {c, c + 1}) {
@@ -217,7 +241,7 @@ private:
     std::span<const SweepSegment> segs_;
     int n_;
     std::vector<std::vector<Run>> runs_;
-    std::unordered_map<PointKey, std::vector<Incident>, PointKeyHash> vertices_;
+    std::vector<Incident> incident_;  // grouped by point (buildVertexTable)
 };
 
 }  // namespace

@@ -33,6 +33,10 @@ void TrapezoidCollector::emit(Open& o) {
 
 void TrapezoidCollector::onSlab(const RatX& xl, const RatX& xr, std::span<const SlabGroup> groups) {
     ++slab_;
+    // A trapezoid extended in the last slab can go on only when this slab starts where that one
+    // ended (the sweep leaves a gap where no segment is active).
+    const bool touchesLast = slab_ > 1 && compareX(lastXr_, xl) == 0;
+    lastXr_ = xr;
     // Coincident edges that cancel (delta 0) change nothing: trapezoids span across them.
     live_.clear();
     for (const SlabGroup& g : groups)
@@ -47,8 +51,8 @@ void TrapezoidCollector::onSlab(const RatX& xl, const RatX& xr, std::span<const 
         int bottom = live_[i].seg, top = live_[i + 1].seg;
         Open& o = open_[bottom];
         // Slabs with the same sides and windings merge into one trapezoid.
-        bool extends = o.bottom == bottom && o.slab == slab_ - 1 && o.top == top && o.winding == w &&
-                       o.below == below && o.above == above && compareX(o.x1, xl) == 0;
+        bool extends = touchesLast && o.bottom == bottom && o.slab == slab_ - 1 && o.top == top &&
+                       o.winding == w && o.below == below && o.above == above;
         if (extends) {
             o.x1 = xr;
         } else {

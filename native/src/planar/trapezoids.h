@@ -46,6 +46,7 @@ private:
     std::vector<int> openList_, nextList_;
     std::vector<SlabGroup> live_;
     size_t slab_ = 0;
+    RatX lastXr_;  // where the last slab ended
 };
 
 // Corners: 0 bottom at x0, 1 bottom at x1, 2 top at x1, 3 top at x0. Two triangles per
