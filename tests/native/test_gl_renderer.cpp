@@ -5,6 +5,7 @@
 #include <string>
 #include <thread>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -71,6 +72,38 @@ TEST(GlRendererCache, NoGlMethodReadsTheCameraPassBack) {
     settings.options = {{"raster", "cpu"}};
     renderer.render(scene, 0, "sweep", settings, nullptr);
     EXPECT_EQ(renderer.cacheStats().cameraReadbacks, 1);
+}
+
+// What a method makes from the light and the geometry alone (sweep's shadow mesh,
+// occlusion_textures' slices) is kept through a camera edit and made again after a move; either
+// way the layers are those of a renderer that never saw the scene before.
+TEST(GlRendererCache, LightWorkIsKeptThroughACameraEditAndMadeAgainAfterAMove) {
+    RenderSettings settings;
+    auto fresh = [&](const Scene& scene, const std::string& name) {
+        Renderer other(SS_BACKEND_AUTO);
+        return other.render(scene, 0, name, settings, nullptr);
+    };
+    for (const std::string name : {"occlusion_textures", "sweep"}) {
+        SCOPED_TRACE(name);
+        Scene scene = twoLightScene();
+        Renderer renderer(SS_BACKEND_AUTO);
+        renderer.render(scene, 0, name, settings, nullptr);
+        EXPECT_EQ(renderer.cacheStats().lightWorkMade, 1);
+
+        scene.setCamera(makeLookAtCamera({2.0f, -3.0f, 6.0f}, {0.0f, 0.0f, 0.3f}, {0.0f, 0.0f, 1.0f},
+                                         glm::radians(40.0f), 96, 72, 0.1f, 50.0f));
+        Layers orbited = renderer.render(scene, 0, name, settings, nullptr);
+        EXPECT_EQ(renderer.cacheStats().lightWorkMade, 1);
+        EXPECT_GE(renderer.cacheStats().lightWorkKept, 1);
+        EXPECT_EQ(orbited.find("V")->pixels, fresh(scene, name).find("V")->pixels);
+
+        scene.setMeshTransform(1, glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, 0.0f, 0.0f)));
+        Layers moved = renderer.render(scene, 0, name, settings, nullptr);
+        EXPECT_EQ(renderer.cacheStats().lightWorkMade, 2);
+        const std::vector<float>& v = moved.find("V")->pixels;
+        EXPECT_EQ(v, fresh(scene, name).find("V")->pixels);
+        EXPECT_NE(v, orbited.find("V")->pixels);  // the shadow moved with the box
+    }
 }
 
 TEST(GlRendererCache, AutoNamesTheMethodItRan) {

@@ -19,6 +19,13 @@ class Frame;  // frame/frame.h: the scene plus the GL passes shared by every met
 // Where a method's render() runs: on the caller's thread, or on the library's GL render thread.
 enum class MethodDevice { Cpu, Gl };
 
+// What a method did with its work that depends on the light and the geometry but not on the
+// camera (sweep's shadow mesh, occlusion_textures' slices), each time a render needed it: made
+// it afresh, or took it from the last time under the same Scene::lightGeometryKey and settings.
+struct MethodStats {
+    int lightWorkMade = 0, lightWorkKept = 0;
+};
+
 class Method {
 public:
     // `name`: the contract name (core/method_names.h). `settingKeys`: every key of
@@ -38,6 +45,10 @@ public:
     // (never "umbra"/"penumbra": the renderer adds those, core/visibility_classes.h). Every
     // layer: camera resolution, row 0 = top.
     virtual Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) = 0;
+    const MethodStats& stats() const { return stats_; }
+
+protected:
+    MethodStats stats_;
 
 private:
     std::string name_;

@@ -44,7 +44,12 @@ struct Renderer::Impl {
     CacheStats finished;  // of frames already dropped (and every method run's time)
     size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
 
-    void count(const Frame& f, CacheStats& into) const {
+    void count(const Cached& c, CacheStats& into) const {
+        for (const auto& [name, method] : c.methods) {
+            into.lightWorkMade += method->stats().lightWorkMade;
+            into.lightWorkKept += method->stats().lightWorkKept;
+        }
+        const Frame& f = *c.frame;
         into.meshUploads += f.stats().meshUploads;
         into.cameraPasses += f.stats().cameraPasses;
         into.cameraReadbacks += f.stats().cameraReadbacks;
@@ -96,14 +101,14 @@ struct Renderer::Impl {
     }
 
     void dropCache() {
-        for (auto& c : caches) count(*c->frame, finished);
+        for (auto& c : caches) count(*c, finished);
         destroyOnGlThread(caches);
     }
 
     void dropOldest() {
         std::unique_ptr<Cached> oldest = std::move(caches.front());
         caches.erase(caches.begin());
-        count(*oldest->frame, finished);
+        count(*oldest, finished);
         destroyOnGlThread(oldest);
     }
 
@@ -185,7 +190,7 @@ void Renderer::setShadowMapBudget(size_t bytes) {
 Renderer::CacheStats Renderer::cacheStats() const {
     std::lock_guard lock(impl_->m);
     CacheStats s = impl_->finished;
-    for (const auto& c : impl_->caches) impl_->count(*c->frame, s);
+    for (const auto& c : impl_->caches) impl_->count(*c, s);
     return s;
 }
 

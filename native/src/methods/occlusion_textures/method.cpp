@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Paper 4: Eisemann and Décoret, occlusion textures (docs/methods/occlusion_textures.md).
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "core/error.h"
@@ -47,12 +48,25 @@ public:
             settings.report(fraction, name);
         };
 
-        occlusion::KernelLight kernel = occlusion::kernelLight(light, frame.scene().bounds());
-        occlusion::SliceSetup setup = occlusion::fitSlices(frame.scene(), kernel, sliceCount, resolution, projection);
-        stage(0.1f, "slicing");
-        occlusion::SliceTextures slices = occlusion::renderSlices(frame, setup, filter, thinFixAll);
+        // The slices see the occluders from the light: a camera edit (an orbit, another view) or
+        // another light's edit keeps them; the pre-filter runs again, as the SAT tables live in
+        // a scratch texture other renders share.
+        const SlicesKey key{frame.scene().lightGeometryKey(lightIndex), sliceCount, resolution, filter, thinFixAll,
+                            projection};
+        if (!kept_ || !(kept_->key == key)) {
+            kept_.reset();  // its textures are freed before the new ones are made
+            occlusion::KernelLight kernel = occlusion::kernelLight(light, frame.scene().bounds());
+            occlusion::SliceSetup setup = occlusion::fitSlices(frame.scene(), kernel, sliceCount, resolution, projection);
+            stage(0.1f, "slicing");
+            occlusion::SliceTextures slices = occlusion::renderSlices(frame, setup, filter, thinFixAll);
+            kept_ = KeptSlices{key, std::move(setup), std::move(slices)};
+            ++stats_.lightWorkMade;
+        } else {
+            ++stats_.lightWorkKept;
+        }
+        const occlusion::SliceSetup& setup = kept_->setup;
         stage(0.4f, "pre-filtering");
-        occlusion::FilteredSlices filtered = occlusion::prefilter(filter, slices);
+        occlusion::FilteredSlices filtered = occlusion::prefilter(filter, kept_->slices);
         stage(0.6f, "shading");
         occlusion::ShadeOutput out = occlusion::shade(frame, lightIndex, setup, filtered, fade, settings.extraLayers,
                                                       skipEmptySlices);
@@ -65,6 +79,23 @@ public:
             for (size_t k = 0; k < out.slices.size(); ++k) layers.add("slice_" + std::to_string(k), std::move(out.slices[k]));
         return layers;
     }
+
+private:
+    struct SlicesKey {
+        Scene::LightGeometryKey geometry;
+        int sliceCount = 0, resolution = 0;
+        occlusion::Filter filter{};
+        bool thinFixAll = false;
+        occlusion::Projection projection{};
+        bool operator==(const SlicesKey&) const = default;
+    };
+    struct KeptSlices {
+        SlicesKey key;
+        occlusion::SliceSetup setup;
+        occlusion::SliceTextures slices;
+    };
+    // The last render's slices (freed with the renderer's frame cache, on the render thread).
+    std::optional<KeptSlices> kept_;
 };
 
 }  // namespace

@@ -94,6 +94,9 @@ private:
             cached_.reset();  // its memory is free before the new shadow is made
             cached_ = computeSweepShadow(scene, lightIndex, o, &projections_);
             key_ = k;
+            ++stats_.lightWorkMade;
+        } else {
+            ++stats_.lightWorkKept;
         }
         return *cached_;
     }
