@@ -92,10 +92,12 @@ double StageClock::ms(const std::string& from, const std::string& to) const {
 }
 
 void timeStages(benchmark::State& state, const Scene& scene, const std::string& method,
-                const RenderSettings& settings, const std::vector<StageSpan>& spans) {
+                const RenderSettings& settings, const std::vector<StageSpan>& spans,
+                const std::function<void()>& beforeEach) {
     std::map<std::string, double> ms;
     StageClock clock;
     for (auto _ : state) {
+        if (beforeEach) beforeEach();
         state.SetIterationTime(clock.render(scene, method, settings));
         for (const StageSpan& span : spans) ms[span.name] += clock.ms(span.from, span.to);
     }

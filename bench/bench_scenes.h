@@ -3,6 +3,7 @@
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -51,9 +52,10 @@ struct StageSpan {
     const char* from;
     const char* to;
 };
-// The benchmark loop of a stage benchmark: each iteration renders light 0 of `scene` (manual
-// time) and the spans' means become counters.
+// The benchmark loop of a stage benchmark: each iteration runs `beforeEach` (when given), then
+// renders light 0 of `scene` (manual time), and the spans' means become counters.
 void timeStages(benchmark::State& state, const Scene& scene, const std::string& method,
-                const RenderSettings& settings, const std::vector<StageSpan>& spans);
+                const RenderSettings& settings, const std::vector<StageSpan>& spans,
+                const std::function<void()>& beforeEach = {});
 
 }  // namespace ss::bench

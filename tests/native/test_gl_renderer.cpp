@@ -75,8 +75,8 @@ TEST(GlRendererCache, NoGlMethodReadsTheCameraPassBack) {
 }
 
 // What a method makes from the light and the geometry alone (sweep's shadow mesh,
-// occlusion_textures' slices) is kept through a camera edit and made again after a move; either
-// way the layers are those of a renderer that never saw the scene before.
+// occlusion_textures' slices) is kept through a camera edit, and made again (or patched) after a
+// move; every time the layers are those of a renderer that never saw the scene before.
 TEST(GlRendererCache, LightWorkIsKeptThroughACameraEditAndMadeAgainAfterAMove) {
     RenderSettings settings;
     auto fresh = [&](const Scene& scene, const std::string& name) {
@@ -97,12 +97,22 @@ TEST(GlRendererCache, LightWorkIsKeptThroughACameraEditAndMadeAgainAfterAMove) {
         EXPECT_GE(renderer.cacheStats().lightWorkKept, 1);
         EXPECT_EQ(orbited.find("V")->pixels, fresh(scene, name).find("V")->pixels);
 
+        // occlusion_textures redraws its slices where the box was and is (the move keeps their
+        // fit); the sweep makes its shadow again from the meshes' kept projections.
+        const bool patches = name == "occlusion_textures";
         scene.setMeshTransform(1, glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, 0.0f, 0.0f)));
         Layers moved = renderer.render(scene, 0, name, settings, nullptr);
-        EXPECT_EQ(renderer.cacheStats().lightWorkMade, 2);
+        EXPECT_EQ(renderer.cacheStats().lightWorkMade, patches ? 1 : 2);
+        EXPECT_EQ(renderer.cacheStats().lightWorkPatched, patches ? 1 : 0);
         const std::vector<float>& v = moved.find("V")->pixels;
         EXPECT_EQ(v, fresh(scene, name).find("V")->pixels);
         EXPECT_NE(v, orbited.find("V")->pixels);  // the shadow moved with the box
+
+        // A move that changes the fit (the box rises above the scene's old bounds) draws all.
+        scene.setMeshTransform(1, glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, 0.0f, 1.5f)));
+        Layers risen = renderer.render(scene, 0, name, settings, nullptr);
+        EXPECT_EQ(renderer.cacheStats().lightWorkMade, patches ? 2 : 3);
+        EXPECT_EQ(risen.find("V")->pixels, fresh(scene, name).find("V")->pixels);
     }
 }
 

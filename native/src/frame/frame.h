@@ -196,6 +196,14 @@ public:
     // to SSBO binding 0.
     void drawMeshes(const gl::Program& program, uint32_t requiredFlags,
                     const std::function<void(const GpuMesh&)>& before = {});
+    // Draws as drawMeshes does; with a region, only the clusters whose bounds, where their mesh
+    // is now, may cover a pixel of its rectangle (a patch after moves: movedBoxes,
+    // boxesOnScreen).
+    void drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
+                         const std::optional<PatchRegion>& region,
+                         const std::function<void(const GpuMesh&)>& before);
+    // Where each of the scene's meshes is now (what a pass drawn now shows: movedBoxes).
+    std::vector<MeshPlacement> placements() const;
     // Draws one triangle covering the viewport (vertex shader "common/fullscreen.vert.glsl").
     void drawFullscreen();
     // Binds the camera pass textures to units firstUnit.. and sets the samplers of
@@ -216,7 +224,6 @@ private:
     // Drops the camera pass and shadow maps whose inputs changed since they were drawn; after
     // moves alone the passes are kept and patched where the moved meshes were and are.
     void dropStalePasses();
-    std::vector<MeshPlacement> placements() const;  // of the scene's meshes now
     // Draws the camera pass (or the shadow map) into its own targets, inside `rect` only when
     // one is given. The camera pass draws only the triangles that may cover a pixel centre of
     // the rectangle (listCoveringTriangles), fetched by camera/gbuffer.vert.glsl.
@@ -226,11 +233,6 @@ private:
     // and listedRanges_ gives each mesh's run in that sequence.
     void listCoveringTriangles(const Camera& camera, const PixelRect& rect);
     void drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect);
-    // Draws as drawMeshes does; with a region, only the clusters whose bounds, where their mesh
-    // is now, may cover a pixel of its rectangle.
-    void drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
-                         const std::optional<PatchRegion>& region,
-                         const std::function<void(const GpuMesh&)>& before);
     const Scene* scene_;
     std::vector<GpuMesh> meshes_;
     uint64_t meshesGeometryVersion_ = 0;  // 0: never uploaded

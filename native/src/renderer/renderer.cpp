@@ -48,6 +48,7 @@ struct Renderer::Impl {
         for (const auto& [name, method] : c.methods) {
             into.lightWorkMade += method->stats().lightWorkMade;
             into.lightWorkKept += method->stats().lightWorkKept;
+            into.lightWorkPatched += method->stats().lightWorkPatched;
         }
         const Frame& f = *c.frame;
         into.meshUploads += f.stats().meshUploads;

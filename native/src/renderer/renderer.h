@@ -59,7 +59,7 @@ public:
         size_t patchTriangles = 0;  // triangles those patches drew
         size_t cameraPassTriangles = 0;  // triangles the camera passes drew (FrameStats)
         int traceSceneBuilds = 0, meshBvhBuilds = 0;
-        int lightWorkMade = 0, lightWorkKept = 0;  // summed MethodStats
+        int lightWorkMade = 0, lightWorkKept = 0, lightWorkPatched = 0;  // summed MethodStats
         size_t shadowMapBytesPeak = 0;  // the most the cached shadow maps of one frame held
         // Milliseconds: mesh uploads, camera passes and shadow maps drawn (until the GL finished
         // them), and whole GL method runs (prepare + render, the shared passes they drew included).

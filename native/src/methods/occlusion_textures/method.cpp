@@ -4,11 +4,13 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "methods/method.h"
 #include "methods/occlusion_textures/passes.h"
 #include "frame/frame.h"
+#include "frame/moved_region.h"
 
 namespace ss {
 
@@ -28,7 +30,6 @@ public:
     // finish_stages (benchmark: glFinish at each stage so the progress marks time the GPU),
     // skip_empty_slices (default on; off only for the test that shows it is exact).
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        const Light& light = frame.light(lightIndex);
         int sliceCount = settings.integer("slices", 8, 1, 16);
         int resolution = settings.integer("resolution", 512, 16, 4096);
         occlusion::Filter filter = occlusion::parseFilter(settings.text("filter", "sat"));
@@ -48,23 +49,9 @@ public:
             settings.report(fraction, name);
         };
 
-        // The slices see the occluders from the light: a camera edit (an orbit, another view) or
-        // another light's edit keeps them; the pre-filter runs again, as the SAT tables live in
-        // a scratch texture other renders share.
-        const SlicesKey key{frame.scene().lightGeometryKey(lightIndex), sliceCount, resolution, filter, thinFixAll,
-                            projection};
-        if (!kept_ || !(kept_->key == key)) {
-            kept_.reset();  // its textures are freed before the new ones are made
-            occlusion::KernelLight kernel = occlusion::kernelLight(light, frame.scene().bounds());
-            occlusion::SliceSetup setup = occlusion::fitSlices(frame.scene(), kernel, sliceCount, resolution, projection);
-            stage(0.1f, "slicing");
-            occlusion::SliceTextures slices = occlusion::renderSlices(frame, setup, filter, thinFixAll);
-            kept_ = KeptSlices{key, std::move(setup), std::move(slices)};
-            ++stats_.lightWorkMade;
-        } else {
-            ++stats_.lightWorkKept;
-        }
-        const occlusion::SliceSetup& setup = kept_->setup;
+        stage(0.1f, "slicing");
+        const occlusion::SliceSetup& setup =
+            slicesFor(frame, lightIndex, SlicesKey{sliceCount, resolution, filter, thinFixAll, projection});
         stage(0.4f, "pre-filtering");
         occlusion::FilteredSlices filtered = occlusion::prefilter(filter, kept_->slices);
         stage(0.6f, "shading");
@@ -81,8 +68,8 @@ public:
     }
 
 private:
+    // The settings that shape the slices.
     struct SlicesKey {
-        Scene::LightGeometryKey geometry;
         int sliceCount = 0, resolution = 0;
         occlusion::Filter filter{};
         bool thinFixAll = false;
@@ -91,9 +78,47 @@ private:
     };
     struct KeptSlices {
         SlicesKey key;
+        Scene::LightGeometryKey geometry;     // what they show
+        std::vector<MeshPlacement> drawn;     // where each mesh was then
         occlusion::SliceSetup setup;
         occlusion::SliceTextures slices;
     };
+
+    // The slices see the occluders from the light, so a camera edit (an orbit, another view) or
+    // another light's edit keeps them, and moves that leave their fit as it was redraw them only
+    // where the moved meshes were and are. The pre-filter runs on every render: the SAT tables
+    // live in a scratch texture other renders share.
+    const occlusion::SliceSetup& slicesFor(Frame& frame, int lightIndex, const SlicesKey& key) {
+        const Scene& scene = frame.scene();
+        const Scene::LightGeometryKey geometry = scene.lightGeometryKey(lightIndex);
+        if (kept_ && kept_->key == key && kept_->geometry == geometry) {
+            ++stats_.lightWorkKept;
+            return kept_->setup;
+        }
+        occlusion::KernelLight kernel = occlusion::kernelLight(frame.light(lightIndex), scene.bounds());
+        occlusion::SliceSetup setup =
+            occlusion::fitSlices(scene, kernel, key.sliceCount, key.resolution, key.projection);
+        std::vector<MeshPlacement> now = frame.placements();
+        Scene::LightGeometryKey earlier = kept_ ? kept_->geometry : Scene::LightGeometryKey{};
+        earlier.geometryVersion = geometry.geometryVersion;  // everything but the meshes the same?
+        if (kept_ && kept_->key == key && earlier == geometry && kept_->setup == setup) {
+            if (std::optional<std::vector<Bounds>> boxes = movedBoxes(kept_->drawn, now)) {
+                if (std::optional<PixelRect> rect = boxesOnScreen(*boxes, setup.worldToClip, setup.width, setup.height)) {
+                    if (!rect->empty()) occlusion::patchSlices(frame, setup, kept_->slices, key.thinFixAll, *rect);
+                    kept_->geometry = geometry;
+                    kept_->drawn = std::move(now);
+                    ++stats_.lightWorkPatched;
+                    return kept_->setup;
+                }
+            }
+        }
+        kept_.reset();  // its textures are freed before the new ones are made
+        occlusion::SliceTextures slices = occlusion::renderSlices(frame, setup, key.filter, key.thinFixAll);
+        kept_ = KeptSlices{key, geometry, std::move(now), std::move(setup), std::move(slices)};
+        ++stats_.lightWorkMade;
+        return kept_->setup;
+    }
+
     // The last render's slices (freed with the renderer's frame cache, on the render thread).
     std::optional<KeptSlices> kept_;
 };

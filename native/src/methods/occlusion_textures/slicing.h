@@ -19,6 +19,7 @@ struct KernelLight {
     glm::vec3 normal{0, 0, -1};                 // unit, towards the scene
     float halfX = 0.5f, halfY = 0.5f;           // half sizes of the rectangle along the axes
     glm::vec3 toLocal(const glm::vec3& world) const;  // (along axisX, along axisY, depth)
+    bool operator==(const KernelLight&) const = default;
 };
 
 // Disk/ellipse: equal-area rectangle (half sizes x sqrt(pi)/2). Point/spot: the sphere's disk
@@ -46,6 +47,7 @@ struct SliceSetup {
     glm::mat4 worldToClip{1.0f};    // the slicing camera (COP) for the slicing pass
     float receiverDepthMax = 0.0f;  // the deepest receiving vertex in front of the light
     int count() const { return int(planes.size()) - 1; }
+    bool operator==(const SliceSetup&) const = default;
     // Slice holding depth z (clamped to the range).
     int sliceOf(float z) const;
     // Normalised device units per world unit along the light's axes, in the plane at `depth`.

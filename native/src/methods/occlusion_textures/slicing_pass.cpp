@@ -19,12 +19,18 @@ glm::mat4 worldToLocal(const KernelLight& l) {
     return m;
 }
 
-SliceTextures renderSlices(Frame& frame, const SliceSetup& setup, Filter filter, bool thinFixAll) {
+namespace {
+
+void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bool thinFixAll,
+                const std::optional<PixelRect>& rect) {
     const gl::Functions& gl = frame.gl();
-    SliceTextures slices = makeSliceTextures(setup.width, setup.height, setup.count(), filter == Filter::Mipmap);
     gl::Framebuffer target(setup.width, setup.height, {});
     for (int g = 0; g < slices.groupCount(); ++g) target.attachColor(g, slices.groups[size_t(g)].id());
     target.bind();
+    if (rect) {
+        gl.Enable(GL_SCISSOR_TEST);
+        gl.Scissor(rect->x0, rect->y0, rect->x1 - rect->x0, rect->y1 - rect->y0);
+    }
     for (int g = 0; g < slices.groupCount(); ++g) target.clearColor(g, glm::vec4(0.0f));
 
     const gl::Program& program = gl::program("occlusion_textures/slice.vert.glsl", "occlusion_textures/slice.frag.glsl");
@@ -37,12 +43,26 @@ SliceTextures renderSlices(Frame& frame, const SliceSetup& setup, Filter filter,
     // Every face counts (an occluder blocks light whichever way it faces), no depth test: a
     // texel of a slice is occluded when anything of that slice projects onto it.
     gl::apply(gl::states::maximum);
-    frame.drawMeshes(program, SS_MESH_CAST, [&](const GpuMesh& mesh) {
+    std::optional<PatchRegion> region;
+    if (rect) region = PatchRegion{*rect, setup.worldToClip, setup.width, setup.height};
+    frame.drawMeshesWhere(program, SS_MESH_CAST, region, [&](const GpuMesh& mesh) {
         program.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
     });
+    gl.Disable(GL_SCISSOR_TEST);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.check("slicing the scene into occlusion textures");
+}
+
+}  // namespace
+
+SliceTextures renderSlices(Frame& frame, const SliceSetup& setup, Filter filter, bool thinFixAll) {
+    SliceTextures slices = makeSliceTextures(setup.width, setup.height, setup.count(), filter == Filter::Mipmap);
+    drawSlices(frame, setup, slices, thinFixAll, std::nullopt);
     return slices;
+}
+
+void patchSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bool thinFixAll, const PixelRect& rect) {
+    drawSlices(frame, setup, slices, thinFixAll, rect);
 }
 
 }  // namespace ss::occlusion
