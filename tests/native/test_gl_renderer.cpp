@@ -116,6 +116,27 @@ TEST(GlRendererCache, LightWorkIsKeptThroughACameraEditAndMadeAgainAfterAMove) {
     }
 }
 
+// Each light keeps its own slices: render_passes renders every light in turn on every frame.
+TEST(GlRendererCache, OcclusionTexturesKeepEachLightsSlices) {
+    Scene scene = twoLightScene();
+    Renderer renderer(SS_BACKEND_AUTO);
+    RenderSettings settings;
+    Layers first = renderer.render(scene, 0, "occlusion_textures", settings, nullptr);
+    renderer.render(scene, 1, "occlusion_textures", settings, nullptr);
+    Layers again = renderer.render(scene, 0, "occlusion_textures", settings, nullptr);
+    renderer.render(scene, 1, "occlusion_textures", settings, nullptr);
+    EXPECT_EQ(renderer.cacheStats().lightWorkMade, 2);
+    EXPECT_EQ(renderer.cacheStats().lightWorkKept, 2);
+    EXPECT_EQ(first.find("V")->pixels, again.find("V")->pixels);
+
+    // Removing light 0 moves B to index 0: its slices are drawn for it, not taken from A's.
+    scene.removeLight(0);
+    Layers moved = renderer.render(scene, 0, "occlusion_textures", settings, nullptr);
+    EXPECT_EQ(renderer.cacheStats().lightWorkMade, 3);
+    Renderer other(SS_BACKEND_AUTO);
+    EXPECT_EQ(moved.find("V")->pixels, other.render(scene, 0, "occlusion_textures", settings, nullptr).find("V")->pixels);
+}
+
 TEST(GlRendererCache, AutoNamesTheMethodItRan) {
     Scene scene = twoLightScene();
     Renderer renderer(SS_BACKEND_AUTO);

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Paper 4: Eisemann and Décoret, occlusion textures (docs/methods/occlusion_textures.md).
 #include <cmath>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,7 +54,7 @@ public:
         const occlusion::SliceSetup& setup =
             slicesFor(frame, lightIndex, SlicesKey{sliceCount, resolution, filter, thinFixAll, projection});
         stage(0.4f, "pre-filtering");
-        occlusion::FilteredSlices filtered = occlusion::prefilter(filter, kept_->slices);
+        occlusion::FilteredSlices filtered = occlusion::prefilter(filter, kept_.at(lightIndex)->slices);
         stage(0.6f, "shading");
         occlusion::ShadeOutput out = occlusion::shade(frame, lightIndex, setup, filtered, fade, settings.extraLayers,
                                                       skipEmptySlices);
@@ -91,36 +92,40 @@ private:
     const occlusion::SliceSetup& slicesFor(Frame& frame, int lightIndex, const SlicesKey& key) {
         const Scene& scene = frame.scene();
         const Scene::LightGeometryKey geometry = scene.lightGeometryKey(lightIndex);
-        if (kept_ && kept_->key == key && kept_->geometry == geometry) {
+        // Lights removed since (indices past the last) go with their textures.
+        kept_.erase(kept_.lower_bound(int(scene.lights().size())), kept_.end());
+        std::optional<KeptSlices>& kept = kept_[lightIndex];
+        if (kept && kept->key == key && kept->geometry == geometry) {
             ++stats_.lightWorkKept;
-            return kept_->setup;
+            return kept->setup;
         }
         occlusion::KernelLight kernel = occlusion::kernelLight(frame.light(lightIndex), scene.bounds());
         occlusion::SliceSetup setup =
             occlusion::fitSlices(scene, kernel, key.sliceCount, key.resolution, key.projection);
         std::vector<MeshPlacement> now = frame.placements();
-        Scene::LightGeometryKey earlier = kept_ ? kept_->geometry : Scene::LightGeometryKey{};
+        Scene::LightGeometryKey earlier = kept ? kept->geometry : Scene::LightGeometryKey{};
         earlier.geometryVersion = geometry.geometryVersion;  // everything but the meshes the same?
-        if (kept_ && kept_->key == key && earlier == geometry && kept_->setup == setup) {
-            if (std::optional<std::vector<Bounds>> boxes = movedBoxes(kept_->drawn, now)) {
+        if (kept && kept->key == key && earlier == geometry && kept->setup == setup) {
+            if (std::optional<std::vector<Bounds>> boxes = movedBoxes(kept->drawn, now)) {
                 if (std::optional<PixelRect> rect = boxesOnScreen(*boxes, setup.worldToClip, setup.width, setup.height)) {
-                    if (!rect->empty()) occlusion::patchSlices(frame, setup, kept_->slices, key.thinFixAll, *rect);
-                    kept_->geometry = geometry;
-                    kept_->drawn = std::move(now);
+                    if (!rect->empty()) occlusion::patchSlices(frame, setup, kept->slices, key.thinFixAll, *rect);
+                    kept->geometry = geometry;
+                    kept->drawn = std::move(now);
                     ++stats_.lightWorkPatched;
-                    return kept_->setup;
+                    return kept->setup;
                 }
             }
         }
-        kept_.reset();  // its textures are freed before the new ones are made
+        kept.reset();  // its textures are freed before the new ones are made
         occlusion::SliceTextures slices = occlusion::renderSlices(frame, setup, key.filter, key.thinFixAll);
-        kept_ = KeptSlices{key, geometry, std::move(now), std::move(setup), std::move(slices)};
+        kept = KeptSlices{key, geometry, std::move(now), std::move(setup), std::move(slices)};
         ++stats_.lightWorkMade;
-        return kept_->setup;
+        return kept->setup;
     }
 
-    // The last render's slices (freed with the renderer's frame cache, on the render thread).
-    std::optional<KeptSlices> kept_;
+    // Each light's last slices, by light index (a few MiB each at the default 8 slices of 512²;
+    // freed with the renderer's frame cache, on the render thread).
+    std::map<int, std::optional<KeptSlices>> kept_;
 };
 
 }  // namespace
