@@ -75,15 +75,16 @@ TEST(GlRendererCache, NoGlMethodReadsTheCameraPassBack) {
 }
 
 // What a method makes from the light and the geometry alone (sweep's shadow mesh,
-// occlusion_textures' slices) is kept through a camera edit, and made again (or patched) after a
-// move; every time the layers are those of a renderer that never saw the scene before.
+// occlusion_textures' slices, dbuffer's D-buffer) is kept through a camera edit, and made again
+// (or patched) after a move; every time the layers are those of a renderer that never saw the
+// scene before.
 TEST(GlRendererCache, LightWorkIsKeptThroughACameraEditAndMadeAgainAfterAMove) {
     RenderSettings settings;
     auto fresh = [&](const Scene& scene, const std::string& name) {
         Renderer other(SS_BACKEND_AUTO);
         return other.render(scene, 0, name, settings, nullptr);
     };
-    for (const std::string name : {"occlusion_textures", "sweep"}) {
+    for (const std::string name : {"occlusion_textures", "sweep", "dbuffer"}) {
         SCOPED_TRACE(name);
         Scene scene = twoLightScene();
         Renderer renderer(SS_BACKEND_AUTO);
@@ -98,7 +99,8 @@ TEST(GlRendererCache, LightWorkIsKeptThroughACameraEditAndMadeAgainAfterAMove) {
         EXPECT_EQ(orbited.find("V")->pixels, fresh(scene, name).find("V")->pixels);
 
         // occlusion_textures redraws its slices where the box was and is (the move keeps their
-        // fit); the sweep makes its shadow again from the meshes' kept projections.
+        // fit); the sweep makes its shadow again from the meshes' kept projections, dbuffer its
+        // D-buffer from the new volumes.
         const bool patches = name == "occlusion_textures";
         scene.setMeshTransform(1, glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, 0.0f, 0.0f)));
         Layers moved = renderer.render(scene, 0, name, settings, nullptr);

@@ -20,9 +20,10 @@ class Frame;  // frame/frame.h: the scene plus the GL passes shared by every met
 enum class MethodDevice { Cpu, Gl };
 
 // What a method did with its work that depends on the light and the geometry but not on the
-// camera (sweep's shadow mesh, occlusion_textures' slices), each time a render needed it: made
-// it afresh, took it from the last time under the same Scene::lightGeometryKey and settings, or
-// (occlusion_textures after moves) redrew it only where the moved meshes were and are.
+// camera (sweep's shadow mesh, occlusion_textures' slices, dbuffer's D-buffer), each time a
+// render needed it: made it afresh, took it from the last time under the same
+// Scene::lightGeometryKey and settings, or (occlusion_textures after moves) redrew it only where
+// the moved meshes were and are.
 struct MethodStats {
     int lightWorkMade = 0, lightWorkKept = 0, lightWorkPatched = 0;
 };

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/error.h"
@@ -109,40 +110,16 @@ public:
 
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
         settings.report(0.3f, "D-buffer pass");
-        gl::Framebuffer& dbuf =
-            gl::scratchFramebuffer("dbuffer.distances", map.size, map.size, {GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
-        dbuf.bind();
-        gl::apply(kFarthest);  // every channel written: clears honour the colour mask
-        dbuf.clearColor(0, glm::vec4(0.0f));
-        const gl::Program& vol = gl::program("dbuffer/volume.vert.glsl", "dbuffer/volume.frag.glsl");
-        vol.use();
-        frame.bindShadowMap(vol, map, 0);  // the first-exit rule reads the casters' distances
-        vol.set("uWorldToClip", map.worldToClip());
-        vol.set("uCentre", geo.disk.centre);
-        vol.set("uNormal", geo.disk.normal);
-        vol.set("uRadius", geo.disk.radius);
-        // Depth = distance / uFar: anything past the far plane is clipped anyway.
-        float far = glm::length(map.origin - geo.disk.centre) + map.farPlane * 2.0f + 1e-6f;
-        vol.set("uFar", far);
-        vol.set("uPaperFormula", paper ? 1 : 0);
-        GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
-        // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
-        std::string rule = settings.choice("umbra_rule", "first_exit", {"first_exit", "farthest"});
-        bool firstExit = rule == "first_exit";
-        gl::RenderState umbraState = firstExit ? kNearest : kFarthest;
-        umbraState.channels = kUmbraChannels;
-        gl::apply(umbraState);
-        vol.set("uBeyondOccluder", firstExit ? 1 : 0);
-        vol.set("uExitEpsilon", kExitEpsilon);
-        dbuf.clearDepth(firstExit ? 1.0f : 0.0f);
-        draw(umbra);
-        gl::RenderState penumbraState = kFarthest;
-        penumbraState.channels = kPenumbraChannels;
-        gl::apply(penumbraState);
-        vol.set("uBeyondOccluder", 0);
-        dbuf.clearDepth(0.0f);
-        draw(penumbra);
-        g.check("drawing the D-buffer");
+        const bool firstExit = settings.choice("umbra_rule", "first_exit", {"first_exit", "farthest"}) == "first_exit";
+        const DbufferKey key{frame.scene().lightGeometryKey(lightIndex), map.size, firstExit, paper};
+        if (!(dbufferKey_ && *dbufferKey_ == key)) {
+            dbufferKey_.reset();  // until it is drawn whole
+            drawDbuffer(frame, map, geo, firstExit, paper);
+            dbufferKey_ = key;
+            ++stats_.lightWorkMade;
+        } else {
+            ++stats_.lightWorkKept;
+        }
         finishStage();
 
         // Camera pass: eq. 3 and eq. 4 per pixel.
@@ -156,7 +133,7 @@ public:
         shade.use();
         int unit = frame.bindCameraPass(shade, 0);
         unit = frame.bindShadowMap(shade, map, unit);
-        shade.setTexture("uDBuffer", unit++, dbuf.colorId(0));
+        shade.setTexture("uDBuffer", unit++, dbuffer_.id());
         frame.setLightUniforms(shade, lightIndex);
         shade.set("uCentre", geo.disk.centre);
         shade.set("uSmallOccluders", settings.flag("small_occluders", false) ? 1 : 0);
@@ -196,7 +173,64 @@ public:
     }
 
 private:
+    // Draws the volumes into dbuffer_ (made at the map's size), with the map's matrix.
+    void drawDbuffer(Frame& frame, const ShadowMap& map, const DbufferGeometry& geo, bool firstExit, bool paper) {
+        const gl::Functions& g = frame.gl();
+        if (dbuffer_.width() != map.size) dbuffer_ = gl::Texture(map.size, map.size, GL_RGBA32F, GL_NEAREST);
+        // The depth is needed only while drawing: a scratch target's, shared with other renders.
+        gl::Framebuffer target(map.size, map.size, {});
+        target.attachColor(0, dbuffer_.id());
+        target.attachDepth(gl::scratchFramebuffer("dbuffer.depth", map.size, map.size, {}, GL_DEPTH_COMPONENT32F)
+                               .depth()
+                               .id());
+        target.bind();
+        gl::apply(kFarthest);  // every channel written: clears honour the colour mask
+        target.clearColor(0, glm::vec4(0.0f));
+        const gl::Program& vol = gl::program("dbuffer/volume.vert.glsl", "dbuffer/volume.frag.glsl");
+        vol.use();
+        frame.bindShadowMap(vol, map, 0);  // the first-exit rule reads the casters' distances
+        vol.set("uWorldToClip", map.worldToClip());
+        vol.set("uCentre", geo.disk.centre);
+        vol.set("uNormal", geo.disk.normal);
+        vol.set("uRadius", geo.disk.radius);
+        // Depth = distance / uFar: anything past the far plane is clipped anyway.
+        float far = glm::length(map.origin - geo.disk.centre) + map.farPlane * 2.0f + 1e-6f;
+        vol.set("uFar", far);
+        vol.set("uPaperFormula", paper ? 1 : 0);
+        GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
+        // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
+        gl::RenderState umbraState = firstExit ? kNearest : kFarthest;
+        umbraState.channels = kUmbraChannels;
+        gl::apply(umbraState);
+        vol.set("uBeyondOccluder", firstExit ? 1 : 0);
+        vol.set("uExitEpsilon", kExitEpsilon);
+        target.clearDepth(firstExit ? 1.0f : 0.0f);
+        draw(umbra);
+        gl::RenderState penumbraState = kFarthest;
+        penumbraState.channels = kPenumbraChannels;
+        gl::apply(penumbraState);
+        vol.set("uBeyondOccluder", 0);
+        target.clearDepth(0.0f);
+        draw(penumbra);
+        g.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        g.check("drawing the D-buffer");
+    }
+
+    // What the D-buffer shows: the light's volumes and shadow map (both kept for the light's
+    // geometry key), drawn with these settings.
+    struct DbufferKey {
+        Scene::LightGeometryKey geometry;
+        int mapSize = 0;
+        bool firstExit = true, paper = false;
+        bool operator==(const DbufferKey&) const = default;
+    };
+
     std::shared_ptr<const DbufferGeometry> geometry_;
+    // The last D-buffer drawn (map size², RGBA32F: 64 MiB at the default 2048²): the volumes
+    // are drawn from the light, so a camera edit or another light's edit keeps it, and the
+    // preview's orbit and a re-render shade it again without the ~0.1 s pass (1M triangles).
+    gl::Texture dbuffer_;
+    std::optional<DbufferKey> dbufferKey_;
 };
 
 }  // namespace
