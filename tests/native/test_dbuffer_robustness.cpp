@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <string>
 
@@ -86,6 +87,37 @@ TEST(DbufferCache, VolumesAreReusedUntilTheSceneOrLightChanges) {
     EXPECT_EQ(dbufferGeometryBuilds(), before + 3);
     EXPECT_GT(grown->volumes.umbra.size() + grown->volumes.penumbra.size(),
               first->volumes.umbra.size() + first->volumes.penumbra.size());
+}
+
+// A move rebuilds the moved mesh's volumes only; the others are taken from the last build, and
+// the volumes are a fresh scene's, vertex for vertex.
+TEST(DbufferCache, AMoveBuildsOnlyTheMovedMeshsVolumes) {
+    auto scene = [](float shift) {
+        Scene s;
+        s.addMesh(test::makeGround(4.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+        s.addMesh(test::makeBox({-0.5f, -0.5f, 0.6f}, {0.5f, 0.5f, 1.0f}, SS_MESH_CAST));
+        s.addMesh(test::makeBox({0.8f, 0.6f, 0.3f}, {1.1f, 0.9f, 0.5f}, SS_MESH_CAST));
+        s.addLight(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f));
+        s.setCamera(test::makeTopCamera(64, 48));
+        if (shift != 0.0f) s.setMeshTransform(2, glm::translate(glm::mat4(1.0f), glm::vec3(shift, 0.0f, 0.0f)));
+        return s;
+    };
+    Scene moving = scene(0.0f);
+    auto first = dbufferGeometry(moving, 0);
+    EXPECT_EQ(first->meshesBuilt, 3u);
+    moving.setMeshTransform(2, glm::translate(glm::mat4(1.0f), glm::vec3(-0.2f, 0.0f, 0.0f)));
+    auto moved = dbufferGeometry(moving, 0);
+    EXPECT_EQ(moved->meshesBuilt, 1u);
+    EXPECT_EQ(moved->meshesReused, 2u);
+    auto fresh = dbufferGeometry(scene(-0.2f), 0);
+    EXPECT_EQ(fresh->meshesReused, 0u);
+    auto same = [](const std::vector<VolumeVertex>& a, const std::vector<VolumeVertex>& b) {
+        return a.size() == b.size() &&
+               std::memcmp(a.data(), b.data(), a.size() * sizeof(VolumeVertex)) == 0;
+    };
+    EXPECT_TRUE(same(moved->volumes.umbra, fresh->volumes.umbra));
+    EXPECT_TRUE(same(moved->volumes.penumbra, fresh->volumes.penumbra));
+    EXPECT_FALSE(same(moved->volumes.umbra, first->volumes.umbra));  // the small box's moved
 }
 
 Scene withOccluder(Mesh occluder) {

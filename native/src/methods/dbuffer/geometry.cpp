@@ -16,12 +16,14 @@ namespace ss {
 
 namespace {
 
+bool sameDisk(const Disk& a, const Disk& b) {
+    return a.centre == b.centre && a.normal == b.normal && a.radius == b.radius;
+}
+
 struct Key {
     Scene::LightGeometryKey geometry;
     Disk disk;
-    bool operator==(const Key& o) const {
-        return geometry == o.geometry && disk.centre == o.disk.centre && disk.normal == o.disk.normal && disk.radius == o.disk.radius;
-    }
+    bool operator==(const Key& o) const { return geometry == o.geometry && sameDisk(disk, o.disk); }
 };
 
 constexpr size_t kCacheEntries = 8;
@@ -29,7 +31,10 @@ std::mutex cacheMutex;
 std::list<std::pair<Key, std::shared_ptr<const DbufferGeometry>>> cache;  // most recent first
 std::atomic<size_t> builds{0};
 
-std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& disk, const std::atomic<bool>* cancel) {
+// `earlier`: the last build for this light (may be null); a mesh's volumes depend only on the
+// mesh, the disk and the extrusion length, so its part is taken when all three are the same.
+std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& disk, const DbufferGeometry* earlier,
+                                             const std::atomic<bool>* cancel) {
     auto g = std::make_shared<DbufferGeometry>();
     g->disk = disk;
     Bounds all = scene.bounds();
@@ -37,16 +42,29 @@ std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& dis
     // of the scene, twice over.
     float reach = all.empty() ? 1.0f : glm::length(all.center() - disk.centre) + all.diagonal();
     g->extrusionLength = 2.0f * reach;
+    if (earlier && !(sameDisk(earlier->disk, disk) && earlier->extrusionLength == g->extrusionLength)) earlier = nullptr;
     for (const Mesh& mesh : scene.meshes()) {
         if (!mesh.casts() || mesh.triangles.empty()) continue;
         if (cancel && cancel->load(std::memory_order_relaxed))
             fail(SS_ERROR_CANCELLED, "cancelled during dbuffer: silhouettes and volumes");
-        auto t0 = Clock::now();
-        DiskSilhouette sil = diskSilhouette(mesh, disk);
-        g->silhouetteMs += msSince(t0);
-        auto t1 = Clock::now();
-        g->volumes.append(extrudeVolumes(mesh, sil, disk, g->extrusionLength));
-        g->extrusionMs += msSince(t1);
+        DbufferGeometry::MeshPart part{mesh.version, nullptr};
+        if (earlier)
+            for (const DbufferGeometry::MeshPart& p : earlier->parts)
+                if (p.meshVersion == mesh.version) part = p;
+        if (part.volumes) {
+            ++g->meshesReused;
+        } else {
+            auto t0 = Clock::now();
+            DiskSilhouette sil = diskSilhouette(mesh, disk);
+            g->silhouetteMs += msSince(t0);
+            auto t1 = Clock::now();
+            auto volumes = std::make_shared<ShadowVolumes>(extrudeVolumes(mesh, sil, disk, g->extrusionLength));
+            g->extrusionMs += msSince(t1);
+            part.volumes = std::move(volumes);
+            ++g->meshesBuilt;
+        }
+        g->volumes.append(*part.volumes);
+        g->parts.push_back(std::move(part));
     }
     ++builds;
     return g;
@@ -62,15 +80,20 @@ std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int l
             for (const glm::vec3& p : m.positions) casters.extend(p);
     Key key{scene.lightGeometryKey(lightIndex),
             dbufferDisk(scene.light(lightIndex), casters, scene.bounds())};
+    std::shared_ptr<const DbufferGeometry> earlier;  // the newest build for this light, if any
     {
         std::lock_guard<std::mutex> lock(cacheMutex);
-        for (auto it = cache.begin(); it != cache.end(); ++it)
+        for (auto it = cache.begin(); it != cache.end(); ++it) {
             if (it->first == key) {
                 cache.splice(cache.begin(), cache, it);
                 return cache.front().second;
             }
+            Scene::LightGeometryKey k = it->first.geometry;
+            k.geometryVersion = key.geometry.geometryVersion;
+            if (!earlier && k == key.geometry) earlier = it->second;
+        }
     }
-    auto g = build(scene, key.disk, cancel);
+    auto g = build(scene, key.disk, earlier.get(), cancel);
     std::lock_guard<std::mutex> lock(cacheMutex);
     cache.emplace_front(key, g);
     if (cache.size() > kCacheEntries) cache.pop_back();

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "core/scene.h"
 #include "geometry/volumes.h"
@@ -14,12 +15,22 @@ struct DbufferGeometry {
     Disk disk;              // the light as the method sees it (methods/dbuffer/light.h)
     ShadowVolumes volumes;  // every casting mesh's volumes, concatenated
     float extrusionLength = 0.0f;
+    // Each casting mesh's volumes, in `volumes` order, with the Mesh::version they were made
+    // from: the next build after a move takes the unchanged meshes' parts.
+    struct MeshPart {
+        uint64_t meshVersion = 0;
+        std::shared_ptr<const ShadowVolumes> volumes;
+    };
+    std::vector<MeshPart> parts;
+    size_t meshesBuilt = 0, meshesReused = 0;  // parts made here, parts taken from an earlier build
     double silhouetteMs = 0.0, extrusionMs = 0.0;  // CPU time of the two stages when built
 };
 
 // The volumes of casting meshes for light `lightIndex`, built on first use and kept for the same
 // (Scene::lightGeometryKey, disk): a mesh edit or move, or this light's edit, rebuilds them; a
-// camera edit or another light's keeps them. A few recent entries are kept (thread-safe).
+// camera edit or another light's keeps them. A few recent entries are kept (thread-safe). A
+// rebuild after moves or mesh edits takes the volumes of every mesh whose version is unchanged
+// from the last build for the same light, disk and extrusion length (meshesReused).
 // Throws ss::Error(SS_ERROR_CANCELLED) between meshes once `cancel` is set.
 std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex,
                                                        const std::atomic<bool>* cancel = nullptr);

@@ -112,13 +112,13 @@ public:
         settings.report(0.3f, "D-buffer pass");
         const bool firstExit = settings.choice("umbra_rule", "first_exit", {"first_exit", "farthest"}) == "first_exit";
         const DbufferKey key{frame.scene().lightGeometryKey(lightIndex), map.size, firstExit, paper};
-        if (!(dbufferKey_ && *dbufferKey_ == key)) {
-            dbufferKey_.reset();  // until it is drawn whole
+        if (dbufferKey_ && *dbufferKey_ == key) {
+            ++stats_.lightWorkKept;
+        } else {
+            dbufferKey_.reset();  // until it is drawn
             drawDbuffer(frame, map, geo, firstExit, paper);
             dbufferKey_ = key;
             ++stats_.lightWorkMade;
-        } else {
-            ++stats_.lightWorkKept;
         }
         finishStage();
 
@@ -173,6 +173,15 @@ public:
     }
 
 private:
+    // What the D-buffer shows: the light's volumes and shadow map (both kept for the light's
+    // geometry key), drawn with these settings.
+    struct DbufferKey {
+        Scene::LightGeometryKey geometry;
+        int mapSize = 0;
+        bool firstExit = true, paper = false;
+        bool operator==(const DbufferKey&) const = default;
+    };
+
     // Draws the volumes into dbuffer_ (made at the map's size), with the map's matrix.
     void drawDbuffer(Frame& frame, const ShadowMap& map, const DbufferGeometry& geo, bool firstExit, bool paper) {
         const gl::Functions& g = frame.gl();
@@ -216,19 +225,13 @@ private:
         g.check("drawing the D-buffer");
     }
 
-    // What the D-buffer shows: the light's volumes and shadow map (both kept for the light's
-    // geometry key), drawn with these settings.
-    struct DbufferKey {
-        Scene::LightGeometryKey geometry;
-        int mapSize = 0;
-        bool firstExit = true, paper = false;
-        bool operator==(const DbufferKey&) const = default;
-    };
-
     std::shared_ptr<const DbufferGeometry> geometry_;
     // The last D-buffer drawn (map size², RGBA32F: 64 MiB at the default 2048²): the volumes
     // are drawn from the light, so a camera edit or another light's edit keeps it, and the
     // preview's orbit and a re-render shade it again without the ~0.1 s pass (1M triangles).
+    // After a move it is drawn whole: a redraw scissored to the moved box's 120² texels took as
+    // long as the whole pass on 1M triangles, whose cost is per volume triangle (most reach past
+    // the map's far plane and are clipped there), not per texel.
     gl::Texture dbuffer_;
     std::optional<DbufferKey> dbufferKey_;
 };
