@@ -230,8 +230,8 @@ private:
     // are drawn from the light, so a camera edit or another light's edit keeps it, and the
     // preview's orbit and a re-render shade it again without the ~0.1 s pass (1M triangles).
     // After a move it is drawn whole: a redraw scissored to the moved box's 120² texels took as
-    // long as the whole pass on 1M triangles, whose cost is per volume triangle (most reach past
-    // the map's far plane and are clipped there), not per texel.
+    // long as the whole pass on 1M triangles, whose cost is per volume triangle, not per texel
+    // (nor the clipping at the map's far plane: with that plane pushed out it took longer).
     gl::Texture dbuffer_;
     std::optional<DbufferKey> dbufferKey_;
 };
