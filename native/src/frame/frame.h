@@ -127,7 +127,8 @@ struct FrameStats {
     // Of cameraPasses and shadowMaps: those redrawn only inside the screen rectangle that moved
     // meshes touched (the rest of the pass kept).
     int cameraPassesPatched = 0, shadowMapsPatched = 0;
-    // Triangles those patches drew (only the clusters that reach their rectangles).
+    // Triangles those patches drew (only the clusters that reach their rectangles), and those a
+    // method's own patches drew through drawMeshesWhere (occlusion_textures' slices).
     size_t patchTriangles = 0;
     // Triangles the camera passes drew, whole or patched: only those that may cover a pixel
     // centre of the redrawn rectangle (CoveringTriangles).
