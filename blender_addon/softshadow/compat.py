@@ -8,6 +8,7 @@
   became the shared `ShaderNodeMix` (sockets by identifier: Factor_Float, A_Color, B_Color).
 - EEVEE's engine id is BLENDER_EEVEE in 3.x and 5.x, BLENDER_EEVEE_NEXT in 4.2-4.5.
 - 4.0 removed `bgl`: the preview draws with the `gpu` module only (never import bgl).
+- 4.0 dropped the dpi argument of `blf.size(font, size, dpi)`.
 - Point/spot/area radius is `shadow_soft_size` in 3.x and 4.x (`radius` in the UI).
 - 3.0+ objects carry `visible_shadow` / `visible_camera`; older files had `cycles_visibility`.
 - Materials' EEVEE `shadow_method` went with EEVEE Next (4.2): from then on an object casts
@@ -18,6 +19,14 @@
 def version_tuple(app):
     """(major, minor, patch) of a bpy.app-like object."""
     return tuple(getattr(app, "version", (0, 0, 0)))[:3]
+
+
+def blf_size(blf, app, font, size):
+    """Sets a font's size in every version (4.0 dropped the dpi argument)."""
+    if version_tuple(app) >= (4, 0, 0):
+        blf.size(font, size)
+    else:
+        blf.size(font, size, 72)
 
 
 def compositor_tree(scene, create=False, bpy_data=None):

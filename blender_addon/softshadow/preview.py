@@ -8,17 +8,22 @@ and renders at reduced resolution through the library (which releases the GIL). 
 rendered twice, progressively: a coarse image (COARSE_DIVISOR times fewer pixels in each axis) that
 the viewport draws scaled up at once, then the full one that replaces it. The two sizes are two
 native scenes fed the same edits, so each keeps its own camera pass and neither is redrawn whole
-for the other's resolution. A newer request cancels the running render, coarse or full, through
-the progress callback. Images are drawn with the `gpu` module only (no bgl), as black with alpha
-1 - V."""
+for the other's resolution. While the scene and the view stay as they are, the full image is then
+refined: the same GL pass with `refine=on`, whose rays re-trace the pixels the pass is unsure of
+(deterministic sampling, so the image only gets closer to the truth). A newer request cancels the
+running render, coarse, full or refined, through the progress callback. A viewport always draws
+the last image it received until a newer one lands (an edit, a new view or a failed render never
+blanks it), and says in its corner what the preview is doing. Images are drawn with the `gpu`
+module only (no bgl), as black with alpha 1 - V."""
 import threading
 
+import blf
 import bpy
 import gpu
 import numpy as np
 from gpu_extras.presets import draw_texture_2d
 
-from . import app_handlers, mesh_cache, native, passes, scene_export
+from . import app_handlers, compat, mesh_cache, native, passes, scene_export
 
 PREVIEW_OPACITY = 0.75
 COARSE_DIVISOR = 4    # the coarse image's width and height are the full one's divided by this
@@ -31,6 +36,9 @@ COARSE_DIVISOR = 4    # the coarse image's width and height are the full one's d
 # choice with that method's defaults.
 COARSE_SETTINGS = {"occlusion_textures": "resolution=%d" % (512 // COARSE_DIVISOR)}
 RECORD_LENGTH = 64    # entries kept in _State.delivered and _State.cancelled
+# The stages of one request, in the order they are delivered: each image is closer to the truth.
+STAGES = ("coarse", "full", "refined")
+REFINE_SETTINGS = "refine=on"
 
 
 def fast_methods():
@@ -44,22 +52,23 @@ class _State:
         self.wake = threading.Condition(self.lock)
         self.generation = 0         # bumped by every new request; older work is stale
         self.request = None         # (generation, key, camera)
-        self.done = {}              # key -> (generation, rgba float32 (h, w, 4))
+        self.done = {}              # key -> (generation, stage index, rgba float32 (h, w, 4))
         self.edits = []             # exports not yet handed to the worker, oldest first (under lock)
         self.live = passes.LiveScene()    # the worker's scene for the full image
         self.coarse = passes.LiveScene()  # the worker's scene for the coarse image
-        self.delivered = []         # (generation, (width, height)) of each image handed over, oldest first
+        self.delivered = []         # (generation, (width, height), stage) of each image handed over, oldest first
         self.cancelled = []         # (generation, (width, height)) of each render a newer request stopped
         self.full = True            # the next edit is a full export (object set changed, start)
         self.changed = set()        # objects an update touched since the last export
         self.geometry = set()       # of those, the ones whose mesh data changed
         self.object_names = frozenset()
         self.keys = {}              # region pointer -> key last asked for
-        self.textures = {}          # region pointer -> (generation, GPUTexture)
+        self.textures = {}          # region pointer -> ((generation, stage), GPUTexture): the last image drawn
         self.thread = None
         self.stop = False
         self.fresh = False          # a result arrived: redraw the viewports
         self.error = ""
+        self.status = ""            # what the worker does now, for the viewport's corner
 
 
 _state = _State()
@@ -76,9 +85,10 @@ def apply_edits(live, edits):
             live.apply(edit[1], edit[2])
 
 
-def _render_job(live, edits, camera, cancelled, coarse=False):
+def _render_job(live, edits, camera, cancelled, coarse=False, refine=False, progress=None):
     """Product of every previewed light's V, as an RGBA overlay. Runs on the worker.
-    coarse: the methods' coarse settings (COARSE_SETTINGS)."""
+    coarse: the methods' coarse settings (COARSE_SETTINGS); refine: each light's GL pass refined
+    with rays (REFINE_SETTINGS). progress(fraction) hears how far the lights are."""
     apply_edits(live, edits)
     with live.lock:
         if live.scene is None:
@@ -86,17 +96,19 @@ def _render_job(live, edits, camera, cancelled, coarse=False):
         live.set_camera(camera)
         scene, indices = live.scene, live.light_indices()
         shade = np.ones((camera["height"], camera["width"]), np.float32)
-        for light in live.lights:
-            options = light.get("options", {})
-            if light["name"] not in indices or not options.get("enabled", True) or not light["cast_shadows"]:
-                continue
-            method = options.get("method", "auto")
+        shown = [light for light in live.lights if light["name"] in indices
+                 and light.get("options", {}).get("enabled", True) and light["cast_shadows"]]
+        for done, light in enumerate(shown):
+            method = light.get("options", {}).get("method", "auto")
             method = method if method in fast_methods() else "auto"
-            # The viewport cannot wait for auto to render every candidate: it takes auto's rule by
-            # the light's shape (docs/methods/README.md).
-            settings = "check_pixels=0" if method == "auto" else COARSE_SETTINGS.get(method) if coarse else None
-            result = scene.render(indices[light["name"]], method, settings=settings,
-                                  progress=lambda f, s: cancelled())
+            settings = _stage_settings(method, coarse, refine)
+
+            def heard(fraction, _stage, done=done):
+                if progress is not None:
+                    progress((done + min(max(fraction, 0.0), 1.0)) / len(shown))
+                return cancelled()
+
+            result = scene.render(indices[light["name"]], method, settings=settings, progress=heard)
             try:
                 v = result.layers().get("V")
             finally:
@@ -106,6 +118,15 @@ def _render_job(live, edits, camera, cancelled, coarse=False):
     rgba = np.zeros(shade.shape + (4,), np.float32)
     rgba[..., 3] = PREVIEW_OPACITY * (1.0 - shade)
     return np.ascontiguousarray(np.flipud(rgba))  # textures start at the bottom row
+
+
+def _stage_settings(method, coarse, refine):
+    """The settings string of one light's render in a stage. The viewport cannot wait for auto to
+    render every candidate: it takes auto's rule by the light's shape (docs/methods/README.md)."""
+    parts = ["check_pixels=0"] if method == "auto" else [COARSE_SETTINGS[method]] if coarse and method in COARSE_SETTINGS else []
+    if refine:
+        parts.append(REFINE_SETTINGS)
+    return ";".join(parts) or None
 
 
 def coarse_camera(camera):
@@ -119,27 +140,48 @@ def _record(entries, entry):
     del entries[:-RECORD_LENGTH]
 
 
-def progressive_job(scenes, backlog, edits, camera, cancelled, deliver):
-    """Renders the coarse image, hands it to deliver(rgba), then the full one, unless cancelled()
-    turns true first. scenes and backlog are keyed "coarse" and "full"; backlog holds the edits a
-    scene has not yet applied (a cancelled request leaves the scenes it did not reach behind).
-    Returns the (width, height) of the render a cancellation stopped, else None."""
-    for stage in ("coarse", "full"):
-        backlog[stage].extend(edits)
-    for stage in ("coarse", "full"):
+def progressive_job(scenes, backlog, edits, camera, cancelled, deliver, stages=STAGES, status=None):
+    """Renders the coarse image, hands it to deliver(rgba, stage), then the full one, then the
+    refined one, unless cancelled() turns true first. scenes and backlog are keyed "coarse" and
+    "full" (the refined image is the full scene's, refined); backlog holds the edits a scene has
+    not yet applied (a cancelled request leaves the scenes it did not reach behind).
+    status(text) hears the stage and its progress. Returns the (width, height) of the render a
+    cancellation stopped, else None."""
+    for scene_key in ("coarse", "full"):
+        backlog[scene_key].extend(edits)
+    for stage in stages:
+        scene_key = "coarse" if stage == "coarse" else "full"
         view = coarse_camera(camera) if stage == "coarse" else camera
         size = (view["width"], view["height"])
         if cancelled():
             return size
-        pending, backlog[stage] = backlog[stage], []
+        pending, backlog[scene_key] = backlog[scene_key], []
+
+        def heard(fraction, stage=stage):
+            if status is not None:
+                status(stage_status(stage, fraction))
+
+        heard(0.0)
         try:
-            rgba = _render_job(scenes[stage], pending, view, cancelled, coarse=stage == "coarse")
+            rgba = _render_job(scenes[scene_key], pending, view, cancelled, coarse=stage == "coarse",
+                               refine=stage == "refined", progress=heard)
         except native.SoftShadowError as exc:
             if exc.cancelled:
                 return size
             raise
-        deliver(rgba)
+        deliver(rgba, stage)
+    if status is not None:
+        status(stage_status("done", 1.0))
     return None
+
+
+def stage_status(stage, fraction):
+    """The viewport's words for what the preview is doing."""
+    if stage == "done":
+        return "soft shadows: refined"
+    if stage == "refined":
+        return "soft shadows: refining %d %%" % int(round(100 * fraction))
+    return "soft shadows: %s image" % stage
 
 
 def _worker():
@@ -159,25 +201,32 @@ def _worker():
         def cancelled(generation=generation):
             return state.stop or state.generation != generation
 
-        def deliver(rgba, generation=generation, key=key):
+        def deliver(rgba, stage, generation=generation, key=key):
             with state.lock:
                 if state.generation == generation:
-                    state.done[key] = (generation, rgba)
-                    _record(state.delivered, (generation, (rgba.shape[1], rgba.shape[0])))
+                    state.done[key] = (generation, STAGES.index(stage), rgba)
+                    _record(state.delivered, (generation, (rgba.shape[1], rgba.shape[0]), stage))
                     state.error = ""
                     state.fresh = True
 
+        def status(text, generation=generation):
+            if state.generation == generation:
+                state.status = text
+                state.fresh = True
+
         try:
-            stopped = progressive_job(scenes, backlog, edits, camera, cancelled, deliver)
+            stopped = progressive_job(scenes, backlog, edits, camera, cancelled, deliver, status=status)
             if stopped is not None:
                 with state.lock:
                     _record(state.cancelled, (generation, stopped))
         except native.SoftShadowError as exc:
             state.error = str(exc)
+            state.fresh = True
             if any(live.scene is None for live in scenes.values()):
                 state.full = True  # an edit failed and dropped a scene: export it whole
         except Exception as exc:  # the preview must never take Blender down
             state.error = "%s: %s" % (type(exc).__name__, exc)
+            state.fresh = True
             for live in scenes.values():
                 live.close()
             state.full = True
@@ -186,7 +235,13 @@ def _worker():
 def full_image_delivered():
     """Whether the newest request's full image was handed over (after its coarse one)."""
     with _state.lock:
-        return sum(1 for g, _size in _state.delivered if g == _state.generation) >= 2
+        return any(g == _state.generation and stage == "full" for g, _size, stage in _state.delivered)
+
+
+def refined_image_delivered():
+    """Whether the newest request's refined image was handed over (its last)."""
+    with _state.lock:
+        return any(g == _state.generation and stage == "refined" for g, _size, stage in _state.delivered)
 
 
 def _ensure_worker():
@@ -267,22 +322,51 @@ def _draw():
         return
     try:
         key = _submit(context, region, rv3d)
-        done = _state.done.get(key)
-        if done is None:
-            return
-        generation, rgba = done
-        image = (generation, rgba.shape)  # the coarse image, then the full one, of a generation
-        cached = _state.textures.get(region.as_pointer())
-        if cached is None or cached[0] != image:
-            h, w = rgba.shape[:2]
-            buffer = gpu.types.Buffer("FLOAT", w * h * 4, rgba.reshape(-1))
-            cached = (image, gpu.types.GPUTexture((w, h), format="RGBA16F", data=buffer))
-            _state.textures[region.as_pointer()] = cached
-        gpu.state.blend_set("ALPHA")
-        draw_texture_2d(cached[1], (0, 0), region.width, region.height)  # the coarse one scaled up
-        gpu.state.blend_set("NONE")
+        cached = shown_image(_state.textures, region.as_pointer(), _state.done.get(key),
+                             lambda rgba: _texture(rgba))
+        if cached is not None:
+            gpu.state.blend_set("ALPHA")
+            draw_texture_2d(cached[1], (0, 0), region.width, region.height)  # the coarse one scaled up
+            gpu.state.blend_set("NONE")
+        _draw_status(status_line(_state.status, _state.error))
     except Exception as exc:
         _state.error = "%s: %s" % (type(exc).__name__, exc)
+
+
+def shown_image(textures, region_key, done, make_texture):
+    """The image a viewport draws: the newest one delivered for its request, else the last one it
+    drew (an edit, a new view or a failed render keeps it until a newer image lands). textures:
+    region -> ((generation, stage), texture); done: (generation, stage, rgba) or None."""
+    cached = textures.get(region_key)
+    if done is not None:
+        generation, stage, rgba = done
+        if cached is None or cached[0] != (generation, stage):
+            cached = ((generation, stage), make_texture(rgba))
+            textures[region_key] = cached
+    return cached
+
+
+def _texture(rgba):
+    h, w = rgba.shape[:2]
+    buffer = gpu.types.Buffer("FLOAT", w * h * 4, rgba.reshape(-1))
+    return gpu.types.GPUTexture((w, h), format="RGBA16F", data=buffer)
+
+
+def status_line(status, error):
+    """The corner text: the failure first (the image stays the last good one), else the stage."""
+    if error:
+        return "soft shadows: failed, showing the last image: %s" % error.splitlines()[0][:160]
+    return status
+
+
+def _draw_status(text):
+    if not text:
+        return
+    font = 0
+    compat.blf_size(blf, bpy.app, font, 12)
+    blf.color(font, 1.0, 1.0, 1.0, 0.9)
+    blf.position(font, 12, 12, 0)
+    blf.draw(font, text)
 
 
 def note_updates(scene, updates):

@@ -56,10 +56,10 @@ def test_coarse_then_full_and_a_newer_edit_cancels():
     state.edits.append(preview.export_edit(bpy.context.evaluated_depsgraph_get(), scene))
     try:
         first = preview.request_render("first", camera)
-        _wait(lambda: (first, full) in state.delivered or state.error, "the first full image")
+        _wait(lambda: (first, full, "full") in state.delivered or state.error, "the first full image")
         sstest.check(state.error == "", "the worker rendered: %s" % state.error)
-        mine = [size for g, size in state.delivered if g == first]
-        sstest.check(mine == [coarse, full], "coarse then full for one request: %s" % mine)
+        mine = [(size, stage) for g, size, stage in state.delivered if g == first]
+        sstest.check(mine[:2] == [(coarse, "coarse"), (full, "full")], "coarse then full for one request: %s" % mine)
 
         # The coarse image shows the shadow where the full one does.
         _edit(preview, scene)
@@ -69,8 +69,8 @@ def test_coarse_then_full_and_a_newer_edit_cancels():
         def seen():
             done = state.done.get("second")
             if done is not None and done[0] == second:
-                images[done[1].shape[:2]] = done[1]
-            return (second, full) in state.delivered or state.error
+                images[done[2].shape[:2]] = done[2]
+            return (second, full, "full") in state.delivered or state.error
         _wait(seen, "the second full image")
         sstest.check(set(images) == {coarse[::-1], full[::-1]}, "both images were handed over: %s" % list(images))
         scaled = np.repeat(np.repeat(images[coarse[::-1]][..., 3], preview.COARSE_DIVISOR, 0),
@@ -82,15 +82,15 @@ def test_coarse_then_full_and_a_newer_edit_cancels():
         # An edit arriving once the coarse image is out cancels that request's full render.
         _edit(preview, scene)
         third = preview.request_render("third", camera)
-        _wait(lambda: (third, coarse) in state.delivered or state.error, "the third coarse image")
+        _wait(lambda: (third, coarse, "coarse") in state.delivered or state.error, "the third coarse image")
         _edit(preview, scene)
         fourth = preview.request_render("fourth", camera)
-        _wait(lambda: (fourth, full) in state.delivered or state.error, "the fourth full image")
+        _wait(lambda: (fourth, full, "full") in state.delivered or state.error, "the fourth full image")
         sstest.check(state.error == "", "the worker rendered: %s" % state.error)
-        sstest.check((third, full) not in state.delivered, "the stale full image was never handed over")
+        sstest.check(not any(g == third and stage != "coarse" for g, _size, stage in state.delivered), "the stale full image was never handed over")
         sstest.check((third, full) in state.cancelled, "the third full render was cancelled: %s" % state.cancelled)
-        mine = [size for g, size in state.delivered if g == fourth]
-        sstest.check(mine == [coarse, full], "the newer edit got coarse then full: %s" % mine)
+        mine = [(size, stage) for g, size, stage in state.delivered if g == fourth]
+        sstest.check(mine[:2] == [(coarse, "coarse"), (full, "full")], "the newer edit got coarse then full: %s" % mine)
         print("   coarse %s then full %s; coarse vs full alpha %.4f; cancelled %s"
               % (coarse, full, difference, state.cancelled))
     finally:
@@ -114,7 +114,8 @@ def test_the_coarse_image_uses_the_coarse_sizes_and_still_matches_the_full_one()
         scenes = {"coarse": ss.passes.LiveScene(), "full": ss.passes.LiveScene()}
         images = []
         try:
-            preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False, images.append)
+            preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False,
+                                    lambda rgba, _stage: images.append(rgba), stages=("coarse", "full"))
             live = scenes["coarse"]
             index = live.light_indices()["Key"]
             small, default = (live.scene.render(index, method, settings=text) for text in (settings, None))
@@ -181,9 +182,9 @@ def test_preview_under_xvfb():
     sstest.check(info["error"] == "" and info["done"] >= 1, "the preview worker delivered: %s" % info)
     # The window got the coarse image first, then the full one that the screenshot shows.
     last = info["delivered"][-1][0]
-    sizes = [tuple(size) for g, size in info["delivered"] if g == last]
+    sizes = [tuple(size) for g, size, _stage in info["delivered"] if g == last]
     coarse = tuple(n // ss.preview.COARSE_DIVISOR for n in info["full"])
-    sstest.check(sizes == [coarse, tuple(info["full"])], "coarse then full in the window: %s" % info["delivered"])
+    sstest.check(sizes[:2] == [coarse, tuple(info["full"])], "coarse then full in the window: %s" % info["delivered"])
     off = _screenshot(os.path.join(folder, "off.xwd"))
     on = _screenshot(os.path.join(folder, "on.xwd"))
     rx, ry = info["region"][:2]
@@ -206,7 +207,7 @@ def test_preview_under_xvfb():
     # the old place is lit again, and only images of the newest request were handed over.
     sstest.check(info["error_after_move"] == "", "no preview error after the move: %s" % info["error_after_move"])
     after = info["delivered_after_move"]
-    sstest.check(len(after) >= 2 and all(g > info["generation_before_move"] for g, _size in after)
+    sstest.check(len(after) >= 2 and all(g > info["generation_before_move"] for g, _size, _stage in after)
                  and after[-1][0] == info["generation"],
                  "after the move only newer images were handed over, the last of the newest request: %s (move "
                  "after generation %d, now %d)" % (after, info["generation_before_move"], info["generation"]))
@@ -216,6 +217,22 @@ def test_preview_under_xvfb():
     followed = 1.0 - at(moved, "moved") / at(off, "moved")
     sstest.check(followed >= DARKENED, "the shadow followed the occluder: its new centre darkened by %.2f" % followed)
     print("   after the move: old centre %.3f from lit, new centre darkened by %.2f" % (relit, followed))
+
+    # Never blank: every frame sampled right after an edit (before the worker answered it)
+    # still shows the shadow: the last image stays until a newer one lands.
+    sstest.check(len(info["sequence"]) == 6, "the edit sequence ran: %s" % info["sequence"])
+    for edit, shot, _generation in info["sequence"]:
+        darkened = 1.0 - at(_screenshot(os.path.join(folder, shot)), "moved") / at(off, "moved")
+        print("   right after %s: shadow darkened by %.2f" % (edit, darkened))
+        sstest.check(darkened >= DARKENED, "the overlay kept its shadow right after '%s' (darkened %.2f)"
+                     % (edit, darkened))
+    sstest.check(info["error_after_sequence"] == "", "no preview error: %s" % info["error_after_sequence"])
+
+    # Once the scene stays still the image is refined, drawn, and the corner says so.
+    sstest.check(info["refined"] and info["status"] == "soft shadows: refined",
+                 "the preview refined its image: %s, status %r" % (info["refined"], info["status"]))
+    refined = 1.0 - at(_screenshot(os.path.join(folder, "refined.xwd")), "moved") / at(off, "moved")
+    sstest.check(refined >= DARKENED, "the refined image shows the shadow (darkened %.2f)" % refined)
 
 
 if __name__ == "__main__":

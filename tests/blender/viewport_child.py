@@ -2,8 +2,10 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Top view over the scene; a screenshot with the preview off, then one with it on once the
 preview worker has delivered its full image, then one after the occluder moved (as an artist
-drags it) and the preview delivered again; writes the region, the projected test points and the
-preview's record of the images it handed over as JSON."""
+drags it) and the preview delivered again; then a continuous edit sequence (small moves, a light
+resize, Render Passes) with a screenshot right after each edit's first redraw, before the worker
+can answer it, and one once the refined image landed; writes the region, the projected test
+points and the preview's record of the images it handed over as JSON."""
 import json
 import os
 import sys
@@ -20,7 +22,24 @@ import xvfb_screen  # noqa: E402
 OUT = os.environ["SOFTSHADOW_PREVIEW_OUT"]
 POINTS = json.loads(os.environ["SOFTSHADOW_PREVIEW_POINTS"])
 MOVE = json.loads(os.environ["SOFTSHADOW_PREVIEW_MOVE"])  # [object name, [dx, dy, dz]]
-state = {"step": 0, "t": time.time(), "info": None}
+# The edit sequence after the move: each a small change that keeps the "moved" point in shadow.
+SEQUENCE = ("nudge", "nudge", "resize", "render_passes", "nudge_back", "resize_back")
+state = {"step": 0, "t": time.time(), "info": None, "edit": 0}
+
+
+def _apply(edit, scene, softshadow):
+    name = MOVE[0]
+    if edit == "nudge":
+        scene.objects[name].location.y += 0.1
+    elif edit == "nudge_back":
+        scene.objects[name].location.y -= 0.1
+    elif edit == "resize":
+        scene.objects["Key"].data.size = 0.8
+    elif edit == "resize_back":
+        scene.objects["Key"].data.size = 0.5
+    elif edit == "render_passes":
+        softshadow.api.render_frame(scene, bpy.context.evaluated_depsgraph_get())
+    bpy.context.view_layer.update()
 
 
 def _view():
@@ -85,6 +104,34 @@ def step():
         info["delivered_after_move"] = [entry for entry in softshadow.preview._state.delivered
                                         if entry not in info["delivered"]]
         info["generation"] = softshadow.preview._state.generation
+        info["sequence"] = []
+    elif s == 7:
+        # One edit of the sequence, then a redraw at once: the draw callback sees the edit
+        # before the worker can have answered it.
+        edit = SEQUENCE[state["edit"]]
+        _apply(edit, scene, softshadow)
+        area.tag_redraw()
+        state["step"] += 1
+        return 0.02
+    elif s == 8:
+        shot = "sequence_%d.xwd" % state["edit"]
+        _shot(shot)
+        state["info"]["sequence"].append([SEQUENCE[state["edit"]], shot, softshadow.preview._state.generation])
+        state["edit"] += 1
+        state["step"] = 7 if state["edit"] < len(SEQUENCE) else 9
+        return 0.3
+    elif s == 9:
+        if not softshadow.preview.refined_image_delivered() and time.time() - state["t"] < 120:
+            area.tag_redraw()
+            return 0.5  # still refining
+        area.tag_redraw()
+    elif s == 10:
+        _shot("refined.xwd")
+        info = state["info"]
+        info["refined"] = softshadow.preview.refined_image_delivered()
+        info["status"] = softshadow.preview._state.status
+        info["error_after_sequence"] = softshadow.preview._state.error
+        info["delivered_at_end"] = list(softshadow.preview._state.delivered)
         with open(os.path.join(OUT, "info.json"), "w") as f:
             json.dump(info, f)
         bpy.ops.wm.quit_blender()
