@@ -274,7 +274,7 @@ def material_alpha(material, engine="CYCLES"):
     mode = compat.material_shadow_alpha(material, engine)
     if mode == "opaque":
         return None
-    if not getattr(material, "use_nodes", False) or material.node_tree is None:
+    if not getattr(material, "use_nodes", True) or material.node_tree is None:
         return None  # no nodes: Cycles shades it opaque diffuse
     else:
         surface = _output_surface(material)

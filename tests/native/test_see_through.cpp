@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <string>
 #include <vector>
 
+#include "capi/capi_internal.h"
 #include "core/error.h"
 #include "io/metrics.h"
 #include "io/scene_file.h"
@@ -109,6 +111,15 @@ Scene sceneWith(Mesh occluder, const MeshAlpha* alpha = nullptr, float lightDiam
     return s;
 }
 
+// Pixels both results hold in their masks: the camera sees the card itself where its holes show
+// the ground in the squares' scene (camera rays stop at the first surface).
+Image bothMasks(const Layers& a, const Layers& b) {
+    Image m = *a.find("mask");
+    const Image& other = *b.find("mask");
+    for (size_t i = 0; i < m.pixels.size(); ++i) m.pixels[i] = m.pixels[i] > 0.5f && other.pixels[i] > 0.5f ? 1.0f : 0.0f;
+    return m;
+}
+
 double visibilityAt(const Scene& scene, float x, float y, int samples = 1024, uint32_t seed = 1) {
     TraceScene trace(scene);
     LightSampler light(scene.lights()[0]);
@@ -168,7 +179,8 @@ TEST(SeeThroughReference, CheckerboardCutOutShadowsLikeItsOpaqueSquares) {
     settings.samples = 256;
     Layers a = renderer.render(cut, 0, "reference", settings, nullptr);
     Layers b = renderer.render(squares, 0, "reference", settings, nullptr);
-    const Metrics m = compareVisibility(*a.find("V"), *b.find("V"), b.find("mask"));
+    const Image mask = bothMasks(a, b);
+    const Metrics m = compareVisibility(*a.find("V"), *b.find("V"), &mask);
     EXPECT_LT(m.rmse, 0.003) << m.toString();
     EXPECT_GT(m.pixels, 5000u);
 }
@@ -235,12 +247,47 @@ TEST(SeeThroughScene, SceneFileKeepsTheMaterials) {
     EXPECT_FALSE(back.meshes()[0].seeThrough());
 }
 
-// The GL methods on the two cards: each method's pass against the same method on the opaque
-// squares (cut-out), or against V = 0.5 where the 50 % card covers the whole light.
+TEST(SeeThroughCApi, SetMeshMaterialsCopiesChecksAndClears) {
+    ss_scene* scene = nullptr;
+    ASSERT_EQ(ss_scene_create(&scene), SS_OK);
+    const float xyz[] = {0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+    const uint32_t tris[] = {0, 1, 2, 0, 2, 3};
+    int32_t index = -1;
+    ASSERT_EQ(ss_scene_add_mesh(scene, "card", xyz, 4, tris, 2, SS_MESH_CAST, &index), SS_OK);
+    const float uvs[] = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    float texels[] = {1, 0, 0, 1};
+    const int32_t material[] = {0, 1};
+    ss_alpha_material m[2] = {};
+    m[0].texture = texels, m[0].width = 2, m[0].height = 2, m[0].wrap = SS_ALPHA_WRAP_EXTEND, m[0].closest = 1;
+    m[1].alpha = 0.5f;
+    ASSERT_EQ(ss_scene_set_mesh_materials(scene, index, uvs, material, m, 2), SS_OK) << ss_last_error();
+    texels[0] = 0.0f;  // copied: the scene keeps its own
+    const Mesh& mesh = scene->scene.meshes()[0];
+    ASSERT_TRUE(mesh.seeThrough());
+    EXPECT_EQ(mesh.alpha->materials[0].texels[0], 1.0f);
+    EXPECT_EQ(mesh.alpha->materials[1].constant, 0.5f);
+    EXPECT_EQ(mesh.alpha->triangleMaterial, (std::vector<uint32_t>{0, 1}));
+    const int32_t bad[] = {0, 2};
+    EXPECT_EQ(ss_scene_set_mesh_materials(scene, index, uvs, bad, m, 2), SS_ERROR_INVALID_SCENE);
+    EXPECT_NE(std::string(ss_last_error()).find("'card'"), std::string::npos) << ss_last_error();
+    m[1].alpha = -0.5f;
+    EXPECT_EQ(ss_scene_set_mesh_materials(scene, index, uvs, material, m, 2), SS_ERROR_INVALID_SCENE);
+    EXPECT_TRUE(scene->scene.meshes()[0].seeThrough());  // a refused set leaves it as it was
+    EXPECT_EQ(ss_scene_set_mesh_materials(scene, 7, uvs, material, m, 2), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(ss_scene_set_mesh_materials(scene, index, nullptr, nullptr, nullptr, 0), SS_OK);
+    EXPECT_FALSE(scene->scene.meshes()[0].seeThrough());
+    ss_scene_destroy(scene);
+}
+
+// The GL methods on the two cards: each method's pass on the cut-out against the same method
+// on the opaque squares as geometry, and its mean V where the 50 % card covers the whole light
+// (the reference's V is exactly 0.5 there); then with refine=on, against the reference.
 struct GlCase {
     std::string method;
-    double cutoutRmse;   // vs the same method on the squares (NaN: the method ignores alpha)
-    double halfMeanErr;  // |mean V - 0.5| under the 50 % card (NaN: ignores alpha)
+    double cutoutRmse;         // most RMSE vs the same method on the squares
+    double halfLo, halfHi;     // the mean V under the 50 % card lies in [halfLo, halfHi]
+    double opaqueCardRmse;     // most RMSE of the cut-out pass vs the same method on the whole
+                               // card (the methods that shadow it as opaque; -1: not asserted)
 };
 void PrintTo(const GlCase& c, std::ostream* os) { *os << c.method; }
 
@@ -261,7 +308,7 @@ double meanOver(const Image& v, const Image& mask) {
     return n > 0.0 ? sum / n : NAN;
 }
 
-TEST_P(SeeThroughGl, HonoursCutOutsAndHalfTransparency) {
+TEST_P(SeeThroughGl, HonoursCutOutsAndHalfTransparencyAsDocumented) {
     const GlCase& c = GetParam();
     Renderer renderer(SS_BACKEND_AUTO);
     RenderSettings settings;
@@ -273,38 +320,48 @@ TEST_P(SeeThroughGl, HonoursCutOutsAndHalfTransparency) {
 
     Layers a = renderer.render(cut, 0, c.method, settings, nullptr);
     Layers b = renderer.render(squares, 0, c.method, settings, nullptr);
-    const Metrics cutout = compareVisibility(*a.find("V"), *b.find("V"), b.find("mask"));
+    const Image mask = bothMasks(a, b);
+    const Metrics cutout = compareVisibility(*a.find("V"), *b.find("V"), &mask);
+    Layers o = renderer.render(opaqueCard, 0, c.method, settings, nullptr);
+    const Metrics asOpaque = compareVisibility(*a.find("V"), *o.find("V"), o.find("mask"));
     Layers ref = renderer.render(halfCard, 0, "reference", settings, nullptr);
     const Image covered = fullyCovered(ref);
+    ASSERT_GT(meanOver(covered, covered), 0.0);
     Layers h = renderer.render(halfCard, 0, c.method, settings, nullptr);
     const double halfMean = meanOver(*h.find("V"), covered);
-    ASSERT_GT(meanOver(covered, covered), 0.0);
-    if (std::isnan(c.cutoutRmse)) {
-        // It treats the card as opaque: its pass on the cut-out is its pass on the whole card.
-        Layers o = renderer.render(opaqueCard, 0, c.method, settings, nullptr);
-        EXPECT_LT(compareVisibility(*a.find("V"), *o.find("V"), o.find("mask")).rmse, 1e-6);
-        EXPECT_LT(halfMean, 0.02) << "the 50 % card shadows as an opaque one";
-    } else {
-        EXPECT_LT(cutout.rmse, c.cutoutRmse) << cutout.toString();
-        EXPECT_NEAR(halfMean, 0.5, c.halfMeanErr);
-    }
-    // refine=on (what final renders use) re-traces what the pass got wrong: the reference's
-    // answer wherever the card shadows.
+    std::cout << "  " << c.method << ": cut-out vs squares " << cutout.toString() << "\n  cut-out vs whole card "
+              << asOpaque.toString() << "\n  mean V under the 50 % card " << halfMean << "\n";
+    EXPECT_LT(cutout.rmse, c.cutoutRmse) << cutout.toString();
+    EXPECT_GE(halfMean, c.halfLo);
+    EXPECT_LE(halfMean, c.halfHi);
+    if (c.opaqueCardRmse >= 0.0) EXPECT_LE(asOpaque.rmse, c.opaqueCardRmse) << asOpaque.toString();
+
+    // refine=on (what final renders use) re-traces what the pass got wrong.
     RenderSettings refine = settings;
     refine.options["refine"] = "on";
     Layers fixed = renderer.render(halfCard, 0, c.method, refine, nullptr);
-    EXPECT_NEAR(meanOver(*fixed.find("V"), covered), 0.5, 0.01) << "refined";
+    const Metrics refinedHalf = compareVisibility(*fixed.find("V"), *ref.find("V"), ref.find("mask"));
     Layers fixedCut = renderer.render(cut, 0, c.method, refine, nullptr);
     Layers refCut = renderer.render(cut, 0, "reference", settings, nullptr);
-    const Metrics refined = compareVisibility(*fixedCut.find("V"), *refCut.find("V"), refCut.find("mask"));
-    EXPECT_LT(refined.rmse, 0.03) << "refined cut-out: " << refined.toString();
+    const Metrics refinedCut = compareVisibility(*fixedCut.find("V"), *refCut.find("V"), refCut.find("mask"));
+    std::cout << "  refined: 50 % card " << refinedHalf.toString() << "\n  refined: cut-out " << refinedCut.toString()
+              << "\n";
+    EXPECT_NEAR(meanOver(*fixed.find("V"), covered), 0.5, 0.01) << "refined";
+    EXPECT_LT(refinedHalf.rmse, 0.02) << "refined 50 % card: " << refinedHalf.toString();
+    EXPECT_LT(refinedCut.rmse, 0.02) << "refined cut-out: " << refinedCut.toString();
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, SeeThroughGl,
-                         ::testing::Values(GlCase{"shadow_map", 0.03, 0.05}, GlCase{"pcss", 0.03, 0.05},
-                                           GlCase{"occlusion_textures", 0.03, 0.05},
-                                           GlCase{"penumbra_map", 0.03, 0.05},
-                                           GlCase{"dbuffer", NAN, NAN}, GlCase{"sweep", NAN, NAN}),
+                         // Measured: 0 for the four whose light-side pass alpha-tests (the
+                         // checkerboard is exactly 0 or 1), 0.039 for dbuffer (its volumes are the
+                         // whole card's); 0.515, 0.512, 0.499, 0.515, 0.515 and 0.0002 under the
+                         // 50 % card (hashed texels around 0.5; sweep shadows it as opaque).
+                         ::testing::Values(GlCase{"shadow_map", 0.005, 0.45, 0.55, -1.0},
+                                           GlCase{"pcss", 0.005, 0.45, 0.55, -1.0},
+                                           GlCase{"occlusion_textures", 0.005, 0.45, 0.55, -1.0},
+                                           GlCase{"penumbra_map", 0.005, 0.45, 0.55, -1.0},
+                                           GlCase{"dbuffer", 0.06, 0.45, 0.55, -1.0},
+                                           GlCase{"sweep", 1.0, 0.0, 0.02, 1e-6}),
                          [](const auto& info) { return info.param.method; });
 
 TEST(SeeThroughAuto, FinalPassMatchesTheReference) {
@@ -319,6 +376,7 @@ TEST(SeeThroughAuto, FinalPassMatchesTheReference) {
         Layers autoPass = renderer.render(scene, 0, "auto", refine, nullptr);
         Layers ref = renderer.render(scene, 0, "reference", settings, nullptr);
         const Metrics m = compareVisibility(*autoPass.find("V"), *ref.find("V"), ref.find("mask"));
+        std::cout << "  auto + refine (" << (alpha == &half ? "50 % card" : "cut-out") << "): " << m.toString() << "\n";
         EXPECT_LT(m.rmse, 0.015) << (alpha == &half ? "50 % card: " : "cut-out: ") << m.toString();
     }
 }
