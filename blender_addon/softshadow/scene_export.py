@@ -241,10 +241,17 @@ def _mesh_alpha(obj, engine, readings, unreadable):
             except material_alpha.Unreadable as exc:
                 readings[key] = None
                 unreadable.add("'%s' (%s)" % (material.name, exc))
+            except Exception as exc:  # a tree this reader did not foresee: opaque, and said so
+                readings[key] = None
+                unreadable.add("'%s' (%s: %s)" % (material.name, type(exc).__name__, exc))
         slots.append(readings[key])
     if all(alpha is None for alpha in slots):
         return None
-    return material_alpha.mesh_alpha(obj, slots)
+    try:
+        return material_alpha.mesh_alpha(obj, slots)
+    except RuntimeError as exc:  # no mesh to read UVs from: opaque, and said so
+        unreadable.add("on object '%s' (%s)" % (obj.name, exc))
+        return None
 
 
 def _light_from_object(name, obj, matrix):
