@@ -130,6 +130,19 @@ def materials_cast_shadow(materials):
     return any(m != "NONE" for m in methods)
 
 
+def material_shadow_alpha(material, engine):
+    """How a material's alpha shadows under `engine` (scene.render.engine): "alpha" (Cycles, and
+    EEVEE's hashed or transparent shadows), "clip" (EEVEE 3.x-4.1 shadow_method CLIP: alpha
+    thresholded at alpha_threshold) or "opaque" (EEVEE's opaque shadows: the alpha is ignored)."""
+    if "EEVEE" not in str(engine):
+        return "alpha"
+    transparent = getattr(material, "use_transparent_shadow", None)  # 4.2+
+    if transparent is not None:
+        return "alpha" if transparent else "opaque"
+    method = getattr(material, "shadow_method", "OPAQUE")
+    return {"CLIP": "clip", "HASHED": "alpha"}.get(method, "opaque")
+
+
 def light_use_shadow(light):
     return bool(getattr(light, "use_shadow", True))
 

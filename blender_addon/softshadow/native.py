@@ -63,6 +63,17 @@ class _LightDesc(ctypes.Structure):
     ]
 
 
+class _AlphaMaterial(ctypes.Structure):
+    _fields_ = [
+        ("alpha", ctypes.c_float),
+        ("texture", ctypes.POINTER(ctypes.c_float)),
+        ("width", ctypes.c_int32),
+        ("height", ctypes.c_int32),
+        ("wrap", ctypes.c_int32),
+        ("closest", ctypes.c_int32),
+    ]
+
+
 class _CameraDesc(ctypes.Structure):
     _fields_ = [
         ("world_to_camera", ctypes.c_float * 16),
@@ -117,6 +128,9 @@ _SIGNATURES = {
     "ss_scene_add_light": (_st, [_vp, ctypes.POINTER(_LightDesc), ctypes.POINTER(ctypes.c_int32)]),
     "ss_scene_update_mesh": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_float), ctypes.c_uint32,
                                    ctypes.POINTER(ctypes.c_uint32), ctypes.c_uint32, ctypes.c_uint32]),
+    "ss_scene_set_mesh_materials": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_float),
+                                          ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(_AlphaMaterial),
+                                          ctypes.c_int32]),
     "ss_scene_set_mesh_transform": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_float)]),
     "ss_scene_remove_mesh": (_st, [_vp, ctypes.c_int32]),
     "ss_scene_update_light": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(_LightDesc)]),
@@ -415,6 +429,30 @@ class Scene(_Owned):
         _check(lib().ss_scene_update_mesh(
             self.handle, int(index), xyz.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), len(xyz),
             tris.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32)), len(tris), int(flags)))
+
+    def set_mesh_materials(self, index, alpha):
+        """What mesh `index` lets through on shadow rays (material_alpha.mesh_alpha's dict), or
+        None to make it opaque."""
+        if alpha is None:
+            _check(lib().ss_scene_set_mesh_materials(self.handle, int(index), None, None, None, 0))
+            return
+        uvs = np.ascontiguousarray(alpha["uvs"], dtype=np.float32).reshape(-1)
+        material = np.ascontiguousarray(alpha["triangle_material"], dtype=np.int32).reshape(-1)
+        keep = []  # the textures must live until the call returns
+        descs = (_AlphaMaterial * len(alpha["materials"]))()
+        for desc, m in zip(descs, alpha["materials"]):
+            desc.alpha = float(m["alpha"])
+            desc.wrap = int(m["wrap"])
+            desc.closest = 1 if m["closest"] else 0
+            texture = m.get("texture")
+            if texture is not None:
+                texels = np.ascontiguousarray(texture, dtype=np.float32)
+                keep.append(texels)
+                desc.texture = texels.ctypes.data_as(ctypes.POINTER(ctypes.c_float))
+                desc.height, desc.width = texels.shape
+        _check(lib().ss_scene_set_mesh_materials(
+            self.handle, int(index), uvs.ctypes.data_as(ctypes.POINTER(ctypes.c_float)),
+            material.ctypes.data_as(ctypes.POINTER(ctypes.c_int32)), descs, len(descs)))
 
     def set_mesh_transform(self, index, object_to_world):
         """object_to_world: 16 column-major floats applied to the mesh's coordinates as given."""

@@ -32,7 +32,9 @@ def build_native_scene(exported):
     scene.set_view_layer(exported.view_layer)
     for mesh in exported.meshes:
         try:
-            scene.add_mesh(mesh["name"], scene_export.world_vertices(mesh), mesh["triangles"], mesh["flags"])
+            index = scene.add_mesh(mesh["name"], scene_export.world_vertices(mesh), mesh["triangles"], mesh["flags"])
+            if mesh.get("alpha") is not None:
+                scene.set_mesh_materials(index, mesh["alpha"])
         except native.SoftShadowError as exc:
             exported.problems.append("object '%s' skipped: %s" % (mesh["name"], exc))
     indices = {}
@@ -81,6 +83,8 @@ class LiveScene:
         index = self.scene.add_mesh(mesh["name"], mesh["local"], mesh["triangles"], mesh["flags"])
         try:
             self.scene.set_mesh_transform(index, mesh["matrix"])
+            if mesh.get("alpha") is not None:
+                self.scene.set_mesh_materials(index, mesh["alpha"])
         except native.SoftShadowError:
             self.scene.remove_mesh(index)  # keeps the native indices equal to self.meshes'
             raise
@@ -117,7 +121,10 @@ class LiveScene:
             (old["triangles"] is mesh["triangles"] and old["local"] is mesh["local"])
             or (np.array_equal(old["triangles"], mesh["triangles"]) and np.array_equal(old["local"], mesh["local"])))
         if not same_geometry:
-            self.scene.update_mesh(index, mesh["local"], mesh["triangles"], mesh["flags"])
+            self.scene.update_mesh(index, mesh["local"], mesh["triangles"], mesh["flags"])  # clears materials
+        if (mesh.get("alpha") is not None and not same_geometry) or (
+                same_geometry and not scene_export.same_alpha(old.get("alpha"), mesh.get("alpha"))):
+            self.scene.set_mesh_materials(index, mesh.get("alpha"))
         if not np.array_equal(old["matrix"], mesh["matrix"]):
             self.scene.set_mesh_transform(index, mesh["matrix"])
         self.meshes[index] = mesh
@@ -167,7 +174,8 @@ class LiveScene:
                     index = next((i for i, m in enumerate(self.meshes) if m["name"] == name), None)
                     mesh = meshes.get(name)
                     if mesh is not None and mesh["local"] is None and index is not None:
-                        mesh = dict(mesh, local=self.meshes[index]["local"], triangles=self.meshes[index]["triangles"])
+                        mesh = dict(mesh, local=self.meshes[index]["local"], triangles=self.meshes[index]["triangles"],
+                                    alpha=self.meshes[index].get("alpha"))
                     if index is not None and mesh is None:
                         self.scene.remove_mesh(index)
                         del self.meshes[index]

@@ -118,6 +118,30 @@ def camera_values(world_to_camera_rows, projection_rows, width, height, pixel_as
     }
 
 
+def same_alpha(a, b):
+    """Whether two meshes' material alphas (material_alpha.mesh_alpha's dicts or None) agree."""
+    if a is None or b is None:
+        return a is b
+    if not (np.array_equal(a["uvs"], b["uvs"]) and np.array_equal(a["triangle_material"], b["triangle_material"])
+            and len(a["materials"]) == len(b["materials"])):
+        return False
+    for x, y in zip(a["materials"], b["materials"]):
+        if (x["alpha"], x["wrap"], x["closest"]) != (y["alpha"], y["wrap"], y["closest"]):
+            return False
+        tx, ty = x.get("texture"), y.get("texture")
+        if (tx is None) != (ty is None) or (tx is not None and tx is not ty and not np.array_equal(tx, ty)):
+            return False
+    return True
+
+
+def unreadable_materials_line(names):
+    """The one report line naming the materials whose alpha could not be read."""
+    if not names:
+        return None
+    return ("shadows treat %d material(s) as opaque, their alpha needs shading to know: %s"
+            % (len(names), "; ".join(sorted(names))))
+
+
 def unique_name(name, used):
     """name, or name.001, name.002 ... so every light and mesh name is unique."""
     candidate, n = name, 0
@@ -186,12 +210,48 @@ def _local_mesh_arrays(obj):
         obj.to_mesh_clear()
 
 
+def native_cast():
+    from . import native
+    return native.MESH_CAST
+
+
 def _mesh_flags(obj):
     from . import native
     materials = [slot.material for slot in getattr(obj, "material_slots", [])]
     cast = compat.object_casts_shadow(obj.original) and compat.materials_cast_shadow(materials)
     receive = compat.object_camera_visible(obj.original)
     return (native.MESH_CAST if cast else 0) | (native.MESH_RECEIVE if receive else 0)
+
+
+def _mesh_alpha(obj, engine, readings, unreadable):
+    """material_alpha.mesh_alpha for a casting object with see-through materials, else None.
+    `readings` caches each material's reading for the export; unreadable ones are added to
+    `unreadable` (names with the reason)."""
+    from . import material_alpha
+    slots = []
+    for slot in getattr(obj, "material_slots", []):
+        material = slot.material
+        if material is None:
+            slots.append(None)
+            continue
+        key = material.name
+        if key not in readings:
+            try:
+                readings[key] = material_alpha.material_alpha(material, engine)
+            except material_alpha.Unreadable as exc:
+                readings[key] = None
+                unreadable.add("'%s' (%s)" % (material.name, exc))
+            except Exception as exc:  # a tree this reader did not foresee: opaque, and said so
+                readings[key] = None
+                unreadable.add("'%s' (%s: %s)" % (material.name, type(exc).__name__, exc))
+        slots.append(readings[key])
+    if all(alpha is None for alpha in slots):
+        return None
+    try:
+        return material_alpha.mesh_alpha(obj, slots)
+    except RuntimeError as exc:  # no mesh to read UVs from: opaque, and said so
+        unreadable.add("on object '%s' (%s)" % (obj.name, exc))
+        return None
 
 
 def _light_from_object(name, obj, matrix):
@@ -277,6 +337,8 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
     render_collections = _render_visible_collections(view_layer) if mode == "RENDER" else set()
     used_mesh_names, used_light_names = set(), set()
     local_cache = {}
+    engine = getattr(getattr(scene, "render", None), "engine", "CYCLES")
+    alpha_readings, unreadable = {}, set()
     if reuse is not None:
         reuse.bind(depsgraph)
 
@@ -347,9 +409,15 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
         flags = _mesh_flags(obj)
         if flags == 0:
             continue
+        alpha = _mesh_alpha(obj, engine, alpha_readings, unreadable) if flags & native_cast() else None
+        if alpha is not None and len(alpha["triangle_material"]) != len(triangles):
+            alpha = None
         out.meshes.append({"name": name, "local": vertices, "triangles": triangles, "flags": flags,
-                           "matrix": flat})
+                           "matrix": flat, "alpha": alpha})
 
+    line = unreadable_materials_line(unreadable)
+    if line:
+        out.problems.append(line)
     if camera is None and only is None:
         camera = scene_camera(scene, depsgraph)
         if camera is None:

@@ -1,26 +1,8 @@
-// How a fragment marks its slice as occluded: one channel per slice, four slices per target.
+// How an opaque caster's fragment marks its slice as occluded.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #version 450 core
-in float lightDepth;
-
-uniform float firstPlane;  // depth of the first slice's upper plane
-uniform float thickness;   // every slice has the same thickness
-uniform int sliceCount;
-uniform int thinFix;       // 1: also fill the next slice (closes leaks of thin occluders)
-
-// Blended with GL_MAX: a texel is 1 once any fragment of its slice covers it.
-layout(location = 0) out vec4 group0;
-layout(location = 1) out vec4 group1;
-layout(location = 2) out vec4 group2;
-layout(location = 3) out vec4 group3;
+#include "occlusion_textures/slice_write.glsl"
 
 void main() {
-    int k = clamp(int(floor((lightDepth - firstPlane) / thickness)), 0, sliceCount - 1);
-    vec4 o[4] = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
-    o[k / 4][k % 4] = 1.0;
-    if (thinFix != 0 && k + 1 < sliceCount) o[(k + 1) / 4][(k + 1) % 4] = 1.0;
-    group0 = o[0];
-    group1 = o[1];
-    group2 = o[2];
-    group3 = o[3];
+    writeSlice(1.0);
 }

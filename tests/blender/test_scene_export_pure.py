@@ -72,5 +72,20 @@ def test_unique_names():
     sstest.check(names == ["A", "A.001", "A.002"], "%s" % names)
 
 
+def test_same_alpha_and_the_unreadable_materials_line():
+    def alpha(texture=None, value=0.5):
+        return {"uvs": np.zeros((6, 2), np.float32), "triangle_material": np.zeros(2, np.int32),
+                "materials": [{"alpha": value, "texture": texture, "wrap": 0, "closest": False}]}
+    t = np.ones((2, 2), np.float32)
+    sstest.check(se.same_alpha(None, None) and not se.same_alpha(alpha(), None), "None only equals None")
+    sstest.check(se.same_alpha(alpha(t), alpha(t.copy())), "equal textures")
+    sstest.check(not se.same_alpha(alpha(t), alpha(t * 0.5)), "other texels")
+    sstest.check(not se.same_alpha(alpha(), alpha(value=0.25)), "other constant")
+    sstest.check(se.unreadable_materials_line(set()) is None, "no line when every material was read")
+    line = se.unreadable_materials_line({"'B' (node 'N' (TEX_NOISE))", "'A' (node 'G' (GROUP))"})
+    sstest.check(line.startswith("shadows treat 2 material(s) as opaque") and line.index("'A'") < line.index("'B'"),
+                 line)
+
+
 if __name__ == "__main__":
     sstest.run(dict(globals()))

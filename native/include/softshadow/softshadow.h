@@ -164,6 +164,39 @@ SS_API ss_status ss_scene_update_mesh(ss_scene* scene, int32_t index, const floa
 /* Places mesh `index` at object_to_world (column-major) applied to its coordinates as given:
    a move costs one matrix product per vertex, never a new adjacency. */
 SS_API ss_status ss_scene_set_mesh_transform(ss_scene* scene, int32_t index, const float object_to_world[16]);
+/* What a mesh's materials let through on shadow rays, as Cycles' shadow rays see them: a
+   surface transmits (1 - alpha) of the light, transmissions multiply along the ray, and an
+   alpha of 1 blocks. Used by every method (the reference and refine exactly; each GL method as
+   docs/methods/<method>.md says). A material is a constant alpha or an alpha texture sampled at
+   the triangle's interpolated UV. */
+typedef enum ss_alpha_wrap {
+    SS_ALPHA_WRAP_REPEAT = 0, /* Blender's image extension REPEAT */
+    SS_ALPHA_WRAP_EXTEND = 1, /* EXTEND: the border texels continue */
+    SS_ALPHA_WRAP_CLIP = 2,   /* CLIP: alpha 0 outside [0, 1]^2 */
+    SS_ALPHA_WRAP_RESERVED_MIN_ = -0x7fffffff - 1,
+    SS_ALPHA_WRAP_RESERVED_MAX_ = 0x7fffffff
+} ss_alpha_wrap;
+
+typedef struct ss_alpha_material {
+    float alpha;            /* 0 (transparent) .. 1 (opaque); used where `texture` is NULL */
+    const float* texture;   /* NULL, or width * height alphas in [0, 1], row 0 at v = 0 (the
+                               BOTTOM row, as Blender's image.pixels); texel centres at
+                               ((i + 0.5) / width, (j + 0.5) / height) */
+    int32_t width, height;
+    ss_alpha_wrap wrap;
+    int32_t closest;        /* 0: bilinear (Blender's Linear), 1: nearest texel (Closest) */
+} ss_alpha_material;
+
+/* Sets mesh `index`'s materials, copied: `corner_uvs` 6 floats (u, v per corner) per triangle,
+   or NULL (every UV (0, 0)); `triangle_material` one index into `materials` per triangle, or NULL
+   (material 0 everywhere); `material_count` >= 1 materials. material_count 0 clears them (the
+   mesh is opaque again), as does a set whose materials all have alpha 1. Fails with
+   SS_ERROR_INVALID_SCENE naming the mesh for a bad index, an alpha outside [0, 1] or a texture
+   without texels, leaving the mesh as it was. A material change is a mesh edit (every cache of
+   the mesh is redrawn); ss_scene_update_mesh clears the materials (set them again after it). */
+SS_API ss_status ss_scene_set_mesh_materials(ss_scene* scene, int32_t index, const float* corner_uvs,
+                                             const int32_t* triangle_material,
+                                             const ss_alpha_material* materials, int32_t material_count);
 /* Removal moves every later mesh (light) down one index. */
 SS_API ss_status ss_scene_remove_mesh(ss_scene* scene, int32_t index);
 SS_API ss_status ss_scene_update_light(ss_scene* scene, int32_t index, const ss_light_desc* light);

@@ -2,10 +2,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "core/mesh_alpha.h"
 
 namespace ss {
 
@@ -45,6 +48,9 @@ struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec3> triangles;
     uint32_t flags = 0;  // SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN
+    // What its materials let through on shadow rays; null where it blocks every ray it meets
+    // (no materials, or only opaque ones). Shared: copies of a scene do not copy textures.
+    std::shared_ptr<const MeshAlpha> alpha;
     // `positions` are objectToWorld applied to the coordinates as given; those are kept in
     // objectPositions only once a transform other than the identity is set, so a move costs a
     // matrix product per vertex and never rebuilds the adjacency.
@@ -63,6 +69,8 @@ struct Mesh {
 
     bool casts() const;
     bool receives() const;
+    // It has materials that let some light through (see `alpha`).
+    bool seeThrough() const { return alpha != nullptr; }
 
     // Validates (throws ss::Error on NaN/Inf coordinates or out-of-range indices) and builds
     // adjacency, face normals and the report.

@@ -22,6 +22,10 @@ uint64_t Scene::nextVersion() {
 int Scene::addMesh(Mesh mesh) {
     checkName("mesh", mesh.name);
     mesh.finalize();
+    if (mesh.alpha) {
+        mesh.alpha->validate(mesh.name, mesh.triangles.size());
+        if (mesh.alpha->opaque()) mesh.alpha = nullptr;
+    }
     mesh.version = nextVersion();
     mesh.shapeVersion = mesh.version;
     meshes_.push_back(std::move(mesh));
@@ -64,6 +68,17 @@ void Scene::setMeshTransform(int index, const glm::mat4& objectToWorld) {
     mesh.report.degenerateFaces = moved.report.degenerateFaces;
     mesh.objectToWorld = objectToWorld;
     mesh.version = nextVersion();
+    geometryVersion_ = nextVersion();
+    ++revision_;
+}
+
+void Scene::setMeshAlpha(int index, MeshAlpha alpha) {
+    const Mesh& old = this->mesh(index, "setting a mesh's materials");
+    alpha.validate(old.name, old.triangles.size());
+    Mesh& mesh = meshes_[size_t(index)];
+    mesh.alpha = alpha.opaque() ? nullptr : std::make_shared<const MeshAlpha>(std::move(alpha));
+    mesh.version = nextVersion();
+    mesh.shapeVersion = mesh.version;
     geometryVersion_ = nextVersion();
     ++revision_;
 }

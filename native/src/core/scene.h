@@ -38,9 +38,12 @@ public:
     // a new version and leaves every other mesh's and light's version (and caches) alone.
     // Indices out of range throw ss::Error(SS_ERROR_INVALID_ARGUMENT) naming them.
     // New geometry for mesh `index` (its name and transform are kept; `mesh.positions` are in
-    // the mesh's object space when it has a transform).
+    // the mesh's object space when it has a transform; its materials are cleared).
     void updateMesh(int index, Mesh mesh);
     void setMeshTransform(int index, const glm::mat4& objectToWorld);
+    // Mesh `index`'s materials (validated against its triangles); an opaque set clears them.
+    // A new shape for the mesh: what depends on its triangles is rebuilt.
+    void setMeshAlpha(int index, MeshAlpha alpha);
     void removeMesh(int index);  // later meshes move down one index
     void updateLight(int index, Light light);
     void removeLight(int index);  // later lights move down one index

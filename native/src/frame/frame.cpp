@@ -137,6 +137,8 @@ const std::vector<GpuMesh>& Frame::meshes() {
         g.VertexArrayAttribBinding(vao, 0, 0);
         g.EnableVertexArrayAttrib(vao, 0);
         g.VertexArrayElementBuffer(vao, gm.indices.id());
+        if (mesh.alpha)
+            gm.seeThrough = std::make_shared<const GpuSeeThrough>(uploadSeeThrough(*mesh.alpha, mesh.triangles.size()));
         meshes_.push_back(std::move(gm));
         ++stats_.meshUploads;
     }
@@ -178,7 +180,7 @@ bool reaches(const PatchRegion& region, const GpuMesh& m, const Bounds& objectBo
 
 void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
                             const std::optional<PatchRegion>& region,
-                            const std::function<void(const GpuMesh&)>& before) {
+                            const std::function<void(const GpuMesh&)>& before, bool skipSeeThrough) {
     const gl::Functions& g = gl();
     auto draw = [&](uint32_t firstTriangle, uint32_t triangles) {
         if (region) stats_.patchTriangles += triangles;
@@ -187,6 +189,7 @@ void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
     };
     for (const GpuMesh& m : meshes()) {
         if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0) continue;
+        if (skipSeeThrough && m.seeThrough) continue;
         setPlacement(program, m);
         if (before) before(m);
         g.BindVertexArray(m.vao.id());
@@ -209,6 +212,33 @@ void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
         if (runTriangles > 0) draw(runFirst, runTriangles);
     }
     g.BindVertexArray(0);
+}
+
+void Frame::drawSeeThroughWhere(const gl::Program& program, uint32_t requiredFlags,
+                                const std::function<void(const GpuMesh&)>& before) {
+    const gl::Functions& g = gl();
+    bool bound = false;
+    for (const GpuMesh& m : meshes()) {
+        if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0 || !m.seeThrough) continue;
+        if (!bound) bindEmptyVertexArray(), bound = true;
+        setPlacement(program, m);
+        if (before) before(m);
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.faceNormals.id());
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.indices.id());
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.positions.id());
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.seeThrough->cornerUvs.id());
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m.seeThrough->triangleMaterial.id());
+        for (size_t k = 0; k < m.seeThrough->materials.size(); ++k) {
+            const GpuSeeThrough::Material& mat = m.seeThrough->materials[k];
+            if (!mat.textured && !(mat.constant > 0.0f)) continue;  // lets everything through
+            program.set("uAlphaMaterial", uint32_t(k));
+            program.set("uAlphaTextured", mat.textured ? 1 : 0);
+            program.set("uAlphaConstant", mat.constant);
+            if (mat.textured) program.setTexture("uAlphaTexture", kAlphaTextureUnit, mat.texture.id());
+            g.DrawArrays(GL_TRIANGLES, 0, m.indexCount);
+        }
+    }
+    if (bound) g.BindVertexArray(0);
 }
 
 void Frame::bindEmptyVertexArray() {
@@ -433,7 +463,14 @@ void Frame::drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect) 
     prog.use();
     prog.set("uWorldToClip", map.worldToClip());
     bindShadowMapUniforms(prog, map);
-    drawMeshesWhere(prog, SS_MESH_CAST, patchRegion(rect, map.worldToClip(), map.size, map.size), {});
+    drawMeshesWhere(prog, SS_MESH_CAST, patchRegion(rect, map.worldToClip(), map.size, map.size), {}, true);
+    // See-through casters are alpha-tested (hashed): drawn whole, also in a patch (the scissor
+    // keeps the rest of the map).
+    const gl::Program& seeThrough = gl::program("shadow_map/see_through.vert.glsl", "shadow_map/see_through.frag.glsl");
+    seeThrough.use();
+    seeThrough.set("uWorldToClip", map.worldToClip());
+    bindShadowMapUniforms(seeThrough, map);
+    drawSeeThroughWhere(seeThrough, SS_MESH_CAST, {});
     g.Disable(GL_SCISSOR_TEST);
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing a shadow map");

@@ -15,6 +15,7 @@
 #include "core/scene.h"
 #include "frame/covering_triangles.h"
 #include "frame/moved_region.h"
+#include "frame/see_through.h"
 #include "gl/framebuffer.h"
 #include "gl/gl_functions.h"
 #include "gl/objects.h"
@@ -50,6 +51,8 @@ struct GpuMesh {
     };
     static constexpr uint32_t kClusterTriangles = 1024;
     std::vector<Cluster> clusters;
+    // Its materials where the mesh lets light through (Mesh::alpha), else null.
+    std::shared_ptr<const GpuSeeThrough> seeThrough;
     bool casts() const;
     bool receives() const;
 };
@@ -199,10 +202,19 @@ public:
                     const std::function<void(const GpuMesh&)>& before = {});
     // Draws as drawMeshes does; with a region, only the clusters whose bounds, where their mesh
     // is now, may cover a pixel of its rectangle (a patch after moves: movedBoxes,
-    // boxesOnScreen).
+    // boxesOnScreen). With `seeThrough` set, the see-through meshes (GpuMesh::seeThrough) are
+    // left out: drawSeeThroughWhere draws them with that program.
     void drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
                          const std::optional<PatchRegion>& region,
-                         const std::function<void(const GpuMesh&)>& before);
+                         const std::function<void(const GpuMesh&)>& before, bool skipSeeThrough = false);
+    // Draws the see-through meshes that have `requiredFlags`, whole, one material at a time:
+    // unindexed, three vertices per triangle, with a vertex stage that includes
+    // "common/see_through_vertex.glsl" and a fragment stage that includes
+    // "common/see_through.glsl" (its uniforms and texture unit kAlphaTextureUnit are set here).
+    // Placement uniforms, `before` and SSBO 0 as drawMeshesWhere; SSBOs 2..5 are the mesh's.
+    void drawSeeThroughWhere(const gl::Program& program, uint32_t requiredFlags,
+                             const std::function<void(const GpuMesh&)>& before);
+    static constexpr int kAlphaTextureUnit = 15;
     // Where each of the scene's meshes is now (what a pass drawn now shows: movedBoxes).
     std::vector<MeshPlacement> placements() const;
     // Draws one triangle covering the viewport (vertex shader "common/fullscreen.vert.glsl").

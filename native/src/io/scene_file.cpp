@@ -1,6 +1,7 @@
 // How a scene file is parsed into a Scene: camera, lights, meshes (inline, external, primitive).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/scene_file.h"
+#include "io/scene_file_materials.h"
 
 #include <algorithm>
 #include <bit>
@@ -283,7 +284,7 @@ TriangleSoup readGeometry(const JsonNode& n, const std::string& baseDir) {
 Mesh readMesh(const JsonNode& n, const std::string& baseDir) {
     n.expectKeys({"name", "cast", "receive", "thin", "positions", "triangles", "positions_file",
                   "triangles_file", "primitive", "transform", "translate", "rotate_deg", "scale",
-                  "comment"});
+                  "materials", "comment"});
     Mesh m;
     m.name = n.at("name").string();
     m.flags = (n.boolean("cast", true) ? SS_MESH_CAST : 0u) |
@@ -292,6 +293,7 @@ Mesh readMesh(const JsonNode& n, const std::string& baseDir) {
     TriangleSoup soup = readGeometry(n, baseDir);
     m.positions = std::move(soup.positions);
     m.triangles = std::move(soup.triangles);
+    if (n.has("materials")) m.alpha = std::make_shared<const MeshAlpha>(readMeshAlpha(n.at("materials")));
     return m;
 }
 

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/scene_file.h"
+#include "io/scene_file_materials.h"
 
 namespace ss {
 
@@ -87,6 +88,7 @@ void saveSceneFile(const Scene& scene, const std::string& path, size_t inlineVer
             j["positions"] = std::move(p);
             j["triangles"] = std::move(t);
         }
+        if (m.alpha) j["materials"] = meshAlphaJson(*m.alpha);
         root["meshes"].push_back(std::move(j));
     }
     std::string text = root.dump(1) + "\n";

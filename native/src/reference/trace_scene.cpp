@@ -17,20 +17,61 @@
 namespace ss {
 namespace {
 
+// The see-through surfaces one shadow ray counts before it is taken as blocked.
+constexpr uint32_t kMaxSeeThroughHits = 64;
+
+
 // The shadow-ray context: the triangle the ray starts on is ignored. Meshes are instances
-// (instance ID == mesh index), each holding one geometry.
+// (instance ID == mesh index), each holding one geometry. Where a mesh lets light through
+// (`alpha` non-null), a hit there is multiplied into the ray's transmission and rejected, so the
+// traversal goes on to the next; an opaque hit ends it (Embree then sets tfar to -inf).
 struct ShadowContext {
     RTCIntersectContext base;
     uint32_t skipMesh, skipTriangle;
+    const std::shared_ptr<const MeshAlpha>* alpha = nullptr;  // per mesh index; null: all opaque
+    // The ray's transmission so far and the see-through hits already counted (one ray per
+    // query: Embree's packet traversal through instances does not tell a filter which lane of
+    // the caller's packet a hit belongs to). With spatial splits one triangle may sit in several
+    // BVH leaves and be reported once per leaf; each must count once.
+    struct Seen {
+        uint32_t count = 0;
+        uint32_t mesh[kMaxSeeThroughHits], triangle[kMaxSeeThroughHits];
+    };
+    float* transmission = nullptr;
+    Seen* seen = nullptr;
 };
 
-void skipOwnTriangle(const RTCFilterFunctionNArguments* args) {
+void shadowFilter(const RTCFilterFunctionNArguments* args) {
     const auto* ctx = reinterpret_cast<const ShadowContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
-        if (RTCHitN_instID(args->hit, args->N, i, 0) == ctx->skipMesh &&
-            RTCHitN_primID(args->hit, args->N, i) == ctx->skipTriangle)
+        const uint32_t mesh = RTCHitN_instID(args->hit, args->N, i, 0);
+        const uint32_t triangle = RTCHitN_primID(args->hit, args->N, i);
+        if (mesh == ctx->skipMesh && triangle == ctx->skipTriangle) {
             args->valid[i] = 0;
+            continue;
+        }
+        if (!ctx->alpha || !ctx->alpha[mesh]) continue;  // opaque: the ray is blocked
+        const float t = ctx->alpha[mesh]->transmission(triangle, RTCHitN_u(args->hit, args->N, i),
+                                                       RTCHitN_v(args->hit, args->N, i));
+        if (!(t > 0.0f)) continue;
+        if (t >= 1.0f) {  // a hole: as if nothing were there
+            args->valid[i] = 0;
+            continue;
+        }
+        ShadowContext::Seen& seen = *ctx->seen;
+        bool counted = false;
+        for (uint32_t k = 0; k < seen.count && !counted; ++k)
+            counted = seen.mesh[k] == mesh && seen.triangle[k] == triangle;
+        if (!counted) {
+            // Past kMaxSeeThroughHits surfaces the ray counts as blocked (Cycles stops at its
+            // transparent bounce limit too).
+            if (seen.count == kMaxSeeThroughHits) continue;
+            seen.mesh[seen.count] = mesh, seen.triangle[seen.count] = triangle, ++seen.count;
+            *ctx->transmission *= t;
+            if (!(*ctx->transmission > 0.0f)) continue;
+        }
+        args->valid[i] = 0;
     }
 }
 
@@ -40,10 +81,11 @@ constexpr float gammaBound(int n) {
     return n * u / (1.0f - n * u);
 }
 
-// One packet width's worth of shadow rays: RTCRay8 / RTCRay16 share their field names.
+// One packet width's worth of shadow rays past opaque casters only (transmission 0 or 1):
+// RTCRay8 / RTCRay16 share their field names.
 template <int N, typename RayN, void (*OccludedN)(const int*, RTCScene, RTCIntersectContext*, RayN*)>
 void occludedPackets(RTCScene scene, ShadowContext* ctx, const glm::vec3& origin,
-                     const glm::vec3* dirs, const float* tFar, size_t n, uint8_t* hidden) {
+                     const glm::vec3* dirs, const float* tFar, size_t n, float* transmission) {
     for (size_t start = 0; start < n; start += N) {
         alignas(64) int valid[N];
         alignas(64) RayN r;
@@ -62,7 +104,8 @@ void occludedPackets(RTCScene scene, ShadowContext* ctx, const glm::vec3& origin
             r.flags[i] = 0;
         }
         OccludedN(valid, scene, &ctx->base, &r);
-        for (int i = 0; i < N && start + size_t(i) < n; ++i) hidden[start + size_t(i)] = r.tfar[i] < 0.0f;
+        for (int i = 0; i < N && start + size_t(i) < n; ++i)
+            transmission[start + size_t(i)] = r.tfar[i] < 0.0f ? 0.0f : 1.0f;
     }
 }
 
@@ -82,6 +125,16 @@ struct TraceScene::Impl {
     bool filterSupported = false;
     int packetWidth = 1;  // the widest packet the CPU traces natively
     std::vector<Instance> instances;  // per mesh index
+    // Per mesh index, what it lets through; empty when every caster is opaque.
+    std::vector<std::shared_ptr<const MeshAlpha>> alpha;
+
+    void start(ShadowContext* ctx, uint32_t skipMesh, uint32_t skipTriangle) const {
+        rtcInitIntersectContext(&ctx->base);
+        if (filterSupported) ctx->base.filter = shadowFilter;
+        ctx->skipMesh = skipMesh;
+        ctx->skipTriangle = skipTriangle;
+        ctx->alpha = alpha.empty() ? nullptr : alpha.data();
+    }
 
     ~Impl() {
         if (all) rtcReleaseScene(all);
@@ -135,6 +188,10 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<con
         in.normalToWorld = glm::transpose(glm::inverse(linear));
         for (int c = 0; c < 3; ++c) in.absLinear[c] = glm::abs(linear[c]);
         in.absTranslation = glm::abs(glm::vec3(in.toWorld[3]));
+        if (mesh.casts() && mesh.seeThrough()) {
+            m.alpha.resize(meshes.size());
+            m.alpha[i] = mesh.alpha;
+        }
         Impl::instance(device, m.all, in, uint32_t(i));
         if (mesh.casts()) Impl::instance(device, m.casters, in, uint32_t(i));
     }
@@ -198,41 +255,43 @@ SurfaceHit TraceScene::intersect(const Ray& ray, float tNear, float tFar) const 
     return h;
 }
 
-bool TraceScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float tFar,
-                          uint32_t skipMesh, uint32_t skipTriangle) const {
+float TraceScene::transmission(const glm::vec3& origin, const glm::vec3& dir, float tFar, uint32_t skipMesh,
+                               uint32_t skipTriangle) const {
     ShadowContext ctx;
-    rtcInitIntersectContext(&ctx.base);
-    if (impl_->filterSupported) ctx.base.filter = skipOwnTriangle;
-    ctx.skipMesh = skipMesh;
-    ctx.skipTriangle = skipTriangle;
+    impl_->start(&ctx, skipMesh, skipTriangle);
+    float through = 1.0f;
+    ShadowContext::Seen seen;
+    ctx.transmission = &through;
+    ctx.seen = &seen;
     RTCRay r{};
     r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
     r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
     r.tnear = 0.0f;
     r.tfar = tFar;
     r.mask = 0xffffffffu;
+    r.id = 0;
     rtcOccluded1(impl_->casters, &ctx.base, &r);
-    return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+    return r.tfar < 0.0f ? 0.0f : through;  // Embree sets tfar to -inf on a hit
 }
 
-void TraceScene::occludedMany(const glm::vec3& origin, const glm::vec3* dirs, const float* tFar,
-                              size_t n, uint32_t skipMesh, uint32_t skipTriangle,
-                              uint8_t* hidden) const {
+void TraceScene::transmissionMany(const glm::vec3& origin, const glm::vec3* dirs, const float* tFar, size_t n,
+                                  uint32_t skipMesh, uint32_t skipTriangle, float* transmission) const {
     ShadowContext ctx;
-    rtcInitIntersectContext(&ctx.base);
     // One pixel's shadow rays share their origin and aim at one light, yet the packets are
     // traced without RTC_INTERSECT_CONTEXT_FLAG_COHERENT: with instances, Embree 3.13 looped
     // without end on some packets in that mode (SparseCheck.EqualsTheReferenceImageAtItsPixels).
-    if (impl_->filterSupported) ctx.base.filter = skipOwnTriangle;
-    ctx.skipMesh = skipMesh;
-    ctx.skipTriangle = skipTriangle;
+    impl_->start(&ctx, skipMesh, skipTriangle);
+    if (!impl_->alpha.empty()) {
+        // See-through casters: one ray at a time, each with its own transmission.
+        for (size_t i = 0; i < n; ++i) transmission[i] = this->transmission(origin, dirs[i], tFar[i], skipMesh, skipTriangle);
+        return;
+    }
     if (impl_->packetWidth == 16)
-        occludedPackets<16, RTCRay16, rtcOccluded16>(impl_->casters, &ctx, origin, dirs, tFar, n, hidden);
+        occludedPackets<16, RTCRay16, rtcOccluded16>(impl_->casters, &ctx, origin, dirs, tFar, n, transmission);
     else if (impl_->packetWidth == 8)
-        occludedPackets<8, RTCRay8, rtcOccluded8>(impl_->casters, &ctx, origin, dirs, tFar, n, hidden);
+        occludedPackets<8, RTCRay8, rtcOccluded8>(impl_->casters, &ctx, origin, dirs, tFar, n, transmission);
     else
-        for (size_t i = 0; i < n; ++i)
-            hidden[i] = occluded(origin, dirs[i], tFar[i], skipMesh, skipTriangle);
+        for (size_t i = 0; i < n; ++i) transmission[i] = this->transmission(origin, dirs[i], tFar[i], skipMesh, skipTriangle);
 }
 
 }  // namespace ss

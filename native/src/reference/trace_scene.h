@@ -49,14 +49,16 @@ public:
 
     // Nearest surface of any mesh along the ray with t in [tNear, tFar].
     SurfaceHit intersect(const Ray& ray, float tNear, float tFar) const;
-    // True when a casting mesh blocks the segment origin + t dir, t in (0, tFar); the triangle
-    // (skipMesh, skipTriangle) is ignored (a flat triangle never shadows its own points).
-    bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tFar, uint32_t skipMesh,
-                  uint32_t skipTriangle) const;
-    // The same for n rays sharing one origin (one pixel's light samples), traced as
-    // packets of the CPU's width; hidden[i] = 1 when ray i is blocked, else 0.
-    void occludedMany(const glm::vec3& origin, const glm::vec3* dirs, const float* tFar, size_t n,
-                      uint32_t skipMesh, uint32_t skipTriangle, uint8_t* hidden) const;
+    // What reaches the end of the segment origin + t dir, t in (0, tFar), through the casting
+    // meshes: 0 where an opaque one blocks it, else the product of (1 - alpha) over the
+    // see-through surfaces it crosses (1 when it crosses none). The triangle (skipMesh,
+    // skipTriangle) is ignored (a flat triangle never shadows its own points).
+    float transmission(const glm::vec3& origin, const glm::vec3& dir, float tFar, uint32_t skipMesh,
+                       uint32_t skipTriangle) const;
+    // The same for n rays sharing one origin (one pixel's light samples), traced as packets of
+    // the CPU's width.
+    void transmissionMany(const glm::vec3& origin, const glm::vec3* dirs, const float* tFar, size_t n,
+                          uint32_t skipMesh, uint32_t skipTriangle, float* transmission) const;
 
 private:
     struct Impl;

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "reference/visibility_estimator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -45,7 +46,7 @@ bool lightCentreVisible(const TraceScene& scene, const LightSampler& light, cons
     double weight;
     if (!castShadows || !shadowRay(hit, origin, light.sample(hit.point, glm::vec2(0.5f)), &dir, &tFar, &weight))
         return true;
-    return !scene.occluded(origin, dir, tFar, hit.mesh, hit.triangle);
+    return scene.transmission(origin, dir, tFar, hit.mesh, hit.triangle) > 0.5f;
 }
 
 void addSamples(const TraceScene& scene, const LightSampler& light, const SurfaceHit& hit,
@@ -56,7 +57,7 @@ void addSamples(const TraceScene& scene, const LightSampler& light, const Surfac
     thread_local std::vector<glm::vec3> dirs;
     thread_local std::vector<float> tFars;
     thread_local std::vector<double> weights;
-    thread_local std::vector<uint8_t> hidden;
+    thread_local std::vector<float> through;
     dirs.clear(), tFars.clear(), weights.clear();
     for (uint32_t i = begin; i < end; ++i) {
         glm::vec3 dir;
@@ -67,18 +68,22 @@ void addSamples(const TraceScene& scene, const LightSampler& light, const Surfac
         tFars.push_back(tFar);
         weights.push_back(weight);
     }
-    hidden.assign(weights.size(), 0);
+    through.assign(weights.size(), 1.0f);
     if (castShadows && !weights.empty()) {
-        scene.occludedMany(origin, dirs.data(), tFars.data(), dirs.size(), hit.mesh, hit.triangle,
-                           hidden.data());
+        scene.transmissionMany(origin, dirs.data(), tFars.data(), dirs.size(), hit.mesh, hit.triangle,
+                               through.data());
         sums->rays += int(weights.size());
+        for (float t : through) {
+            sums->leastThrough = std::min(sums->leastThrough, t);
+            sums->mostThrough = std::max(sums->mostThrough, t);
+        }
     }
     // Double sums in sample order: 4096 samples of widely varying weight must not lose the
     // small ones, and with nothing hidden the two sums are bit-identical (V == 1 exactly).
     for (size_t i = 0; i < weights.size(); ++i) {
         sums->weight += weights[i];
-        if (!hidden[i]) sums->visible += weights[i];
-        else ++sums->hiddenRays;
+        if (through[i] == 1.0f) sums->visible += weights[i];
+        else if (through[i] > 0.0f) sums->visible += weights[i] * double(through[i]);
     }
 }
 

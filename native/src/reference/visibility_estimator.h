@@ -16,10 +16,12 @@ struct PointVisibility {
 struct SampleSums {
     double weight = 0.0, visible = 0.0;
     int rays = 0;          // shadow rays traced (samples above the horizon with weight > 0)
-    int hiddenRays = 0;    // of those, the blocked ones
+    // The least and the most transmission of those rays (1 and 0 before the first).
+    float leastThrough = 1.0f, mostThrough = 0.0f;
     double visibility() const { return weight > 0.0 ? visible / weight : 1.0; }
-    // Every traced sample agrees: all blocked or all visible.
-    bool agree() const { return hiddenRays == 0 || hiddenRays == rays; }
+    // Every traced sample agrees: all let through the same share (all blocked, all visible, or
+    // all behind the same see-through surface).
+    bool agree() const { return rays == 0 || leastThrough == mostThrough; }
 };
 
 // Adds samples [begin, end) of `sequence` to *sums (the estimator below, in pieces: rounds of
@@ -28,7 +30,7 @@ void addSamples(const TraceScene& scene, const LightSampler& light, const Surfac
                 const SampleSequence& sequence, uint32_t begin, uint32_t end, bool castShadows,
                 SampleSums* sums);
 
-// V = sum_s w_s vis_s / sum_s w_s over `samples` points of `sequence`, w_s = the sample's
+// V = sum_s w_s T_s / sum_s w_s (T_s the shadow ray's transmission, TraceScene::transmission) over `samples` points of `sequence`, w_s = the sample's
 // weight times the cosine at the surface; samples at or below the horizon of `hit.normal`
 // count in neither sum. Shadow rays start at the point pushed off the surface by its error
 // bound (plus a sliver of the scene's extent) and ignore the triangle they start on. Without
@@ -38,7 +40,8 @@ PointVisibility estimateVisibility(const TraceScene& scene, const LightSampler& 
                                    int samples, bool castShadows = true);
 
 // Whether the light's centre (the sample at u = (0.5, 0.5): the middle of an area light or of a
-// sphere light's disk, a sun's central direction) is unblocked from `hit`, with the same ray
+// sphere light's disk, a sun's central direction) is unblocked from `hit` (more than half of it
+// let through), with the same ray
 // set-up as the samples: the hard shadow a light-centre shadow map approximates. True where the
 // centre is below the horizon or sends nothing (no shadow to speak of there).
 bool lightCentreVisible(const TraceScene& scene, const LightSampler& light, const SurfaceHit& hit,
