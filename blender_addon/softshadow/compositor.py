@@ -218,6 +218,15 @@ def missing_sockets(scene, view_layer):
     return [name for name in expected_passes(scene, view_layer) if name not in have]
 
 
+def unguarded_groups(scene):
+    """The soft-shadow group nodes made before groups read their pass's mask: a failed pass
+    darkens through them by Blender's missing-image colour until Set Up Compositor runs again."""
+    tree = _tree(scene, create=False)
+    return [node.name for node in (tree.nodes if tree is not None else ())
+            if node.bl_idname == "CompositorNodeGroup" and node.name.startswith("SoftShadow ")
+            and "Visibility" in node.inputs and "Mask" not in node.inputs]
+
+
 def apply_strength(scene):
     """The scene's Strength on the darken group node (called whenever the slider moves)."""
     tree = _tree(scene, create=False)

@@ -145,6 +145,12 @@ def on_render_init(scene, *_args):
         causes.append("internal error: %s: %s" % (type(exc).__name__, exc))
     for cause in causes:
         print("softshadow: %s" % cause)
+    try:
+        for name in compositor.unguarded_groups(scene):
+            print("softshadow: the compositor's '%s' is from an older version of the add-on: a failed "
+                  "pass would darken the frame through it; run Set Up Compositor again" % name)
+    except Exception as exc:
+        print("softshadow: internal error: %s: %s" % (type(exc).__name__, exc))
     if causes and bpy.app.background and scene.softshadow.on_failure == "STOP":
         _stop(None, causes)
 

@@ -190,8 +190,9 @@ def _mesh_flags(obj):
     from . import native
     materials = [slot.material for slot in getattr(obj, "material_slots", [])]
     cast = compat.object_casts_shadow(obj.original) and compat.materials_cast_shadow(materials)
-    receive = compat.object_camera_visible(obj.original)
-    return (native.MESH_CAST if cast else 0) | (native.MESH_RECEIVE if receive else 0)
+    seen = compat.object_camera_visible(obj.original)
+    return ((native.MESH_CAST if cast else 0) | (native.MESH_RECEIVE if seen else 0)
+            | (0 if seen else native.MESH_CAMERA_HIDDEN))
 
 
 def _layer_flags(flags, obj, parent, view_layer, engine):
@@ -200,8 +201,8 @@ def _layer_flags(flags, obj, parent, view_layer, engine):
     from . import native
     owner = (parent or obj).original
     if engine == "CYCLES" and flags & native.MESH_RECEIVE and owner.indirect_only_get(view_layer=view_layer):
-        return flags & ~native.MESH_RECEIVE
-    return flags
+        flags = (flags & ~native.MESH_RECEIVE) | native.MESH_CAMERA_HIDDEN
+    return flags if flags & (native.MESH_CAST | native.MESH_RECEIVE) else 0  # (hidden, casting nothing)
 
 
 def _light_from_object(name, obj, matrix):

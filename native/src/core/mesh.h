@@ -44,7 +44,7 @@ struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec3> triangles;
-    uint32_t flags = 0;  // SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN
+    uint32_t flags = 0;  // SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN | SS_MESH_CAMERA_HIDDEN
     // `positions` are objectToWorld applied to the coordinates as given; those are kept in
     // objectPositions only once a transform other than the identity is set, so a move costs a
     // matrix product per vertex and never rebuilds the adjacency.

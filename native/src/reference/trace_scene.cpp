@@ -135,7 +135,7 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<con
         in.normalToWorld = glm::transpose(glm::inverse(linear));
         for (int c = 0; c < 3; ++c) in.absLinear[c] = glm::abs(linear[c]);
         in.absTranslation = glm::abs(glm::vec3(in.toWorld[3]));
-        Impl::instance(device, m.all, in, uint32_t(i));
+        if (!(mesh.flags & SS_MESH_CAMERA_HIDDEN)) Impl::instance(device, m.all, in, uint32_t(i));
         if (mesh.casts()) Impl::instance(device, m.casters, in, uint32_t(i));
     }
     rtcCommitScene(m.all);
