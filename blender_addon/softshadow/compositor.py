@@ -367,4 +367,3 @@ def refresh(scene, exr_path):
     if group_node is not None and "Visibility" in group_node.inputs:
         return _relink(tree, group_node, node, _chosen_pass(scene))[1]
     return ""
-

@@ -18,12 +18,9 @@ bpy = sstest.bpy
 LIT_MIN = 1e-3
 
 
-def _render_exr(scene, path, layer=""):
+def _render_exr(scene, path):
     scene.render.filepath = path
-    if layer:
-        result = bpy.ops.render.render(write_still=True, layer=layer)
-    else:
-        result = bpy.ops.render.render(write_still=True)
+    result = bpy.ops.render.render(write_still=True)
     sstest.check(result == {"FINISHED"}, "Cycles render: %s" % result)
     return sstest.exr_rgb(path).mean(axis=2)
 
@@ -40,7 +37,11 @@ def shadow_ratio(scene, light, samples=64, layer=""):
              render.use_sequencer, scene.world, cycles.samples, cycles.use_denoising, cycles.max_bounces,
              cycles.seed, cycles.filter_width, cycles.device, compat.renderer_shadow(light.data))
     folder = sstest.tempdir("cycles")
+    # Only `layer` renders (its Use for Rendering alone on): the saved image is that layer's.
+    uses = {l.name: l.use for l in scene.view_layers}
     try:
+        for view_layer in scene.view_layers:
+            view_layer.use = view_layer.name == layer if layer else uses[view_layer.name]
         render.engine = "CYCLES"
         render.image_settings.file_format = "OPEN_EXR"
         render.image_settings.color_depth = "32"
@@ -57,10 +58,12 @@ def shadow_ratio(scene, light, samples=64, layer=""):
         for other in others:
             other.hide_render = True
         compat.set_renderer_shadow(light.data, True)
-        shadowed = _render_exr(scene, os.path.join(folder, "shadowed.exr"), layer)
+        shadowed = _render_exr(scene, os.path.join(folder, "shadowed.exr"))
         compat.set_renderer_shadow(light.data, False)
-        unshadowed = _render_exr(scene, os.path.join(folder, "unshadowed.exr"), layer)
+        unshadowed = _render_exr(scene, os.path.join(folder, "unshadowed.exr"))
     finally:
+        for view_layer in scene.view_layers:
+            view_layer.use = uses[view_layer.name]
         for other in others:
             other.hide_render = False
         (render.engine, render.filepath, render.image_settings.file_format, render.image_settings.color_depth,

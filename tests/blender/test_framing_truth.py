@@ -16,9 +16,10 @@ import bpy  # noqa: E402
 ss = sstest.addon()
 W, H = 64, 48
 BORDER = (0.3, 0.9, 0.2, 0.7)  # min x, max x, min y, max y: holds the plate's shadow and its edge
-# Cycles at 64 samples, filter at the pixel centre, against the final pass: its own noise is
-# about 0.01 over these frames (measured 0.006-0.012 in Blender 3.4); the bound leaves room.
-CYCLES_RMSE = 0.03
+# Cycles at 64 samples, filter at the pixel centre, against the final pass. Cycles-64 is 0.004
+# from Cycles-256 on these frames; the final pass measured 0.0057-0.0092 from Cycles-64 in
+# Blender 3.4 (border + crop 0.0084, border 0.0092, view layers 0.0057 and 0.0068).
+CYCLES_RMSE = 0.015
 
 
 def _scene():
