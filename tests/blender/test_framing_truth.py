@@ -329,6 +329,22 @@ def test_no_pass_file_with_continue_leaves_the_frame_as_without_the_add_on():
                  "Stop: exit %d\n%s" % (run.returncode, run.log[-2000:]))
 
 
+def test_the_failure_popup_starts_with_the_cause():
+    folder = sstest.tempdir("popup")
+    scene = _scene()
+    key = scene.objects["Key"].data.softshadow
+    key.method = "pcss"
+    key.settings = "blocker_sample=64"
+    scene.softshadow.output_path = os.path.join(folder, "softshadow_####.exr")
+    try:  # (in the background an operator's ERROR report raises, its reports in order)
+        outcome = bpy.ops.softshadow.render_passes()
+    except RuntimeError as exc:
+        outcome = str(exc)
+    first = str(outcome).strip().splitlines()[0]
+    sstest.check(first.startswith("Error: Soft Shadow: no pass was produced: light 'Key' with pcss:")
+                 and "blocker_sample" in first, "the first line gives the cause: %s" % outcome)
+
+
 def test_failure_causes_name_each_light():
     causes = ss.handlers.failure_causes(["light 'Key' with pcss: no setting 'x'", "object 'A' skipped"], ["Key", "Fill"])
     sstest.check(causes == {"Key": "light 'Key' with pcss: no setting 'x'", "Fill": "no pass was produced"},
