@@ -10,14 +10,28 @@ from . import compositor, mesh_cache, native, output_paths, passes, replace, sce
 def _evaluated_depsgraph(scene, depsgraph=None):
     if depsgraph is not None:
         return depsgraph
-    if bpy.context.scene == scene:
-        return bpy.context.evaluated_depsgraph_get()
-    graph = scene.view_layers[0].depsgraph
-    graph.update()
-    return graph
+    return _layer_depsgraph(scene, context_view_layer(scene))
 
 
-def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers=False, final=None):
+def context_view_layer(scene):
+    """The view layer a call means when it names none: the window's, for the window's scene."""
+    return bpy.context.view_layer if bpy.context.scene == scene else scene.view_layers[0]
+
+
+def _named_view_layer(scene, view_layer):
+    """A ViewLayer of `scene` from a name or a ViewLayer (None: the context's)."""
+    if view_layer is None:
+        return context_view_layer(scene)
+    name = view_layer if isinstance(view_layer, str) else view_layer.name
+    layer = scene.view_layers.get(name)
+    if layer is None:
+        raise ValueError("scene '%s' has no view layer '%s' (it has %s)" % (
+            scene.name, name, ", ".join("'%s'" % l.name for l in scene.view_layers)))
+    return layer
+
+
+def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers=False, final=None,
+                  view_layer=None):
     """Soft-shadow passes of `scene`'s current frame from its camera at its render resolution.
 
     lights: None (every shadow-casting light whose pass is enabled), a name or a list of names.
@@ -25,16 +39,25 @@ def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers
     final: True for the passes a final render writes (each light's Refine Final Renders applies:
     slower, closer to the truth), False for the methods' own passes; None (default): True when
     `methods` is None (the passes equal the render's pass file), False when methods are named.
-    Returns {(light name, method that ran): float32 array (height, width), row 0 = top}.
-    Raises native.LibraryUnavailable or native.SoftShadowError for what cannot be done at all;
-    per-light failures are left out and listed in `render_passes.last_problems`; each result's
+    view_layer: a view layer or its name (default: the context's, or `depsgraph`'s): its
+    collections, their render switches and Indirect Only flags decide what casts and receives,
+    as a render of that layer does.
+    Returns {(light name, method that ran): float32 array (height, width), row 0 = top}; a
+    render border with Crop gives the border's pixels, as the render does.
+    Raises native.LibraryUnavailable or native.SoftShadowError for what cannot be done at all,
+    ValueError for a view layer the scene lacks; per-light failures are left out and listed in
+    `render_passes.last_problems`; each result's
     expected RMSE (for 'auto', or a method whose settings ask "estimate_rmse=1") is in
     `render_passes.last_estimates` and printed.
     """
     if final is None:
         final = methods is None
-    graph = _evaluated_depsgraph(scene, depsgraph)
-    exported = scene_export.export(graph, scene, mode="RENDER", reuse=mesh_cache.render_meshes)
+    if depsgraph is not None and view_layer is None:
+        layer = depsgraph.view_layer
+    else:
+        layer = _named_view_layer(scene, view_layer)
+    graph = depsgraph if depsgraph is not None else _layer_depsgraph(scene, layer)
+    exported = scene_export.export(graph, scene, mode="RENDER", view_layer=layer, reuse=mesh_cache.render_meshes)
     result = passes.compute(exported, lights=lights, methods=methods, extra_layers=extra_layers,
                             only_enabled=lights is None, final=final)
     render_passes.last_problems = list(result.problems)
@@ -55,8 +78,7 @@ render_passes.last_estimates = {}  # (light name, method that ran) -> expected R
 def rendering_view_layers(scene):
     """The view layers a render of `scene` renders (only the active one with 'Render Single Layer')."""
     if scene.render.use_single_layer:
-        active = bpy.context.view_layer if bpy.context.scene == scene else scene.view_layers[0]
-        return [active]
+        return [context_view_layer(scene)]
     # (EEVEE Replace's helper layers render too, but need no passes of their own)
     return [layer for layer in scene.view_layers if layer.use and not replace.is_helper_layer(layer)]
 
@@ -71,7 +93,7 @@ def frame_exr_path(scene, frame=None, view_layer=None):
     """The pass file of one frame and view layer (default: the current frame, the context's layer)."""
     frame = scene.frame_current if frame is None else frame
     if view_layer is None:
-        view_layer = bpy.context.view_layer if bpy.context.scene == scene else scene.view_layers[0]
+        view_layer = context_view_layer(scene)
     return output_paths.expand(pass_file_template(scene), scene.name, view_layer.name, frame)
 
 
@@ -102,8 +124,7 @@ def render_frame(scene, depsgraph=None, progress=None, view_layer=None):
 
 def _render_layer(scene, view_layer, depsgraph=None, progress=None):
     if view_layer is None:
-        view_layer = depsgraph.view_layer if depsgraph is not None else (
-            bpy.context.view_layer if bpy.context.scene == scene else scene.view_layers[0])
+        view_layer = depsgraph.view_layer if depsgraph is not None else context_view_layer(scene)
     target = frame_exr_path(scene, view_layer=view_layer)
     _remove_stale(target)
     graph = depsgraph if depsgraph is not None else _layer_depsgraph(scene, view_layer)

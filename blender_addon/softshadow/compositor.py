@@ -64,9 +64,15 @@ def image_node(scene, image=None):
 
 
 def existing_group(name):
-    """The compositor node group of that name, when there is one."""
+    """The compositor node group of that name, when there is one of this version's making (an
+    older one, without a Mask input, is removed: set-up makes it again)."""
     group = bpy.data.node_groups.get(name)
-    return group if group is not None and group.bl_idname == "CompositorNodeTree" else None
+    if group is None or group.bl_idname != "CompositorNodeTree":
+        return None
+    if "Mask" not in compat.group_sockets(group, "INPUT"):
+        bpy.data.node_groups.remove(group)
+        return None
+    return group
 
 
 def new_group(name, colour_inputs, unit_inputs):
@@ -83,14 +89,43 @@ def new_group(name, colour_inputs, unit_inputs):
     return group, group.nodes.new("NodeGroupInput"), group.nodes.new("NodeGroupOutput")
 
 
+# A group's float inputs: the pass, its mask (where the light reaches a receiver) and Strength.
+GROUP_INPUTS = ["Visibility", "Mask", "Strength"]
+
+
+def guarded_visibility(nodes, links, inputs, x, y):
+    """min(1, V + 1 - mask): V itself wherever the pass exists (outside its mask V is 1 by the
+    library's contract), and 1 where the frame has no such pass (a failed light, or no pass file:
+    the Image node then gives its pass and mask sockets the same stand-in value, whatever colour
+    Blender's missing image has). So a failed pass leaves the render as it would be without it.
+    Returns the output socket."""
+    less, _fac, v_in, mask_in, less_out = compat.new_color_mix(nodes, bpy.types, "SUBTRACT")
+    _fac.default_value = 1.0
+    plus, _fac, a_in, one_in, plus_out = compat.new_color_mix(nodes, bpy.types, "ADD")
+    _fac.default_value = 1.0
+    one_in.default_value = (1.0, 1.0, 1.0, 1.0)
+    low, _fac, b_in, cap_in, low_out = compat.new_color_mix(nodes, bpy.types, "DARKEN")
+    _fac.default_value = 1.0
+    cap_in.default_value = (1.0, 1.0, 1.0, 1.0)
+    for node, dx in ((less, 0), (plus, 180), (low, 360)):
+        node.location = (x + dx, y)
+    less.name, plus.name, low.name = "Guard V - Mask", "Guard + 1", "Guard Min 1"
+    links.new(inputs.outputs["Visibility"], v_in)
+    links.new(inputs.outputs["Mask"], mask_in)
+    links.new(less_out, a_in)
+    links.new(plus_out, b_in)
+    return low_out
+
+
 def darken_group():
     """Image x mix(1, visibility, strength): the pass darkens a render layer."""
     group = existing_group(GROUP_NAME)
     if group is not None:
         return group
-    group, inputs, outputs = new_group(GROUP_NAME, ["Image"], ["Visibility", "Strength"])
+    group, inputs, outputs = new_group(GROUP_NAME, ["Image"], GROUP_INPUTS)
     nodes, links = group.nodes, group.links
-    inputs.location, outputs.location = (-400, 0), (400, 0)
+    inputs.location, outputs.location = (-900, 0), (400, 0)
+    visibility = guarded_visibility(nodes, links, inputs, -700, -300)
     factor, strength_in, lit_in, visibility_in, factor_out = compat.new_color_mix(nodes, bpy.types, "MIX")
     factor.name = "Shadow Factor"
     lit_in.default_value = (1.0, 1.0, 1.0, 1.0)
@@ -100,7 +135,7 @@ def darken_group():
     one_in.default_value = 1.0
     multiply.location = (150, 0)
     links.new(inputs.outputs["Strength"], strength_in)
-    links.new(inputs.outputs["Visibility"], visibility_in)
+    links.new(visibility, visibility_in)
     links.new(inputs.outputs["Image"], image_in)
     links.new(factor_out, shadow_in)
     links.new(image_out, outputs.inputs["Image"])
@@ -183,6 +218,15 @@ def missing_sockets(scene, view_layer):
     return [name for name in expected_passes(scene, view_layer) if name not in have]
 
 
+def unguarded_groups(scene):
+    """The soft-shadow group nodes made before groups read their pass's mask: a failed pass
+    darkens through them by Blender's missing-image colour until Set Up Compositor runs again."""
+    tree = _tree(scene, create=False)
+    return [node.name for node in (tree.nodes if tree is not None else ())
+            if node.bl_idname == "CompositorNodeGroup" and node.name.startswith("SoftShadow ")
+            and "Visibility" in node.inputs and "Mask" not in node.inputs]
+
+
 def apply_strength(scene):
     """The scene's Strength on the darken group node (called whenever the slider moves)."""
     tree = _tree(scene, create=False)
@@ -215,13 +259,24 @@ def _relink(tree, group_node, node, pass_name):
         return None, "the pass '%s' chosen to darken by is not in the pass file (it has %s)" % (
             pass_name, ", ".join(names))
     chosen = pass_name or names[0]
-    target = group_node.inputs["Visibility"]
-    current = target.links[0].from_socket if target.is_linked else None
-    if current is None or current.node != node or current.name != chosen:
+    link_pass(tree, node, chosen, group_node)
+    return chosen, ""
+
+
+def link_pass(tree, node, pass_name, group_node):
+    """The pass to the group's Visibility and its mask to Mask (the guard against a missing pass)."""
+    for socket_name, target in ((pass_name, group_node.inputs["Visibility"]),
+                                (pass_name + "_mask", group_node.inputs.get("Mask"))):
+        if target is None:
+            continue
+        source = node.outputs.get(socket_name)
+        current = target.links[0].from_socket if target.is_linked else None
+        if current is not None and current == source:
+            continue
         for link in list(target.links):
             tree.links.remove(link)
-        tree.links.new(node.outputs[chosen], target)
-    return chosen, ""
+        if source is not None:
+            tree.links.new(source, target)
 
 
 def place_between(before, node, output):
@@ -262,8 +317,9 @@ def setup(scene, exr_path=None):
         group_node.name = GROUP_NODE
         group_node.label = "Soft Shadow Darken"
         changes.append("added the group node '%s'" % GROUP_NODE)
-    if group_node.node_tree is None:
-        group_node.node_tree = darken_group()
+    group = darken_group()
+    if group_node.node_tree != group:
+        group_node.node_tree = group
     group_node.inputs["Strength"].default_value = scene.softshadow.strength
     feeding = output_input.links[0].from_socket if output_input.is_linked else None
     if feeding is None or feeding.node != group_node:

@@ -26,7 +26,7 @@ EXIT_FAILED = 3
 
 # The last frame's outcome, for the UI (render handlers may run off the main thread, where
 # writing RNA properties is not safe).
-last_report = {"frame": None, "path": "", "problems": [], "chosen": {}, "layers": {}}
+last_report = {"frame": None, "path": "", "problems": [], "chosen": {}, "layers": {}, "failed": {}}
 
 # Where each handler ran last, and whether the interface was locked (the GUI render test reads it).
 handler_threads = {}
@@ -100,16 +100,26 @@ def _enabled(scene):
     return props is not None and props.enabled
 
 
+def failure_causes(problems, failed_lights):
+    """{light: the problem that names it} for each light that got no pass."""
+    causes = {}
+    for light in failed_lights:
+        named = [p for p in problems if "'%s'" % light in p]
+        causes[light] = named[0] if named else "no pass was produced"
+    return causes
+
+
 def _record(frame, layers):
-    problems, chosen, paths = [], {}, []
-    for name, (path, layer_problems, layer_chosen, _failed) in layers.items():
+    problems, chosen, paths, failed = [], {}, [], {}
+    for name, (path, layer_problems, layer_chosen, layer_failed) in layers.items():
         problems += layer_problems
         chosen.update(layer_chosen)
+        failed.update(failure_causes(layer_problems, layer_failed))
         if path:
             paths.append(path)
     last_report.clear()
     last_report.update(frame=frame, path=paths[0] if paths else "", problems=problems, chosen=chosen,
-                       layers=dict(layers))
+                       layers=dict(layers), failed=failed)
     for problem in problems:
         print("softshadow: frame %d: %s" % (frame, problem))
     for path in paths:
@@ -135,6 +145,12 @@ def on_render_init(scene, *_args):
         causes.append("internal error: %s: %s" % (type(exc).__name__, exc))
     for cause in causes:
         print("softshadow: %s" % cause)
+    try:
+        for name in compositor.unguarded_groups(scene):
+            print("softshadow: the compositor's '%s' is from an older version of the add-on: a failed "
+                  "pass would darken the frame through it; run Set Up Compositor again" % name)
+    except Exception as exc:
+        print("softshadow: internal error: %s: %s" % (type(exc).__name__, exc))
     if causes and bpy.app.background and scene.softshadow.on_failure == "STOP":
         _stop(None, causes)
 

@@ -28,6 +28,7 @@ LIGHT_TYPES = {"DISK": 0, "ELLIPSE": 1, "SQUARE": 2, "RECTANGLE": 3, "POINT": 4,
 MESH_CAST = 1
 MESH_RECEIVE = 2
 MESH_THIN = 4
+MESH_CAMERA_HIDDEN = 8  # the camera sees past it; it still casts
 
 LIBRARY_NAME = "libsoftshadow.so"
 

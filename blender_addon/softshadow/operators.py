@@ -5,7 +5,7 @@ import os
 
 import bpy
 
-from . import api, compositor, native, replace
+from . import api, compositor, native, replace, scene_export
 
 
 def _library_ready(op):
@@ -44,11 +44,14 @@ class SOFTSHADOW_OT_render_passes(bpy.types.Operator):
             return {"CANCELLED"}
         finally:
             wm.progress_end()
-        _report_problems(self, problems)
         scene.softshadow.last_report = "; ".join(problems)
         if not path:
-            self.report({"ERROR"}, "Soft Shadow: no pass was produced")
+            # The popup's first line is the first report: the cause, not only the outcome.
+            self.report({"ERROR"}, "Soft Shadow: no pass was produced: %s" % (
+                problems[0] if problems else "no light casts a soft-shadow pass"))
+            _report_problems(self, problems[1:])
             return {"CANCELLED"}
+        _report_problems(self, problems)
         methods = ", ".join("%s: %s" % item for item in chosen.items())
         self.report({"INFO"}, "Soft Shadow: wrote %s (%s)" % (bpy.path.basename(path), methods))
         return {"FINISHED"}
@@ -67,6 +70,10 @@ class SOFTSHADOW_OT_setup_compositor(bpy.types.Operator):
         replacing = scene.softshadow.composite == "REPLACE"
         if replacing and replace.problem(scene, view_layer):
             self.report({"ERROR"}, "Soft Shadow: " + replace.problem(scene, view_layer))
+            return {"CANCELLED"}
+        unframed = scene_export.frame_problem(scene)
+        if unframed:  # nothing to wire: the render would get no pass
+            self.report({"ERROR"}, "Soft Shadow: the compositor was not set up: " + unframed)
             return {"CANCELLED"}
         try:
             path = api.frame_exr_path(scene, view_layer=view_layer)

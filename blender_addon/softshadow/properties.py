@@ -148,11 +148,11 @@ class SoftShadowSceneSettings(bpy.types.PropertyGroup):
     # Pipeline scripts reach the add-on through the scene in every Blender and both install modes:
     # as an extension its package is `bl_ext.<repository>.softshadow`, a name the studio chooses,
     # and an extension may not add a top-level module of its own.
-    def render_passes(self, lights=None, methods=None, extra_layers=False, final=None):
+    def render_passes(self, lights=None, methods=None, extra_layers=False, final=None, view_layer=None):
         """The passes of this scene's current frame: see api.render_passes."""
         from . import api
         return api.render_passes(self.id_data, lights=lights, methods=methods, extra_layers=extra_layers,
-                                final=final)
+                                final=final, view_layer=view_layer)
 
     def passes_problems(self):
         """What the last render_passes call left out, and why."""

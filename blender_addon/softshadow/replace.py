@@ -36,9 +36,10 @@ def replace_group():
     group = compositor.existing_group(GROUP_NAME)
     if group is not None:
         return group
-    group, inputs, outputs = compositor.new_group(GROUP_NAME, ["Image", "Light"], ["Visibility", "Strength"])
+    group, inputs, outputs = compositor.new_group(GROUP_NAME, ["Image", "Light"], compositor.GROUP_INPUTS)
     nodes, links = group.nodes, group.links
-    inputs.location, outputs.location = (-500, 0), (500, 0)
+    inputs.location, outputs.location = (-1100, 0), (500, 0)
+    visibility = compositor.guarded_visibility(nodes, links, inputs, -900, -400)
     factor, f_fac, f_a, f_b, f_out = _mix(nodes, "MIX")
     f_a.default_value = (1.0, 1.0, 1.0, 1.0)
     shadowed, s_fac, s_a, s_b, s_out = _mix(nodes, "MULTIPLY")
@@ -47,7 +48,7 @@ def replace_group():
     for node, x, y in ((factor, -250, -200), (shadowed, 0, -150), (without, 0, 100), (total, 250, 0)):
         node.location = (x, y)
     links.new(inputs.outputs["Strength"], f_fac)
-    links.new(inputs.outputs["Visibility"], f_b)
+    links.new(visibility, f_b)
     links.new(inputs.outputs["Light"], s_a)
     links.new(f_out, s_b)
     links.new(inputs.outputs["Image"], w_a)
@@ -229,7 +230,7 @@ def setup(scene, view_layer, node):
             changes.append("light '%s': Render Layers has no output for its light group" % obj.name)
         else:
             _link(tree, light_output, group_node.inputs["Light"])
-        _link(tree, node.outputs[pass_name], group_node.inputs["Visibility"])
+        compositor.link_pass(tree, node, pass_name, group_node)
         previous = group_node.outputs["Image"]
         used.add(name)
     for stale in [n for n in tree.nodes if n.name.startswith(NODE_PREFIX) and n.name not in used]:

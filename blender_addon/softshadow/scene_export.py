@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import compat
+from . import compat, framing
 
 AREA_SHAPES = ("DISK", "ELLIPSE", "SQUARE", "RECTANGLE")
 GEOMETRY_TYPES = ("MESH", "CURVE", "SURFACE", "FONT", "META")
@@ -219,8 +219,19 @@ def _mesh_flags(obj):
     from . import native
     materials = [slot.material for slot in getattr(obj, "material_slots", [])]
     cast = compat.object_casts_shadow(obj.original) and compat.materials_cast_shadow(materials)
-    receive = compat.object_camera_visible(obj.original)
-    return (native.MESH_CAST if cast else 0) | (native.MESH_RECEIVE if receive else 0)
+    seen = compat.object_camera_visible(obj.original)
+    return ((native.MESH_CAST if cast else 0) | (native.MESH_RECEIVE if seen else 0)
+            | (0 if seen else native.MESH_CAMERA_HIDDEN))
+
+
+def _layer_flags(flags, obj, parent, view_layer, engine):
+    """The view layer's say on a mesh: Cycles shows an object of an Indirect Only collection
+    only through its shadows and reflections, so the camera sees past it (EEVEE ignores it)."""
+    from . import native
+    owner = (parent or obj).original
+    if engine == "CYCLES" and flags & native.MESH_RECEIVE and owner.indirect_only_get(view_layer=view_layer):
+        flags = (flags & ~native.MESH_RECEIVE) | native.MESH_CAMERA_HIDDEN
+    return flags if flags & (native.MESH_CAST | native.MESH_RECEIVE) else 0  # (hidden, casting nothing)
 
 
 def _mesh_alpha(obj, engine, readings, unreadable):
@@ -280,18 +291,32 @@ def _light_settings(obj):
             "settings": props.settings, "refine_final": bool(props.refine_final)}
 
 
+def frame_problem(scene):
+    """Why the scene camera's render gets no passes (a panoramic camera, an empty cropped
+    border), or None."""
+    render = scene.render
+    size = render_size(render.resolution_x, render.resolution_y, render.resolution_percentage)
+    return framing.camera_problem(scene.camera) or framing.crop_problem(framing.crop_rect(render, *size))
+
+
 def scene_camera(scene, depsgraph, width=None, height=None):
-    """The scene camera at the render resolution (percentage and pixel aspect applied)."""
+    """The scene camera at the render resolution (percentage and pixel aspect applied; a border
+    with Crop narrows it to the border's pixels)."""
     camera = scene.camera
     if camera is None:
         return None
     render = scene.render
+    crop = None
     if width is None:
         width, height = render_size(render.resolution_x, render.resolution_y, render.resolution_percentage)
+        crop = framing.crop_rect(render, width, height)
     evaluated = camera.evaluated_get(depsgraph)
     projection = evaluated.calc_matrix_camera(depsgraph, x=width, y=height,
                                               scale_x=render.pixel_aspect_x,
                                               scale_y=render.pixel_aspect_y)
+    if crop is not None:  # the render is the border's pixels alone (framing.py)
+        projection = framing.cropped_projection(projection, crop, width, height)
+        width, height = crop[2] - crop[0], crop[3] - crop[1]
     view = np.linalg.inv(normalized_rigid(evaluated.matrix_world))
     return camera_values(view, projection, width, height,
                          render.pixel_aspect_y / render.pixel_aspect_x if render.pixel_aspect_x else 1.0)
@@ -373,7 +398,8 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
             continue
 
         if only is not None and obj.original.name not in (geometry or ()):
-            flags = _mesh_flags(obj)
+            flags = _layer_flags(_mesh_flags(obj), obj, parent if is_instance else None, view_layer,
+                                 scene.render.engine)
             if flags:
                 out.meshes.append({"name": base_name, "local": None, "triangles": None, "flags": flags,
                                    "matrix": column_major(matrix)})
@@ -406,7 +432,8 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
         if problem:
             out.problems.append(problem)
             continue
-        flags = _mesh_flags(obj)
+        flags = _layer_flags(_mesh_flags(obj), obj, parent if is_instance else None, view_layer,
+                             scene.render.engine)
         if flags == 0:
             continue
         alpha = _mesh_alpha(obj, engine, alpha_readings, unreadable) if flags & native_cast() else None
@@ -419,8 +446,11 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
     if line:
         out.problems.append(line)
     if camera is None and only is None:
-        camera = scene_camera(scene, depsgraph)
-        if camera is None:
+        problem = frame_problem(scene)
+        camera = scene_camera(scene, depsgraph) if problem is None else None
+        if problem is not None:
+            out.problems.append(problem)
+        elif camera is None:
             out.problems.append("scene '%s' has no camera: no soft-shadow passes" % scene.name)
     out.camera = camera
     return out

@@ -131,7 +131,10 @@ class SOFTSHADOW_PT_output(_SettingsPanel, bpy.types.Panel):
         report = handlers.last_report
         if report.get("frame") is not None:
             layout.label(text="Frame %d: %s" % (report["frame"], bpy.path.basename(report["path"]) or "nothing written"))
-            for problem in report["problems"][:5]:
+            for light, cause in list(report.get("failed", {}).items())[:5]:
+                layout.label(text="Light '%s' failed (not shadowed in the composite): %s" % (light, cause),
+                             icon="ERROR")
+            for problem in [p for p in report["problems"] if p not in report.get("failed", {}).values()][:5]:
                 layout.label(text=problem, icon="ERROR")
 
 

@@ -68,7 +68,8 @@ def test_cast_and_receive_flags():
     native = ss.native
     sstest.check(_mesh(exported, "Ground")["flags"] == native.MESH_CAST | native.MESH_RECEIVE, "default flags")
     sstest.check(_mesh(exported, "NoShadow")["flags"] == native.MESH_RECEIVE, "visible_shadow off: no cast")
-    sstest.check(_mesh(exported, "NotSeen")["flags"] == native.MESH_CAST, "camera-invisible: no receive")
+    sstest.check(_mesh(exported, "NotSeen")["flags"] == native.MESH_CAST | native.MESH_CAMERA_HIDDEN,
+                 "camera-invisible: casts, the camera sees past it")
 
 
 def test_collection_and_geometry_nodes_instances():

@@ -67,6 +67,8 @@ typedef enum ss_light_type {
 #define SS_MESH_CAST 1u    /* the mesh casts shadows */
 #define SS_MESH_RECEIVE 2u /* the mesh receives shadows (pixels on it are in the mask) */
 #define SS_MESH_THIN 4u    /* a thin occluder (occlusion_textures' leak fix) */
+#define SS_MESH_CAMERA_HIDDEN 8u /* the camera sees past the mesh, which still casts with SS_MESH_CAST
+                                    (Blender: camera ray visibility off, Cycles' Indirect Only) */
 
 typedef struct ss_light_desc {
     const char* name;          /* unique within the scene; 1..131 bytes of UTF-8, no control chars */

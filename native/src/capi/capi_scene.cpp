@@ -65,7 +65,7 @@ ss::Mesh meshFrom(const char* function, const std::string& name, const float* xy
                   const uint32_t* triangles, uint32_t triangle_count, uint32_t flags) {
     if (vertex_count > 0) require(xyz, function, "xyz");
     if (triangle_count > 0) require(triangles, function, "triangles");
-    if (flags & ~uint32_t(SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN))
+    if (flags & ~uint32_t(SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN | SS_MESH_CAMERA_HIDDEN))
         ss::fail(SS_ERROR_INVALID_ARGUMENT, std::string(function) + ": mesh '" + name +
                                                 "' has unknown flag bits " + std::to_string(flags));
     ss::Mesh mesh;

@@ -47,7 +47,7 @@ struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec3> triangles;
-    uint32_t flags = 0;  // SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN
+    uint32_t flags = 0;  // SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN | SS_MESH_CAMERA_HIDDEN
     // What its materials let through on shadow rays; null where it blocks every ray it meets
     // (no materials, or only opaque ones). Shared: copies of a scene do not copy textures.
     std::shared_ptr<const MeshAlpha> alpha;

@@ -384,6 +384,7 @@ void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rec
         const auto [first, count] = listedRanges_[i];
         if (count == 0) continue;
         const GpuMesh& m = meshes_[i];
+        if (m.flags & SS_MESH_CAMERA_HIDDEN) continue;  // the camera sees past it
         setPlacement(prog, m);
         prog.set("uMeshIndex", m.meshIndex);
         prog.set("uReceives", m.receives() ? 1.0f : 0.0f);

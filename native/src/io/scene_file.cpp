@@ -282,14 +282,15 @@ TriangleSoup readGeometry(const JsonNode& n, const std::string& baseDir) {
 }
 
 Mesh readMesh(const JsonNode& n, const std::string& baseDir) {
-    n.expectKeys({"name", "cast", "receive", "thin", "positions", "triangles", "positions_file",
+    n.expectKeys({"name", "cast", "receive", "thin", "camera_visible", "positions", "triangles", "positions_file",
                   "triangles_file", "primitive", "transform", "translate", "rotate_deg", "scale",
                   "materials", "comment"});
     Mesh m;
     m.name = n.at("name").string();
     m.flags = (n.boolean("cast", true) ? SS_MESH_CAST : 0u) |
               (n.boolean("receive", true) ? SS_MESH_RECEIVE : 0u) |
-              (n.boolean("thin", false) ? SS_MESH_THIN : 0u);
+              (n.boolean("thin", false) ? SS_MESH_THIN : 0u) |
+              (n.boolean("camera_visible", true) ? 0u : SS_MESH_CAMERA_HIDDEN);
     TriangleSoup soup = readGeometry(n, baseDir);
     m.positions = std::move(soup.positions);
     m.triangles = std::move(soup.triangles);

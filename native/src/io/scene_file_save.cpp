@@ -71,7 +71,8 @@ void saveSceneFile(const Scene& scene, const std::string& path, size_t inlineVer
         nlohmann::json j = {{"name", m.name},
                             {"cast", m.casts()},
                             {"receive", m.receives()},
-                            {"thin", (m.flags & SS_MESH_THIN) != 0}};
+                            {"thin", (m.flags & SS_MESH_THIN) != 0},
+                            {"camera_visible", (m.flags & SS_MESH_CAMERA_HIDDEN) == 0}};
         if (m.positions.size() > inlineVertexLimit) {
             std::string base = stem + "." + std::to_string(i);
             std::string pos = base + ".positions.f32", tri = base + ".triangles.u32";

@@ -192,7 +192,7 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<con
             m.alpha.resize(meshes.size());
             m.alpha[i] = mesh.alpha;
         }
-        Impl::instance(device, m.all, in, uint32_t(i));
+        if (!(mesh.flags & SS_MESH_CAMERA_HIDDEN)) Impl::instance(device, m.all, in, uint32_t(i));
         if (mesh.casts()) Impl::instance(device, m.casters, in, uint32_t(i));
     }
     rtcCommitScene(m.all);
