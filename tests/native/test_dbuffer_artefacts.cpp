@@ -12,22 +12,19 @@
 #include "methods/method.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
+#include "test_layers.h"
 #include "test_scenes.h"
 
 namespace ss {
 namespace {
+
+using test::layer;
 
 Layers render(Renderer& r, const Scene& scene, const std::string& method, int samples = 0) {
     RenderSettings s;
     s.samples = samples;
     std::string used;
     return r.render(scene, 0, method, s, &used);
-}
-
-const Image& layer(const Layers& l, const char* name) {
-    const Image* img = l.find(name);
-    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
-    return *img;
 }
 
 // The built-in example (a tilted torus and a cube over the ground under a disk light) at

@@ -16,10 +16,13 @@
 #include "methods/method.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
+#include "test_layers.h"
 #include "test_scenes.h"
 
 namespace ss {
 namespace {
+
+using test::layer;
 
 Layers render(Renderer& r, const Scene& scene, const std::string& method, int samples = 0,
               const std::map<std::string, std::string>& options = {}) {
@@ -28,12 +31,6 @@ Layers render(Renderer& r, const Scene& scene, const std::string& method, int sa
     s.options = options;
     std::string used;
     return r.render(scene, 0, method, s, &used);
-}
-
-const Image& layer(const Layers& l, const char* name) {
-    const Image* img = l.find(name);
-    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
-    return *img;
 }
 
 int referenceSamples() { return test::quickTests() ? 64 : 256; }
