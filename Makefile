@@ -1,4 +1,4 @@
-# softshadow: the two set-up commands (make demo, make test) and the rest of the workflow.
+# softshadow: the set-up commands (make demo, make check, make test) and the rest of the workflow.
 # SPDX-License-Identifier: GPL-3.0-or-later
 SHELL := /bin/bash
 BUILD ?= build
@@ -7,6 +7,8 @@ TSAN_BUILD ?= build-tsan
 JOBS ?= $(shell nproc)
 UID_NOW := $(shell id -u)
 SUDO := $(if $(filter 0,$(UID_NOW)),,sudo)
+EMPTY :=
+SPACE := $(EMPTY) $(EMPTY)
 VERSION := $(shell sed -n 's/^project.softshadow VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
 
 # Every Debian package the build, tests, demo, benchmark and add-on need.
@@ -14,9 +16,9 @@ DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-
   libopenexr-dev libglm-dev libembree-dev libegl-dev libegl1-mesa-dev libosmesa6-dev \
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
   blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev \
-  clang-14 libclang-rt-14-dev time mmdebstrap nodejs
+  clang-14 libclang-rt-14-dev clang-format-14 time mmdebstrap nodejs flake8
 
-.PHONY: deps build demo test test-native test-asan test-tsan test-blender test-matrix test-fuzz test-farm bench addon clean
+.PHONY: deps build demo check lint test test-native test-asan test-tsan test-blender test-matrix test-fuzz test-farm bench addon clean
 
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
@@ -31,6 +33,23 @@ build: deps
 
 demo: build
 	bash examples/run_demo.sh $(BUILD)
+
+# The fast lane, run first by .ci/run: the build, Python lint, the source checks (include
+# layers, one definition per type name) and the native tests but the slow ones, with the sizes
+# and sample counts of SS_TEST_QUICK, one process per core (tests/native/run_shards.sh). Under
+# 5 minutes on 2 cores; `make test` runs everything. Left out: the whole-image measurements of
+# auto and of each method's quality against the reference, and the longest single tests
+# (over 6 s on 2 loaded cores; a new slow test goes here).
+CHECK_SLOW_TESTS := AutoMeasures.*:SparseCheck.*:ReferenceAdaptive.*:Refinement.*:CameraPassCoverage.*\
+  :PaperProperties*:PaperFailures*:OcclusionTexturesTemporal.*:DbufferQuality.*:SweepQuality.*\
+  :DbufferLights.*:DbufferFormula.*:DbufferRaw.*:DbufferArtefacts.*:SweepLimits.ShadowJitterUnderAnAnimatedLight
+check: build lint
+	cd $(BUILD) && ctest --output-on-failure -R SourceChecks
+	bash tests/native/run_shards.sh $(BUILD) '-$(subst $(SPACE),,$(CHECK_SLOW_TESTS))' $(JOBS)
+
+# The add-on, the Blender tests and the benchmark scripts (rules and their reasons: .flake8).
+lint: deps
+	flake8 blender_addon tests bench
 
 test: build
 	$(MAKE) --no-print-directory test-native test-fuzz test-blender test-farm test-matrix test-asan test-tsan

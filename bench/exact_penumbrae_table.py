@@ -16,7 +16,8 @@ out = ["# Exact penumbrae against %s" % cycles, "",
        "at or below %s's in at most 1/5 of its time. Traced: for the adaptive reference the share of mask" % cycles,
        "pixels past the first round of 16 rays, for refine the share of mask pixels re-traced.",
        "Ours built from commit %s." % sys.argv[5], "",
-       "| scene | size | triangles | run | seconds | RMSE | speed-up vs %s | rays per mask pixel | traced | target met |" % cycles,
+       "| scene | size | triangles | run | seconds | RMSE | speed-up vs %s | rays per mask pixel | traced "
+       "| target met |" % cycles,
        "|---|---|---|---|---|---|---|---|---|---|"]
 met = {}
 for r in rows:

@@ -240,8 +240,8 @@ def headline(scene, key):
     parts.append("**auto** took %s in %.0f ms (CLI, fresh process%s)" % (
         took, auto["ms"], ", %.1f× the %.0f ms of %s alone" % (auto["ms"] / auto["picked_ms"], auto["picked_ms"], took)
         if auto.get("picked_ms") else ""))
-    parts.append("receivers %s, all surfaces %s against EEVEE-64" % (verdict(rmse(auto, "receivers"), rmse(ee, "receivers")),
-                                                                     verdict(rmse(auto, "all"), rmse(ee, "all"))))
+    parts.append("receivers %s, all surfaces %s against EEVEE-64" % (
+        verdict(rmse(auto, "receivers"), rmse(ee, "receivers")), verdict(rmse(auto, "all"), rmse(ee, "all"))))
     parts.append("estimate %s beside measured %.4f (all surfaces)%s" % (
         fmt(auto.get("estimate")), rmse(auto, "all"), "" if estimate_holds(auto) else " (**outside ±30 %**)"))
     cyc = ["Cycles-%s %s / %s" % (k.split("-")[1], fmt(rmse(by[k], "receivers")), fmt(rmse(by[k], "all")))
@@ -276,7 +276,7 @@ def headline_exact(scene):
                 c64["err"]["rmse"], c64["ms"], "at or below" if r["err"]["rmse"] <= c64["err"]["rmse"] else "**above**",
                 r["ms"] / c64["ms"])
         parts.append("%s %.4f (receivers %s) in %.0f ms (%s%s)%s" % (label, r["err"]["rmse"], fmt(rmse(r, "receivers")),
-                                                                   r["ms"], share, rays, vs))
+                                                                     r["ms"], share, rays, vs))
     return "- **%s**: %s" % (scene["name"], "; ".join(parts)) if parts else None
 
 
@@ -293,7 +293,8 @@ def summary(scenes, key):
         checks = {
             "receivers": rmse(auto, "receivers") is not None and rmse(ee, "receivers") is not None
             and rmse(auto, "receivers") <= rmse(ee, "receivers"),
-            "all": rmse(auto, "all") is not None and rmse(ee, "all") is not None and rmse(auto, "all") <= rmse(ee, "all"),
+            "all": rmse(auto, "all") is not None and rmse(ee, "all") is not None
+            and rmse(auto, "all") <= rmse(ee, "all"),
             "time": bool(auto and auto.get("picked_ms")) and auto["ms"] <= 2.0 * auto["picked_ms"],
             "estimate": bool(auto) and estimate_holds(auto),
             "best": bool(best) and rmse(auto, "all") is not None and rmse(auto, "all") <= 1.25 * best["err"]["rmse"],
@@ -308,7 +309,7 @@ def summary(scenes, key):
             "best": "within 1.25× of " + ("our best GL method at its defaults" if key == "auto"
                                           else "the adaptive reference") + " (all surfaces)"}
     return ["- `auto` is %s on **%d of %d** scenes%s." % (text[k], counts[k], n,
-                                                         "; not on " + ", ".join(missed[k]) if missed[k] else "")
+                                                          "; not on " + ", ".join(missed[k]) if missed[k] else "")
             for k in names]
 
 
@@ -333,12 +334,12 @@ def foundation(out):
         label = b.get("label", "")
         if b.get("error_occurred"):
             lines.append("| %s | %s² | %s | | skipped: %s |" % ("example" if m.group(1) == "0" else "torus100k",
-                                                               m.group(2), label, b.get("error_message", "")))
+                                                                m.group(2), label, b.get("error_message", "")))
             continue
         scene, method = label.split(" ", 1) if " " in label else (label, "?")
         vals = [b.get(k, 0.0) for k, _ in STAGES]
         lines.append("| %s | %s² | %s | %d | %s | %.1f |" % (scene, m.group(2), method, b.get("triangles", 0),
-                                                          " | ".join("%.1f" % v for v in vals), sum(vals[:5])))
+                                                             " | ".join("%.1f" % v for v in vals), sum(vals[:5])))
     if other:
         lines += ["", "## The method engineers' own stage benchmarks (same run)", "",
                   "| benchmark | label | ms (manual time, mean) | counters |", "|---|---|---|---|"]
@@ -447,7 +448,8 @@ def main():
                width, height, "256x192" if quick != "1" else "the same size"),
            "- Truth: `reference` (Embree) at **%s light samples per pixel**. Errors: `softshadow compare --json` "
            "over every pixel the light reaches (`--mask <light>_reference_mask`, the truth's mask) whatever the "
-           "method's own mask, since a composite multiplies by V everywhere (V = 1 outside a method's mask): RMSE, 99th-percentile absolute error, umbra IoU (V<0.05), lit IoU (V>0.95)."
+           "method's own mask, since a composite multiplies by V everywhere (V = 1 outside a method's mask): "
+           "RMSE, 99th-percentile absolute error, umbra IoU (V<0.05), lit IoU (V>0.95)."
            % truth,
            "- **Receivers**: the pixels whose centre sees a receiver object (the ground, the curved receiver, the "
            "steps: `RECEIVERS` in bench/scenes.py), taken from Cycles' object-index pass at one sample with a "

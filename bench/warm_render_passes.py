@@ -1,4 +1,5 @@
-# Where does the time go on the second frame of an animation where one object moved: render_passes per GL method, and the preview's edit-to-overlay latency?
+# Where does the time go on the second frame of an animation where one object moved: render_passes
+# per GL method, and the preview's edit-to-overlay latency?
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Usage: blender -b --factory-startup --python bench/warm_render_passes.py -- OUT.md [SIZE] [FRAMES] [SCENES] [PARTS]
 # SOFTSHADOW_LIB and SOFTSHADOW_ADDON_PATH (or an installed add-on) as for tests/blender.
@@ -294,7 +295,7 @@ for tori in torus_counts:
                              (statistics.median(refined), p95(refined))))
         print("BENCH preview %d tris %s: coarse median %.3f s p95 %.3f s, full median %.3f s p95 %.3f s, "
               "full render alone %.3f s, floor coarse %.3f s full %.3f s" % (triangles, label, *preview_rows[-1][1:5],
-                                                                 stages["full render"], *stages_floor),
+                                                                             stages["full render"], *stages_floor),
               flush=True)
     final = None
     if "final" in parts:
@@ -374,7 +375,7 @@ with open(out_path, "w") as f:
         f.write("|---" * (len(PREVIEW_COLUMNS) + 7) + "|\n")
         for method, coarse, coarse_high, median, high, stages, floor, _orbit, _refined in preview_rows:
             f.write("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | " % (method, coarse, floor[0], coarse_high,
-                                                                      median, floor[1], high)
+                                                                           median, floor[1], high)
                     + " | ".join("%.3f" % stages[k] for k in PREVIEW_COLUMNS) + " |\n")
         f.write("\nA camera orbit (%d views, each turned 2° about the vertical axis from the last; nothing "
                 "moved: the camera pass is redrawn whole, the shadow maps are kept), view-to-overlay seconds "

@@ -201,4 +201,3 @@ def lightgroup_pass(view_layer, obj, name):
 
 def supports_lightgroups(view_layer):
     return hasattr(view_layer, "lightgroups")
-

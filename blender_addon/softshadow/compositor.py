@@ -354,7 +354,7 @@ def refresh(scene, exr_path):
     tree = _tree(scene, create=False)
     image = passes_image(exr_path)
     image.reload()
-    image.size[:]  # touching the buffer makes Blender read the passes (DESIGN.md)
+    image.size[:]  # touching the buffer makes Blender read the passes (docs/contracts.md)
     if tree is None:
         return ""
     node = tree.nodes.get(IMAGE_NODE)

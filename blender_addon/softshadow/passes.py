@@ -146,7 +146,7 @@ class LiveScene:
             try:
                 if (self.scene is None or [m["name"] for m in self.meshes] != [m["name"] for m in exported.meshes]
                         or [l["name"] for l in self.lights] != [l["name"] for l in exported.lights
-                                                                 if not scene_export.light_problem(l)]
+                                                                if not scene_export.light_problem(l)]
                         or self.scene_view_layer != exported.view_layer):
                     self.rebuild(exported)
                 else:

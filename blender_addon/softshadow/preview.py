@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The main thread exports what changed (from depsgraph.updates of edits and frame changes: only
 the objects an edit or the animation touched, a moved object as its matrix alone) and reads each
-viewport's view in its draw callback; a worker thread applies those edits to the native scenes kept alive for the preview
+viewport's view in its draw callback; a worker thread applies those edits to the native scenes
+kept alive for the preview
 (so the library keeps every unchanged mesh's GPU buffers and every unchanged light's shadow maps)
 and renders at reduced resolution through the library (which releases the GIL). Each request is
 rendered twice, progressively: a coarse image (COARSE_DIVISOR times fewer pixels in each axis) that

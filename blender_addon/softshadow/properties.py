@@ -152,7 +152,7 @@ class SoftShadowSceneSettings(bpy.types.PropertyGroup):
         """The passes of this scene's current frame: see api.render_passes."""
         from . import api
         return api.render_passes(self.id_data, lights=lights, methods=methods, extra_layers=extra_layers,
-                                final=final, view_layer=view_layer)
+                                 final=final, view_layer=view_layer)
 
     def passes_problems(self):
         """What the last render_passes call left out, and why."""

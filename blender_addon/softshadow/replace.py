@@ -164,7 +164,8 @@ def _eevee_light(scene, view_layer, obj, tree, layers, changes):
         rl = tree.nodes.new("CompositorNodeRLayers")
         rl.name = rl_name
     rl.layer = layer_name
-    rl.location = (layers.location.x, layers.location.y - 350 - 300 * len([n for n in tree.nodes if n.name.startswith(LAYERS_PREFIX)]))
+    stacked = len([n for n in tree.nodes if n.name.startswith(LAYERS_PREFIX)])
+    rl.location = (layers.location.x, layers.location.y - 350 - 300 * stacked)
     sub_name = LIGHT_PREFIX + obj.name
     if tree.nodes.get(sub_name) is not None:  # (made again: its sockets differ by version)
         tree.nodes.remove(tree.nodes[sub_name])

@@ -130,7 +130,8 @@ class SOFTSHADOW_PT_output(_SettingsPanel, bpy.types.Panel):
         sub.prop(props, "preview_scale")
         report = handlers.last_report
         if report.get("frame") is not None:
-            layout.label(text="Frame %d: %s" % (report["frame"], bpy.path.basename(report["path"]) or "nothing written"))
+            written = bpy.path.basename(report["path"]) or "nothing written"
+            layout.label(text="Frame %d: %s" % (report["frame"], written))
             for light, cause in list(report.get("failed", {}).items())[:5]:
                 layout.label(text="Light '%s' failed (not shadowed in the composite): %s" % (light, cause),
                              icon="ERROR")

@@ -27,5 +27,5 @@ for name, mode in (("truth", None), ("darken", "DARKEN"), ("replace", "REPLACE")
     files.append(scene.render.filepath + ".exr")
 out = os.path.join(sstest.ROOT, "docs", "images", "composite-darken-replace.png")
 subprocess.run(["oiiotool"] + files + ["--mosaic:pad=8", "3x1", "--ch", "R,G,B", "--tocolorspace", "sRGB",
-                "-d", "uint8", "-o", out], check=True)
+                                       "-d", "uint8", "-o", out], check=True)
 print("picture in", out)

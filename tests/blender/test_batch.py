@@ -6,8 +6,6 @@ import os
 import shutil
 import sys
 
-import numpy as np
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sstest  # noqa: E402
 import bpy  # noqa: E402
@@ -73,10 +71,12 @@ def test_exactly_the_frames_asked_for():
         run = sstest.blender_batch(folder, blend, args)
         sstest.check(run.returncode == 0, "%s: exit %d\n%s" % (args, run.returncode, run.log[-3000:]))
         want = ["softshadow_0001.exr"] + ["softshadow_%04d.exr" % f for f in frames]
-        sstest.check(_files(folder, "passes") == want, "%s: pass files %s, want %s" % (args, _files(folder, "passes"), want))
+        sstest.check(_files(folder, "passes") == want,
+                     "%s: pass files %s, want %s" % (args, _files(folder, "passes"), want))
         after = (os.stat(sentinel).st_mtime_ns, open(sentinel, "rb").read())
         sstest.check(after == before, "%s: frame 1's file untouched" % args)
-        computed = [line for line in run.log.splitlines() if ": wrote " in line and line.startswith("softshadow: frame")]
+        computed = [line for line in run.log.splitlines()
+                    if ": wrote " in line and line.startswith("softshadow: frame")]
         sstest.check(len(computed) == len(frames), "%s: computed %d frames: %s" % (args, len(computed), computed))
         for frame in frames:
             _check_composite(scene, folder, frame)

@@ -75,9 +75,11 @@ def test_camera_pose_from_world_to_camera():
          0.0, 0.7071068286895752, 0.7071067094802856, 0.0, 0.0, -0.3535540699958801, -8.131728172302246, 1.0]
     pos, direction = er.camera_pose({"camera": {"world_to_camera": m}})
     sstest.check(np.allclose(pos, [0.0, -5.5, 6.0], atol=1e-4), "position %s" % pos)
-    sstest.check(np.allclose(direction, [0.0, 0.70710678, -0.70710678], atol=1e-6), "direction %s" % direction)
+    sstest.check(np.allclose(direction, [0.0, 0.70710678, -0.70710678], atol=1e-6),
+                 "direction %s" % direction)
     pos, direction = er.camera_pose({"camera": {"look_from": [6.5, -7.5, 5.0], "look_at": [0.0, 0.0, 0.4]}})
-    sstest.check(pos == [6.5, -7.5, 5.0] and np.allclose(direction, [-6.5, 7.5, -4.6]), "look_from: %s %s" % (pos, direction))
+    sstest.check(pos == [6.5, -7.5, 5.0] and np.allclose(direction, [-6.5, 7.5, -4.6]),
+                 "look_from: %s %s" % (pos, direction))
 
 
 def test_heat_tile_colours_and_png():
@@ -138,7 +140,8 @@ def test_end_to_end_on_a_small_scene():
                               os.path.join(folder, "work", "demo", "truth.exr"), "--mask", "Area_reference_mask",
                               "--json"], check=True, capture_output=True, text=True).stdout
         compared = json.loads(out)[0]
-        sstest.check(compared["pixels"] == px["all"], "mask pixels %d vs compare's %d" % (px["all"], compared["pixels"]))
+        sstest.check(compared["pixels"] == px["all"],
+                     "mask pixels %d vs compare's %d" % (px["all"], compared["pixels"]))
         sstest.close(sm["all"]["rmse"], compared["rmse"], 1e-6, "RMSE against compare's")
         sstest.check(tiles["shadow_map"][0].shape == (72, 96, 3), "tile %s" % (tiles["shadow_map"][0].shape,))
 

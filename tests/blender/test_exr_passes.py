@@ -26,7 +26,7 @@ def _scene_with_two_lights(folder):
 
 def _image_node_outputs(path):
     image = bpy.data.images.load(path, check_existing=False)
-    image.size[:]  # Blender decides MULTILAYER only once the buffer is read (DESIGN.md)
+    image.size[:]  # Blender decides MULTILAYER only once the buffer is read (docs/contracts.md)
     kind = image.type
     scene = bpy.context.scene
     tree = ss.compat.compositor_tree(scene, create=True, bpy_data=bpy.data)

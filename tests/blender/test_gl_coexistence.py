@@ -1,5 +1,5 @@
 # Does our GL context leave Blender's own renders alone: the same pixels before and after many
-# calls, and a clean exit? (the three conditions of DESIGN.md "GL here", in this Blender)
+# calls, and a clean exit? (the three conditions of docs/contracts.md "GL", in this Blender)
 # SPDX-License-Identifier: GPL-3.0-or-later
 import os
 import subprocess

@@ -1,4 +1,5 @@
-# Does a moved object reach the library as its matrix alone, move the shadow, and leave the other meshes' GPU buffers in place?
+# Does a moved object reach the library as its matrix alone, move the shadow, and leave the other
+# meshes' GPU buffers in place?
 # SPDX-License-Identifier: GPL-3.0-or-later
 import contextlib
 import os
@@ -138,7 +139,6 @@ def test_render_passes_sends_only_the_moved_matrix():
         fresh.close()
     sstest.check(np.array_equal(result.arrays[("Key", "shadow_map")], moved),
                  "the updated scene renders exactly as a fresh one")
-
 
 
 def _matches_a_fresh_export(scene, arrays, what):

@@ -196,7 +196,8 @@ def test_method_list_comes_from_the_library():
     items = [item[0] for item in ss.properties.method_items()]
     sstest.check(items == ["auto"] + list(names), "the light's method menu follows the library: %s" % items)
     sstest.check(list(ss.properties.METHOD_LABELS) == items,
-                 "the labels (the stand-in list without a library) are the same list: %s" % list(ss.properties.METHOD_LABELS))
+                 "the labels (the stand-in list without a library) are the same list: %s"
+                 % list(ss.properties.METHOD_LABELS))
     light = bpy.data.lights.new("MenuProbe", "AREA")
     try:
         shown = [item.identifier for item in light.softshadow.bl_rna.properties["method"].enum_items]

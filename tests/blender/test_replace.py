@@ -121,7 +121,8 @@ def test_replace_chains_one_group_per_light_after_the_artists_chain():
     sstest.check(composite.inputs["Image"].links[0].from_node == second, "the last feeds the Composite")
     sstest.check(second.inputs["Light"].links[0].from_socket.name == "Combined_ss_Fill_Light", "group pass")
     sstest.check(second.inputs["Visibility"].links[0].from_socket.name == "Fill_Light_shadow_map", "pass")
-    sstest.check(plain.lightgroup == "" and ss.compat.renderer_shadow(plain.data), "a light without a pass is left alone")
+    sstest.check(plain.lightgroup == "" and ss.compat.renderer_shadow(plain.data),
+                 "a light without a pass is left alone")
     again = bpy.ops.softshadow.setup_compositor()
     sstest.check(again == {"FINISHED"} and len([n for n in tree.nodes if n.name.startswith("SoftShadow Replace")]) == 2,
                  "a second set-up piles nothing up")

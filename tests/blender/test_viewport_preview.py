@@ -128,7 +128,8 @@ def test_the_coarse_image_uses_the_coarse_sizes_and_still_matches_the_full_one()
             for live in scenes.values():
                 live.close()
         alpha = images[0][..., 3]
-        sstest.check(alpha.shape == (coarse_camera["height"], coarse_camera["width"]), "coarse size %s" % (alpha.shape,))
+        sstest.check(alpha.shape == (coarse_camera["height"], coarse_camera["width"]),
+                     "coarse size %s" % (alpha.shape,))
         expected = np.flipud(preview.PREVIEW_OPACITY * (1.0 - np.clip(v_small, 0.0, 1.0)))
         sstest.check(np.array_equal(alpha, expected), "%s: the coarse image is rendered with %s" % (method, settings))
         changed = float(np.mean(np.abs(v_small - v_default) > 1e-6))

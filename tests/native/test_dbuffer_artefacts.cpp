@@ -12,23 +12,14 @@
 #include "methods/method.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
+#include "test_layers.h"
 #include "test_scenes.h"
 
 namespace ss {
 namespace {
 
-Layers render(Renderer& r, const Scene& scene, const std::string& method, int samples = 0) {
-    RenderSettings s;
-    s.samples = samples;
-    std::string used;
-    return r.render(scene, 0, method, s, &used);
-}
-
-const Image& layer(const Layers& l, const char* name) {
-    const Image* img = l.find(name);
-    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
-    return *img;
-}
+using test::layer;
+using test::run;
 
 // The built-in example (a tilted torus and a cube over the ground under a disk light) at
 // width x height (same picture), with only the meshes named in `receivers` receiving: the mask
@@ -87,8 +78,8 @@ TEST(DbufferArtefacts, DemoTorusIsLitOnTopAndItsPenumbraHasNoDarkDots) {
     const int w = quick ? 320 : 640, h = quick ? 240 : 480;
     Renderer r(SS_BACKEND_AUTO);
     Scene all = demo(w, h, {"Ground", "Torus", "Cube"});
-    Layers ref = render(r, all, "reference", quick ? 64 : 128);
-    Layers db = render(r, all, "dbuffer");
+    Layers ref = run(r, all, "reference", quick ? 64 : 128);
+    Layers db = run(r, all, "dbuffer");
     const Image& V = layer(db, "V");
     const Image& refV = layer(ref, "V");
     // Compared where both masks hold (the rasterised and the ray-traced mask differ on a few
@@ -97,8 +88,8 @@ TEST(DbufferArtefacts, DemoTorusIsLitOnTopAndItsPenumbraHasNoDarkDots) {
     for (size_t i = 0; i < mask.pixels.size(); ++i) mask.pixels[i] *= layer(db, "mask").pixels[i];
 
     // Which pixels show the torus, which the ground: the masks of renders where only they receive.
-    Image torus = layer(render(r, demo(w, h, {"Torus"}), "dbuffer"), "mask");
-    Image ground = layer(render(r, demo(w, h, {"Ground"}), "dbuffer"), "mask");
+    Image torus = layer(run(r, demo(w, h, {"Torus"}), "dbuffer"), "mask");
+    Image ground = layer(run(r, demo(w, h, {"Ground"}), "dbuffer"), "mask");
 
     size_t litTop = 0, darkened = 0;
     for (size_t i = 0; i < V.pixels.size(); ++i) {

@@ -16,25 +16,14 @@
 #include "methods/method.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
+#include "test_layers.h"
 #include "test_scenes.h"
 
 namespace ss {
 namespace {
 
-Layers render(Renderer& r, const Scene& scene, const std::string& method, int samples = 0,
-              const std::map<std::string, std::string>& options = {}) {
-    RenderSettings s;
-    s.samples = samples;
-    s.options = options;
-    std::string used;
-    return r.render(scene, 0, method, s, &used);
-}
-
-const Image& layer(const Layers& l, const char* name) {
-    const Image* img = l.find(name);
-    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
-    return *img;
-}
+using test::layer;
+using test::run;
 
 int referenceSamples() { return test::quickTests() ? 64 : 256; }
 
@@ -54,8 +43,8 @@ Metrics againstReference(Renderer& r, const Scene& scene, const std::string& wha
                          const std::map<std::string, std::string>& options = {}) {
     std::map<std::string, std::string> withRaw = options;
     withRaw["raw_layers"] = "true";
-    Layers db = render(r, scene, "dbuffer", 0, withRaw);
-    Layers ref = render(r, scene, "reference", referenceSamples());
+    Layers db = run(r, scene, "dbuffer", 0, withRaw);
+    Layers ref = run(r, scene, "reference", referenceSamples());
     expectFinite(db, what);
     Metrics m = compareVisibility(layer(db, "V"), layer(ref, "V"), ref.find("mask"));
     std::printf("[dbuffer] %s: %s\n", what.c_str(), m.toString().c_str());
@@ -71,8 +60,8 @@ TEST(DbufferCache, VolumesAreReusedUntilTheSceneOrLightChanges) {
     EXPECT_EQ(first.get(), again.get());
     // Rendering twice through the renderer re-uses them too.
     Renderer r(SS_BACKEND_AUTO);
-    render(r, scene, "dbuffer");
-    render(r, scene, "dbuffer");
+    run(r, scene, "dbuffer");
+    run(r, scene, "dbuffer");
     EXPECT_EQ(dbufferGeometryBuilds(), before + 1);
     // A moved light is a different scene state: rebuilt, and the volumes move with it.
     test::SceneParams moved;
@@ -205,9 +194,9 @@ TEST(DbufferLights, OtherShapesThroughTheirDiskAreClose) {
 TEST(DbufferOptions, SmallOccluderProfileAndPaperUmbraRule) {
     Renderer r(SS_BACKEND_AUTO);
     Scene scene = test::sceneTorus();
-    Layers base = render(r, scene, "dbuffer");
-    Layers root = render(r, scene, "dbuffer", 0, {{"small_occluders", "true"}, {"raw_layers", "true"}});
-    Layers paper = render(r, scene, "dbuffer", 0, {{"umbra_rule", "farthest"}, {"raw_layers", "true"}});
+    Layers base = run(r, scene, "dbuffer");
+    Layers root = run(r, scene, "dbuffer", 0, {{"small_occluders", "true"}, {"raw_layers", "true"}});
+    Layers paper = run(r, scene, "dbuffer", 0, {{"umbra_rule", "farthest"}, {"raw_layers", "true"}});
     expectFinite(root, "small_occluders");
     expectFinite(paper, "umbra_rule=farthest");
     // Same umbra and lit regions (t = 0 and t = 1 map to 0 and 1 either way); in the outer
@@ -221,8 +210,8 @@ TEST(DbufferOptions, SmallOccluderProfileAndPaperUmbraRule) {
     EXPECT_EQ(moved, 0u);
     EXPECT_GT(brighter, 50u);
     // A misspelt option names itself instead of silently falling back.
-    EXPECT_THROW(render(r, scene, "dbuffer", 0, {{"umbra_rule", "nearest"}}), Error);
-    EXPECT_THROW(render(r, scene, "dbuffer", 0, {{"profile", "linear"}}), Error);
+    EXPECT_THROW(run(r, scene, "dbuffer", 0, {{"umbra_rule", "nearest"}}), Error);
+    EXPECT_THROW(run(r, scene, "dbuffer", 0, {{"profile", "linear"}}), Error);
 }
 
 }  // namespace

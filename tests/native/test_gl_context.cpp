@@ -173,7 +173,7 @@ TEST(GlRenderer, InfoReportsBackendAndProbedLimits) {
     EXPECT_TRUE(j["backend"] == "egl" || j["backend"] == "osmesa") << j.dump();
     EXPECT_FALSE(j["renderer"].get<std::string>().empty());
     EXPECT_NE(j["version"].get<std::string>().find("4.5"), std::string::npos) << j.dump();
-    // DESIGN.md "GL here": every method relies on these.
+    // docs/contracts.md "GL": every method relies on these.
     EXPECT_GE(j["limits"]["max_color_attachments"].get<int>(), 8);
     EXPECT_GE(j["limits"]["max_texture_size"].get<int>(), 4096);
     EXPECT_TRUE(j["limits"]["float_blending"].get<bool>());

@@ -15,25 +15,14 @@
 #include "methods/method.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
+#include "test_layers.h"
 #include "test_scenes.h"
 
 namespace ss {
 namespace {
 
-Layers run(Renderer& renderer, const Scene& scene, const std::string& method, int samples = 0,
-           const std::map<std::string, std::string>& options = {}) {
-    RenderSettings s;
-    s.samples = samples;
-    s.options = options;
-    std::string used;
-    return renderer.render(scene, 0, method, s, &used);
-}
-
-const Image& layer(const Layers& l, const char* name) {
-    const Image* img = l.find(name);
-    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
-    return *img;
-}
+using test::layer;
+using test::run;
 
 int referenceSamples() { return test::quickTests() ? 64 : 256; }
 

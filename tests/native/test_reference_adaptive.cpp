@@ -13,10 +13,13 @@
 #include "reference/render_reference.h"
 #include "reference/trace_scene_cache.h"
 #include "renderer/renderer.h"
+#include "test_layers.h"
 #include "test_scenes.h"
 
 namespace ss {
 namespace {
+
+using test::layer;
 
 RenderSettings fixedSamples(int samples) {
     RenderSettings s;
@@ -28,12 +31,6 @@ RenderSettings adaptiveSettings(const std::string& errorTarget) {
     RenderSettings s;
     s.options = {{"adaptive", "on"}, {"error_target", errorTarget}};
     return s;
-}
-
-const Image& layer(const Layers& layers, const char* name) {
-    const Image* img = layers.find(name);
-    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
-    return *img;
 }
 
 test::SceneParams smallScene() {

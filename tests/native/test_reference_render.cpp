@@ -19,21 +19,18 @@
 #include "reference/trace_scene.h"
 #include "reference/trace_scene_cache.h"
 #include "softshadow/softshadow.h"
+#include "test_layers.h"
 #include "test_scenes.h"
 
 namespace ss {
 namespace {
 
+using test::layer;
+
 RenderSettings withSamples(int samples) {
     RenderSettings s;
     s.samples = samples;
     return s;
-}
-
-const Image& layer(const Layers& layers, const char* name) {
-    const Image* img = layers.find(name);
-    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
-    return *img;
 }
 
 bool rayHitsBox(const Ray& r, const glm::vec3& lo, const glm::vec3& hi) {

@@ -9,16 +9,13 @@
 #include "io/metrics.h"
 #include "reference/trace_scene_cache.h"
 #include "renderer/refinement.h"
+#include "test_layers.h"
 #include "test_pcss_support.h"
 
 namespace ss {
 namespace {
 
-const Image& layer(const Layers& layers, const char* name) {
-    const Image* img = layers.find(name);
-    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
-    return *img;
-}
+using test::layer;
 
 test::SceneParams smallSoftScene() {
     test::SceneParams p = test::softSceneParams();

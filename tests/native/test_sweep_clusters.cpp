@@ -14,10 +14,14 @@
 #include "methods/sweep/shadow.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
+#include "test_layers.h"
 #include "test_scenes.h"
 
 namespace ss {
 namespace {
+
+using test::layer;
+using test::run;
 
 // The shared box over the ground, lit by a 2 x 1 rectangle 4 up (long side along x).
 Scene rectangleBoxScene() {
@@ -31,21 +35,6 @@ Scene rectangleBoxScene() {
     s.addLight(l);
     s.setCamera(test::makeTopCamera());
     return s;
-}
-
-Layers run(Renderer& r, const Scene& scene, const std::string& method, int samples,
-           const std::map<std::string, std::string>& options = {}) {
-    RenderSettings s;
-    s.samples = samples;
-    s.options = options;
-    std::string used;
-    return r.render(scene, 0, method, s, &used);
-}
-
-const Image& layer(const Layers& l, const char* name) {
-    const Image* img = l.find(name);
-    if (!img) throw std::runtime_error(std::string("missing layer ") + name);
-    return *img;
 }
 
 TEST(SweepClusters, SplitLightTilesTheRectangle) {

@@ -1,5 +1,5 @@
-// How (light, method, layer) become the EXR pass and channel names Blender lists (DESIGN.md
-// "Images"), and how a pass name is split back into its parts.
+// How (light, method, layer) become the EXR pass and channel names Blender lists (docs/contracts.md
+// "EXR files"), and how a pass name is split back into its parts.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <string>

@@ -1,4 +1,4 @@
-// Whether the reproducers of issue 14 that live below the command hold in the library: the
+// Whether the reliability rules that live below the command hold in the library: the
 // shadow-map cache stays within its budget (least recently used first), progress callbacks
 // cannot deadlock the library, and names and view layers are checked where they enter.
 // SPDX-License-Identifier: GPL-3.0-or-later
@@ -27,7 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // 4. Memory grows without bound with lights: every light's shadow map stayed cached.
-TEST(Issue14, N04_ShadowMapCacheStaysWithinItsBudget) {
+TEST(LibraryReliability, ShadowMapCacheStaysWithinItsBudget) {
     Scene scene;
     scene.addMesh(test::makeGround(4.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
     scene.addMesh(test::makeBox({-0.5f, -0.5f, 0.6f}, {0.5f, 0.5f, 1.0f}, SS_MESH_CAST | SS_MESH_RECEIVE));
@@ -82,7 +82,7 @@ int reenter(void* user, float, const char*) {
 }
 
 // 11. Calling the library from its own progress callback deadlocks.
-TEST(Issue14, N11_ProgressCallbackCannotReenterItsContext) {
+TEST(LibraryReliability, ProgressCallbackCannotReenterItsContext) {
     ss_scene* scene = nullptr;
     fs::path dir = fs::temp_directory_path() / ("ss_i14_11_" + std::to_string(getpid()));
     fs::create_directories(dir);
@@ -118,7 +118,7 @@ TEST(Issue14, N11_ProgressCallbackCannotReenterItsContext) {
 }
 
 // 8 and 12, through the C API: names are checked where they enter, view layers alike everywhere.
-TEST(Issue14, N12_CApiChecksNamesAndViewLayers) {
+TEST(LibraryReliability, CApiChecksNamesAndViewLayers) {
     ss_scene* scene = nullptr;
     ASSERT_EQ(ss_scene_create(&scene), SS_OK);
     ss_light_desc light{};
@@ -144,7 +144,7 @@ TEST(Issue14, N12_CApiChecksNamesAndViewLayers) {
 }
 
 // 10. The temporary file of a write is gone when a signal handler calls ss_remove_temporary_files.
-TEST(Issue14, N10_RemoveTemporaryFilesUnlinksWritesInProgress) {
+TEST(LibraryReliability, RemoveTemporaryFilesUnlinksWritesInProgress) {
     fs::path dir = fs::temp_directory_path() / ("ss_i14_10_" + std::to_string(getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "out.bin") << "old";
@@ -174,7 +174,7 @@ namespace {
 
 // 4, the output side: results gathered one by one through ss_exr_writer make the same EXR as
 // ss_write_exr with all of them in memory, and an unfinished writer leaves no file.
-TEST(Issue14, N04_ExrWriterGathersResultsOneByOne) {
+TEST(LibraryReliability, ExrWriterGathersResultsOneByOne) {
     fs::path dir = fs::temp_directory_path() / ("ss_i14_04_" + std::to_string(getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "s.json") << R"({"format":"softshadow-scene","version":1,
@@ -238,7 +238,7 @@ namespace {
 
 // 12, the loader's own guards: deep nesting stops before the stack does, and a bad number deep
 // in an array names its element.
-TEST(Issue14, N12_SceneLoaderNamesPathsAndLimitsNesting) {
+TEST(LibraryReliability, SceneLoaderNamesPathsAndLimitsNesting) {
     std::string deep = R"({"format":"softshadow-scene","version":1,"metadata":)" + std::string(100, '[') +
                        std::string(100, ']') + "}";
     try {
