@@ -1,4 +1,4 @@
-# softshadow: the set-up commands (make demo, make check, make test) and the rest of the workflow.
+# softshadow: the two set-up commands (make demo, make test) and the rest of the workflow (make check, bench, addon...).
 # SPDX-License-Identifier: GPL-3.0-or-later
 SHELL := /bin/bash
 BUILD ?= build
