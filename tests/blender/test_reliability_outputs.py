@@ -53,6 +53,20 @@ def test_lights_with_the_same_pass_name_are_named_before_rendering():
     sstest.check(any("'A_B'" in p for p in ss.render_passes.last_problems), ss.render_passes.last_problems)
 
 
+def test_control_and_bidi_characters_in_a_light_name_get_the_librarys_rule():
+    folder = sstest.tempdir("bidi")
+    scene = _scene(folder)
+    for name in ("evil\u202etxt", "csi\u009b2J"):
+        light = sstest.add_light(name, location=(1, 1, 6))
+        light.data.softshadow.method = "shadow_map"
+    bpy.context.view_layer.update()
+    arrays = ss.render_passes(scene)
+    sstest.check(list(arrays) == [("Key", "shadow_map")], "the other light keeps its pass: %s" % list(arrays))
+    refused = [p for p in ss.render_passes.last_problems if "control or bidirectional" in p]
+    sstest.check(len(refused) == 2 and "\\u202E" in refused[0] + refused[1] and "\\u009B" in refused[0] + refused[1],
+                 "both refused, shown escaped: %s" % ss.render_passes.last_problems)
+
+
 def test_camera_scaled_to_zero_is_refused_cleanly():
     folder = sstest.tempdir("cam0")
     scene = _scene(folder)
