@@ -89,8 +89,8 @@ void checkName(const std::string& what, const std::string& name, size_t maxBytes
         size_t n = utf8Length(name, i);
         if (isControlOrBidi(codePoint(name, i, n)))
             fail(SS_ERROR_INVALID_SCENE, what + " name " + quoted(name) +
-                                             " has a control or bidirectional formatting character "
-                                             "(allowed: printable UTF-8)");
+                                             " has a control character or a bidirectional formatting "
+                                             "character (allowed: printable UTF-8)");
         i += n;
     }
 }
