@@ -17,10 +17,10 @@ except ImportError:  # imported by the pure-Python tests: only scene_export/comp
     bpy = None
 
 if bpy is not None:
-    from . import handlers, mesh_cache, native, operators, preview, properties, ui
+    from . import cancel, handlers, mesh_cache, native, operators, preview, properties, ui
     from .api import render_passes  # noqa: F401  (the public API)
 
-    _MODULES = (properties, operators, ui, handlers, mesh_cache, preview)
+    _MODULES = (properties, operators, ui, handlers, cancel, mesh_cache, preview)
 
     def register():
         native.reset_after_shutdown()

@@ -1,10 +1,9 @@
 # What pipelines and the add-on's own buttons call: passes as numpy, and the per-frame EXR.
 # SPDX-License-Identifier: GPL-3.0-or-later
-import os
 
 import bpy
 
-from . import compositor, mesh_cache, native, output_paths, passes, replace, scene_export
+from . import cancel, compositor, mesh_cache, native, output_paths, pass_file_target, passes, replace, scene_export
 
 
 def _evaluated_depsgraph(scene, depsgraph=None):
@@ -108,10 +107,7 @@ def _layer_depsgraph(scene, view_layer):
 def _remove_stale(path):
     """The frame's old pass file goes before it is recomputed: a failure leaves no file, never
     an earlier run's shadow."""
-    try:
-        os.remove(path)
-    except (FileNotFoundError, NotADirectoryError):
-        pass
+    pass_file_target.remove_old(path)
 
 
 def render_frame(scene, depsgraph=None, progress=None, view_layer=None):
@@ -126,7 +122,10 @@ def _render_layer(scene, view_layer, depsgraph=None, progress=None):
     if view_layer is None:
         view_layer = depsgraph.view_layer if depsgraph is not None else context_view_layer(scene)
     target = frame_exr_path(scene, view_layer=view_layer)
-    _remove_stale(target)
+    try:
+        pass_file_target.prepare(target)
+    except native.SoftShadowError as exc:
+        return "", [str(exc)], {}, []
     graph = depsgraph if depsgraph is not None else _layer_depsgraph(scene, view_layer)
     exported = scene_export.export(graph, scene, mode="RENDER", view_layer=view_layer,
                                    reuse=mesh_cache.render_meshes)
@@ -174,7 +173,12 @@ def render_frame_layers(scene):
     problem = output_paths.template_problem(pass_file_template(scene), len(layers))
     if problem:
         return [(layer.name, "", [problem], {}, []) for layer in layers]
-    return [(layer.name,) + tuple(_render_layer(scene, layer)) for layer in layers]
+    try:
+        return [(layer.name,) + tuple(_render_layer(scene, layer, progress=cancel.progress)) for layer in layers]
+    except native.SoftShadowError as exc:
+        if exc.cancelled and cancel.requested():
+            raise native.SoftShadowError(exc.status, "the passes were stopped: %s" % cancel.requested())
+        raise
 
 
 def export_scene_file(scene, path, depsgraph=None):

@@ -20,6 +20,7 @@ STATUS_NAMES = {
     0: "ok", 1: "invalid argument", 2: "invalid scene", 3: "i/o error", 4: "GL error",
     5: "unsupported", 6: "cancelled", 7: "internal error",
 }
+SS_ERROR_IO = 3
 SS_ERROR_CANCELLED = 6
 
 BACKENDS = {"AUTO": 0, "EGL": 1, "OSMESA": 2}
@@ -115,6 +116,7 @@ _SIGNATURES = {
     "ss_render_options_default": (None, [ctypes.POINTER(_RenderOptions)]),
     "ss_context_create": (_st, [ctypes.c_int, ctypes.POINTER(_vp)]),
     "ss_context_destroy": (None, [_vp]),
+    "ss_context_cancel_renders": (None, [_vp]),
     "ss_context_info": (_st, [_vp, ctypes.c_char_p, ctypes.c_size_t]),
     "ss_shutdown": (None, []),
     "ss_method_count": (ctypes.c_int32, []),
@@ -155,6 +157,8 @@ _SIGNATURES = {
                               ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_int32)]),
     "ss_write_exr": (_st, [ctypes.c_char_p, ctypes.c_char_p, ctypes.POINTER(_vp), ctypes.c_int32]),
     "ss_pass_name": (_st, [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t]),
+    "ss_check_output_path": (_st, [ctypes.c_char_p]),
+    "ss_remove_temporary_files_on_signals": (ctypes.c_int32, []),
 }
 
 
@@ -208,6 +212,9 @@ def _load():
             try:
                 _lib = _bind(ctypes.CDLL(path, mode=_LOAD_MODE))
                 atexit.register(shutdown)
+                # A farm's SIGTERM during a pass file's write leaves no temporary file (Blender
+                # keeps the default action for it; a signal Blender handles keeps its handler).
+                _lib.ss_remove_temporary_files_on_signals()
                 return _lib
             except (OSError, AttributeError) as exc:
                 reasons.append("%s: %s" % (path, exc))
@@ -259,6 +266,12 @@ def pass_name(light_name, method, layer=None):
     return buffer.value.decode("utf-8", "replace")
 
 
+def check_output_path(path):
+    """SoftShadowError unless a file could be written at `path` (a regular file or a new name in
+    an existing folder this process may write): checked before a long render."""
+    _check(lib().ss_check_output_path(_text(os.fspath(path))))
+
+
 def context():
     """The one long-lived GL context (its render thread belongs to the library)."""
     global _context, _context_error, _context_info
@@ -281,6 +294,14 @@ def context():
         except (SoftShadowError, ValueError) as exc:
             _context_info = {"error": str(exc)}
         return _context
+
+
+def cancel_renders():
+    """Cancels the renders running now on the shared context, from any thread, without waiting:
+    each raises SoftShadowError (cancelled) within moments. Later renders run as usual."""
+    with _lock:
+        if _lib is not None and _context is not None and not _shut_down:
+            _lib.ss_context_cancel_renders(_context)
 
 
 def status():

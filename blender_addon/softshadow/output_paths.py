@@ -13,8 +13,10 @@ _HASHES = re.compile(r"#+")
 
 
 def _safe(text):
-    """A scene or view layer name as a file name part (no path separators)."""
-    return re.sub(r"[\\/:*?\"<>|]", "_", text)
+    """A scene or view layer name as a file name part: no path separators or control characters,
+    and no leading dot (a name "." or ".." must not name a folder of its own)."""
+    text = re.sub(r"[\\/:*?\"<>|\x00-\x1f\x7f]", "_", text)
+    return "_" + text[1:] if text.startswith(".") else text
 
 
 def default_template(render_filepath):
@@ -31,10 +33,10 @@ def default_template(render_filepath):
 
 
 def expand(template, scene, view_layer, frame):
-    """The file of one frame: {scene} and {view_layer} filled in, the last # run replaced by the
-    frame padded to its length (no # run: "_####" is added before the extension)."""
-    path = template.replace("{scene}", _safe(scene)).replace("{view_layer}", _safe(view_layer))
-    folder, name = os.path.split(path)
+    """The file of one frame: the template's last # run replaced by the frame padded to its
+    length (no # run: "_####" is added before the extension), then {scene} and {view_layer}
+    filled in. Names go in last, so a '#' or a '.exr' in a name stays text."""
+    folder, name = os.path.split(template)
     stem, ext = os.path.splitext(name)
     if ext.lower() != ".exr":
         stem, ext = name, ".exr"
@@ -45,7 +47,10 @@ def expand(template, scene, view_layer, frame):
     last = runs[-1]
     number = "%0*d" % (len(last.group()), frame)
     stem = stem[:last.start()] + number + stem[last.end():]
-    return os.path.join(folder, stem + ext)
+
+    def fill(text):
+        return text.replace("{scene}", _safe(scene)).replace("{view_layer}", _safe(view_layer))
+    return os.path.join(fill(folder), fill(stem) + ext)
 
 
 def template_problem(template, view_layer_count):

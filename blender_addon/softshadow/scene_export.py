@@ -44,6 +44,17 @@ def normalized_rigid(matrix):
     return m
 
 
+def camera_matrix_problem(name, matrix):
+    """Why a camera's world matrix gives no view, or ''. A camera scaled 0 on an axis (or
+    flattened by its parents) has no orientation left: Blender renders only the world through
+    it, no surface, so there is nothing to shadow."""
+    m = normalized_rigid(matrix)
+    if not np.all(np.isfinite(m)) or abs(np.linalg.det(m[:3, :3])) < 1e-6:
+        return ("camera '%s' is scaled to 0 (or flattened) on an axis: Blender renders no surface "
+                "through it, so there are no soft-shadow passes (give it a non-zero scale)" % name)
+    return ""
+
+
 def transform_points(matrix, points):
     """(N, 3) local points -> world through a 4x4 row-indexed matrix (affine)."""
     m = np.asarray([list(r) for r in matrix], dtype=np.float64).reshape(4, 4)
@@ -446,9 +457,10 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
     if line:
         out.problems.append(line)
     if camera is None and only is None:
-        problem = frame_problem(scene)
-        camera = scene_camera(scene, depsgraph) if problem is None else None
-        if problem is not None:
+        problem = frame_problem(scene) or (scene.camera and camera_matrix_problem(
+            scene.camera.name, scene.camera.evaluated_get(depsgraph).matrix_world))
+        camera = None if problem else scene_camera(scene, depsgraph)
+        if problem:
             out.problems.append(problem)
         elif camera is None:
             out.problems.append("scene '%s' has no camera: no soft-shadow passes" % scene.name)

@@ -28,7 +28,8 @@ void overrideResolution(ss_scene* scene, const Args& args) {
     if (!args.has("--width") && !args.has("--height")) return;
     ss_camera_desc cam;
     check(ss_scene_get_camera(scene, &cam));
-    int w = args.integer("--width", 0, 1, 32768), h = args.integer("--height", 0, 1, 32768);
+    // (the library's camera check names the real limits)
+    int w = args.integer("--width", 0, 1, 1 << 20), h = args.integer("--height", 0, 1, 1 << 20);
     if (w == 0) w = std::max(1, int(std::lround(double(cam.width) * h / cam.height)));
     if (h == 0) h = std::max(1, int(std::lround(double(cam.height) * w / cam.width)));
     cam.width = w;

@@ -1,6 +1,5 @@
 // Which subcommand of the `softshadow` command runs, and how its failures become one line.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -26,13 +25,6 @@ const char* kUsage =
     "      the scene's meshes (open/non-manifold/inconsistent edges, degenerate faces), lights, camera\n"
     "  version\n";
 
-// An interrupted write leaves no temporary file; then the signal does what it would have done.
-extern "C" void onTerminatingSignal(int sig) {
-    ss_remove_temporary_files();
-    std::signal(sig, SIG_DFL);
-    std::raise(sig);
-}
-
 bool asksForHelp(const std::vector<std::string>& args) {
     for (const std::string& a : args)
         if (a == "-h" || a == "--help") return true;
@@ -42,7 +34,7 @@ bool asksForHelp(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, onTerminatingSignal);
+    ss_remove_temporary_files_on_signals();  // an interrupted write leaves no temporary file
     std::vector<std::string> args(argv + 1, argv + argc);
     int code = 1;
     try {

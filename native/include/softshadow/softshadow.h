@@ -115,6 +115,13 @@ SS_API void ss_render_options_default(ss_render_options* options);
 /* Unlinks the temporary files of writes in progress (ss_write_exr, ss_scene_save). Async-signal-
  * safe: call it from a SIGINT/SIGTERM handler so an interrupted write leaves nothing behind. */
 SS_API void ss_remove_temporary_files(void);
+/* Installs, for SIGINT, SIGTERM and SIGHUP where each still has its default action (it ends the
+ * process), a handler that calls ss_remove_temporary_files and then ends the process by that
+ * signal (what a farm's SIGTERM does, less the stray file). A signal the host handles or ignores
+ * keeps its disposition. Returns how many of the three now have the handler. Every write also
+ * removes, first, the temporary files in its folder whose writer was killed (SIGKILL, a crash):
+ * their process is gone from this host. */
+SS_API int32_t ss_remove_temporary_files_on_signals(void);
 
 /* GL context. `info_json` describes backend, renderer, GL version and limits. */
 SS_API ss_status ss_context_create(ss_backend backend, ss_context** out);
@@ -124,6 +131,10 @@ SS_API ss_status ss_context_create(ss_backend backend, ss_context** out);
    Never call it from a progress callback of a render on the same context: it would wait for
    itself. */
 SS_API void ss_context_destroy(ss_context* context);
+/* Cancels the renders running on the context now, from any thread (a progress callback too):
+   each returns SS_ERROR_CANCELLED at its next check, as from ss_context_destroy, and the context
+   stays usable; renders started once those returned run as usual. Does not wait. */
+SS_API void ss_context_cancel_renders(ss_context* context);
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size);
 /* What the context's caches did over its life: frames made (one per scene), meshes uploaded to
    the GPU, camera passes and light shadow maps drawn; the milliseconds spent uploading

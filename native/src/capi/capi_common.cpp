@@ -50,6 +50,7 @@ extern "C" {
 SS_API const char* ss_version(void) { return SS_VERSION; }
 
 SS_API void ss_remove_temporary_files(void) { ss::removeTemporaryFiles(); }
+SS_API int32_t ss_remove_temporary_files_on_signals(void) { return ss::removeTemporaryFilesOnSignals(); }
 
 SS_API const char* ss_last_error(void) { return ss::capi::lastError.c_str(); }
 

@@ -17,7 +17,10 @@ ContextUse::ContextUse(ss_context& context) : context_(context) {
 
 ContextUse::~ContextUse() {
     std::lock_guard lock(context_.m);
-    if (--context_.callsInFlight == 0) context_.idle.notify_all();
+    if (--context_.callsInFlight == 0) {
+        if (!context_.closing) context_.stopRenders = false;
+        context_.idle.notify_all();
+    }
 }
 
 }  // namespace ss::capi
@@ -42,10 +45,19 @@ SS_API void ss_context_destroy(ss_context* context) {
         refuseInsideProgressCallback("ss_context_destroy");
         {
             std::unique_lock lock(context->m);
-            context->closing = true;  // renders in flight stop at their next check
+            context->closing = true;
+            context->stopRenders = true;  // renders in flight stop at their next check
             context->idle.wait(lock, [&] { return context->callsInFlight == 0; });
         }
         delete context;
+    });
+}
+
+SS_API void ss_context_cancel_renders(ss_context* context) {
+    guarded([&] {
+        if (!context) return;
+        std::lock_guard lock(context->m);
+        if (context->callsInFlight > 0) context->stopRenders = true;
     });
 }
 

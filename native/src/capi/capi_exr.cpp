@@ -12,7 +12,9 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <vector>
@@ -135,7 +137,7 @@ SS_API ss_status ss_check_output_path(const char* path) {
         std::filesystem::path dir = target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
         if (access(dir.c_str(), W_OK) != 0)
             ss::fail(SS_ERROR_IO, "cannot write '" + std::string(path) + "': folder '" + dir.string() +
-                                      "' is not writable");
+                                      "' is not writable (" + std::strerror(errno) + ")");
     });
 }
 

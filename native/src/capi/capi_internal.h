@@ -18,10 +18,13 @@
 // ss_context_destroy may come from another thread while an ss_render on this context runs (the
 // add-on's preview stops its worker that way): it sets `closing`, which cancels the render at
 // its next check, waits until no call uses the context, and only then deletes it.
+// ss_context_cancel_renders sets only `stopRenders` (what the renders check), which clears
+// once no call uses the context.
 struct ss_context {
     explicit ss_context(ss_backend b) : renderer(b) {}
     ss::Renderer renderer;
     std::atomic<bool> closing{false};
+    std::atomic<bool> stopRenders{false};
     std::mutex m;
     std::condition_variable idle;
     int callsInFlight = 0;

@@ -47,7 +47,7 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         ss_render_options_default(&defaults);
         ss::RenderSettings settings = toSettings(options ? *options : defaults);
         ContextUse use(*context);
-        settings.cancel = &context->closing;
+        settings.cancel = &context->stopRenders;
         auto result = std::make_unique<ss_result>();
         result->light = light.name;
         result->requested = method;

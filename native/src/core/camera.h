@@ -7,9 +7,10 @@
 
 namespace ss {
 
-// Resolution limits (docs/scene-format.md, "Limits"): a side, and the pixel count that bounds
-// every layer (4 bytes a pixel, 256 MiB at most).
-inline constexpr int kMaxCameraSide = 32768;
+// Resolution limits (docs/scene-format.md, "Limits"): a side, the GL_MAX_TEXTURE_SIZE every
+// OpenGL 4.5 context has (the camera pass is one texture), and the pixel count that bounds every
+// layer (4 bytes a pixel, 256 MiB at most).
+inline constexpr int kMaxCameraSide = 16384;
 inline constexpr int64_t kMaxCameraPixels = int64_t(8192) * 8192;
 
 struct Ray {

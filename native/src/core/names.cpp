@@ -31,7 +31,20 @@ size_t utf8Length(const std::string& text, size_t i) {
     return n;
 }
 
+// The code point of the valid n-byte UTF-8 sequence at text[i].
+unsigned codePoint(const std::string& text, size_t i, size_t n) {
+    static const unsigned kLeadMask[] = {0, 0x7F, 0x1F, 0x0F, 0x07};
+    unsigned cp = (unsigned char)text[i] & kLeadMask[n];
+    for (size_t k = 1; k < n; ++k) cp = (cp << 6) | ((unsigned char)text[i + k] & 0x3F);
+    return cp;
+}
+
 }  // namespace
+
+bool isControlOrBidi(unsigned cp) {
+    return cp < 0x20 || (cp >= 0x7F && cp <= 0x9F) || cp == 0x061C || cp == 0x200E || cp == 0x200F ||
+           (cp >= 0x202A && cp <= 0x202E) || (cp >= 0x2066 && cp <= 0x2069);
+}
 
 bool isValidUtf8(const std::string& text) {
     for (size_t i = 0; i < text.size();) {
@@ -47,11 +60,16 @@ std::string quoted(const std::string& text) {
     for (size_t i = 0; i < text.size();) {
         size_t n = utf8Length(text, i);
         unsigned char c = (unsigned char)text[i];
-        if (n == 0 || c < 0x20 || c == 0x7F) {
+        if (n == 0 || (n == 1 && isControlOrBidi(c))) {
             char buf[8];
             std::snprintf(buf, sizeof buf, "\\x%02X", unsigned(c));
             out += buf;
             i += 1;
+        } else if (isControlOrBidi(codePoint(text, i, n))) {
+            char buf[12];
+            std::snprintf(buf, sizeof buf, "\\u%04X", codePoint(text, i, n));
+            out += buf;
+            i += n;
         } else {
             out.append(text, i, n);
             i += n;
@@ -67,10 +85,21 @@ void checkName(const std::string& what, const std::string& name, size_t maxBytes
                                          " bytes long (at most " + std::to_string(maxBytes) + ")");
     if (!isValidUtf8(name))
         fail(SS_ERROR_INVALID_SCENE, what + " name " + quoted(name) + " is not valid UTF-8");
-    for (unsigned char c : name)
-        if (c < 0x20 || c == 0x7F)
+    for (size_t i = 0; i < name.size();) {
+        size_t n = utf8Length(name, i);
+        if (isControlOrBidi(codePoint(name, i, n)))
             fail(SS_ERROR_INVALID_SCENE, what + " name " + quoted(name) +
-                                             " has a control character (allowed: printable UTF-8)");
+                                             " has a control character or a bidirectional formatting "
+                                             "character (allowed: printable UTF-8)");
+        i += n;
+    }
+}
+
+std::string passToken(const std::string& name) {
+    std::string out = name;
+    for (char& c : out)
+        if (c == '.' || c == ' ') c = '_';
+    return out;
 }
 
 void checkViewLayerName(const std::string& name) {

@@ -13,14 +13,25 @@ constexpr size_t kMaxViewLayerBytes = 63;
 constexpr size_t kMaxNameBytes = 131;
 
 // Throws ss::Error(SS_ERROR_INVALID_SCENE) naming `what` (e.g. "light") unless `name` is
-// 1..maxBytes bytes of valid UTF-8 without control characters.
+// 1..maxBytes bytes of valid UTF-8 without control or bidirectional formatting characters
+// (isControlOrBidi).
 void checkName(const std::string& what, const std::string& name, size_t maxBytes = kMaxNameBytes);
+
+// A name as it appears in EXR pass names: dots and spaces become "_" (Blender splits channel
+// names at dots). Two lights whose tokens are equal would write the same passes.
+std::string passToken(const std::string& name);
 
 // As checkName("view layer", ..., kMaxViewLayerBytes), and no dot (Blender splits channel names at dots); throws
 // ss::Error(SS_ERROR_INVALID_ARGUMENT).
 void checkViewLayerName(const std::string& name);
 
-// `text` between single quotes with control characters and invalid UTF-8 bytes written as \xNN.
+// Unicode's control characters (C0, DEL, C1) and the bidirectional formatting characters
+// (U+061C, U+200E, U+200F, U+202A..U+202E, U+2066..U+2069), which reorder what a terminal or a
+// file browser shows around them.
+bool isControlOrBidi(unsigned codePoint);
+
+// `text` between single quotes with invalid UTF-8 bytes and ASCII controls written as \xNN, the
+// other isControlOrBidi characters as \uNNNN.
 std::string quoted(const std::string& text);
 
 // True when `text` is valid UTF-8 (no overlong forms, no surrogates).

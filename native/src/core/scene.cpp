@@ -9,6 +9,24 @@
 
 namespace ss {
 
+namespace {
+
+// Refuses a name another light has, or one that writes the same EXR passes (found here, before
+// anything renders, not when the file is written). `self`: the index being replaced, or -1.
+void checkLightNameFree(const std::vector<Light>& lights, const std::string& name, int self) {
+    const std::string token = passToken(name);
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (int(i) == self) continue;
+        if (lights[i].name == name) fail(SS_ERROR_INVALID_SCENE, "two lights are named " + quoted(name));
+        if (passToken(lights[i].name) == token)
+            fail(SS_ERROR_INVALID_SCENE, "lights " + quoted(lights[i].name) + " and " + quoted(name) +
+                                             " would write the same passes ('" + token +
+                                             "_<method>': pass names make dots and spaces '_'): rename one");
+    }
+}
+
+}  // namespace
+
 uint64_t Scene::nextId() {
     static std::atomic<uint64_t> counter{1};
     return counter++;
@@ -93,9 +111,7 @@ void Scene::removeMesh(int index) {
 void Scene::updateLight(int index, Light light) {
     (void)this->light(index);  // throws for an index out of range
     checkName("light", light.name);
-    int other = findLight(light.name);
-    if (other >= 0 && other != index)
-        fail(SS_ERROR_INVALID_SCENE, "two lights are named " + quoted(light.name));
+    checkLightNameFree(lights_, light.name, index);
     light.validate();
     light.version = nextVersion();
     lights_[size_t(index)] = std::move(light);
@@ -110,8 +126,7 @@ void Scene::removeLight(int index) {
 
 int Scene::addLight(Light light) {
     checkName("light", light.name);
-    if (findLight(light.name) >= 0)
-        fail(SS_ERROR_INVALID_SCENE, "two lights are named " + quoted(light.name));
+    checkLightNameFree(lights_, light.name, -1);
     light.validate();
     light.version = nextVersion();
     lights_.push_back(std::move(light));

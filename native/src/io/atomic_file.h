@@ -21,6 +21,7 @@ public:
     // Calls write(tempPath) with a short fresh name in the target's folder (keeping a short
     // extension, for writers that pick a format by it). When write throws, the temporary file
     // is removed and ss::Error(SS_ERROR_IO) names `path` (write's own ss::Error passes through).
+    // First removes the folder's temporary files whose writer was killed (their pid is gone).
     StagedFile(const std::string& path, const std::function<void(const std::string&)>& write);
     ~StagedFile();
     StagedFile(StagedFile&& other) noexcept;
@@ -43,7 +44,12 @@ private:
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
 // Unlinks every temporary file a write in progress has made. Async-signal-safe: for a host's
-// SIGINT/SIGTERM handler (the CLI's), so an interrupted write leaves nothing behind.
+// SIGINT/SIGTERM handler, so an interrupted write leaves nothing behind.
 void removeTemporaryFiles() noexcept;
+
+// For SIGINT, SIGTERM and SIGHUP where each still has its default action (it ends the process):
+// a handler that calls removeTemporaryFiles() and then ends the process by the signal. A signal
+// the host handles or ignores keeps its disposition. Returns how many handlers it installed.
+int removeTemporaryFilesOnSignals() noexcept;
 
 }  // namespace ss

@@ -101,6 +101,8 @@ void checkAttributeSizes(const std::string& path, uint64_t fileBytes) {
         head.resize(size_t(std::max<std::streamsize>(0, in.gcount())));
     }
     if (head.size() < 8) bad("it is too short for an OpenEXR file");
+    if (std::memcmp(head.data(), "\x76\x2f\x31\x01", 4) != 0)
+        bad("it is not an OpenEXR file (it does not start with EXR's magic number 76 2f 31 01)");
     // Version flags (bits 9, 11, 12): tiled, deep and multi-part files size tables from their
     // headers in ways the checks below do not bound; softshadow and Blender write neither.
     const uint8_t flags = uint8_t(head[5]);

@@ -3,15 +3,11 @@
 #include "io/pass_names.h"
 
 #include "core/method_names.h"
+#include "core/names.h"
 
 namespace ss {
 
-std::string sanitizePassToken(const std::string& text) {
-    std::string out = text;
-    for (char& c : out)
-        if (c == '.' || c == ' ') c = '_';
-    return out;
-}
+std::string sanitizePassToken(const std::string& text) { return passToken(text); }
 
 std::string passName(const std::string& light, const std::string& method, const std::string& layer) {
     std::string name = sanitizePassToken(light);

@@ -6,7 +6,7 @@
 
 namespace ss {
 
-// Dots and spaces become "_" (Blender splits channel names at dots).
+// passToken (core/names.h): dots and spaces become "_".
 std::string sanitizePassToken(const std::string& text);
 
 // "<light>_<method>" for the main layer "V", "<light>_<method>_<layer>" for the others.

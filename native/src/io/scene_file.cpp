@@ -13,6 +13,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/camera.h"
 #include "core/error.h"
 #include "io/json_node.h"
 #include "io/input_file.h"
@@ -72,8 +73,8 @@ Camera readCamera(const JsonNode& n) {
         n.expectKeys({"world_to_camera", "projection", "width", "height", "pixel_aspect", "comment"});
         c.worldToCamera = n.at("world_to_camera").mat4();
         c.projection = n.at("projection").mat4();
-        c.width = int(n.at("width").integer(1, 32768));
-        c.height = int(n.at("height").integer(1, 32768));
+        c.width = int(n.at("width").integer(1, kMaxCameraSide));
+        c.height = int(n.at("height").integer(1, kMaxCameraSide));
         c.pixelAspect = n.real("pixel_aspect", 1.0f);
         return c;
     }
@@ -88,7 +89,7 @@ Camera readCamera(const JsonNode& n) {
     if (glm::length(to - from) <= 0.0f) n.fail("look_from and look_at are the same point");
     if (glm::length(glm::cross(glm::normalize(to - from), up)) < 1e-6f)
         n.fail("up is parallel to the viewing direction");
-    int w = int(n.at("width").integer(1, 32768)), h = int(n.at("height").integer(1, 32768));
+    int w = int(n.at("width").integer(1, kMaxCameraSide)), h = int(n.at("height").integer(1, kMaxCameraSide));
     float pixelAspect = n.real("pixel_aspect", 1.0f);
     if (!(pixelAspect > 0.0f)) n.at("pixel_aspect").fail("must be greater than zero");
     c = makeLookAtCamera(from, to, up, glm::radians(fov), w, h, nearClip, farClip);
