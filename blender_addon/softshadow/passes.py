@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import native, scene_export
+from . import compat, native, scene_export
 
 
 @dataclass
@@ -30,9 +30,11 @@ def build_native_scene(exported):
     """ExportedScene -> (native.Scene, {light name: index}); failures go to exported.problems."""
     scene = native.Scene()
     scene.set_view_layer(exported.view_layer)
+    sent = []  # the mesh dicts the library took, in its index order
     for mesh in exported.meshes:
         try:
             scene.add_mesh(mesh["name"], scene_export.world_vertices(mesh), mesh["triangles"], mesh["flags"])
+            sent.append(mesh)
         except native.SoftShadowError as exc:
             exported.problems.append("object '%s' skipped: %s" % (mesh["name"], exc))
     indices = {}
@@ -43,6 +45,7 @@ def build_native_scene(exported):
             continue
         try:
             indices[light["name"]] = scene.add_light(light)
+            send_light_links(scene, indices[light["name"]], light, sent)
         except native.SoftShadowError as exc:
             exported.problems.append("light '%s' gets no pass: %s" % (light["name"], exc))
     if exported.camera is not None:
@@ -52,6 +55,16 @@ def build_native_scene(exported):
             exported.problems.append("camera: %s" % exc)
             exported.camera = None
     return scene, indices
+
+
+def send_light_links(scene, index, light, meshes):
+    """Sends light `index`'s light and shadow linking (Blender 4.0+) as mesh indices of
+    `meshes` (the dicts in the library's order); a light without links sends nothing."""
+    receivers, blockers = light.get("links") or (None, None)
+    if receivers is None and blockers is None:
+        return
+    objects = [mesh.get("object", mesh["name"]) for mesh in meshes]
+    scene.set_light_links(index, compat.linked_meshes(blockers, objects), compat.linked_meshes(receivers, objects))
 
 
 class LiveScene:
@@ -109,6 +122,7 @@ class LiveScene:
                 self._add_light(light)
             except native.SoftShadowError as exc:
                 self.problems.append("light '%s' gets no pass: %s" % (light["name"], exc))
+        self._send_links()
 
     def _replace_mesh(self, index, mesh):
         old = self.meshes[index]
@@ -125,7 +139,17 @@ class LiveScene:
     @staticmethod
     def _light_key(light):
         return {k: (np.asarray(v).tolist() if k == "light_to_world" else v)
-                for k, v in light.items() if k != "options"}
+                for k, v in light.items() if k not in ("options", "links")}
+
+    def _send_links(self):
+        """Every light's links against the meshes as they are now (the library keeps a light's
+        version, and its caches, when its links come back the same)."""
+        for index, light in enumerate(self.lights):
+            receivers, blockers = light.get("links") or (None, None)
+            if receivers is None and blockers is None:
+                self.scene.set_light_links(index, None, None)  # links it had before go
+            else:
+                send_light_links(self.scene, index, light, self.meshes)
 
     def _replace_light(self, index, light):
         if self._light_key(self.lights[index]) != self._light_key(light):
@@ -148,6 +172,7 @@ class LiveScene:
                     lights = [l for l in exported.lights if not scene_export.light_problem(l)]
                     for index, light in enumerate(lights):
                         self._replace_light(index, light)
+                    self._send_links()
                 self.scene_view_layer = exported.view_layer
                 self.set_camera(exported.camera)
             except Exception:
@@ -184,6 +209,7 @@ class LiveScene:
                         self._replace_light(index, light)
                     elif light is not None:
                         self._add_light(light)
+                self._send_links()
             except Exception:
                 self.close()
                 raise

@@ -20,8 +20,8 @@ GEOMETRY_TYPES = ("MESH", "CURVE", "SURFACE", "FONT", "META")
 
 @dataclass
 class ExportedScene:
-    meshes: list = field(default_factory=list)    # dicts: name, local, matrix, triangles, flags
-    lights: list = field(default_factory=list)    # dicts: see light_values()
+    meshes: list = field(default_factory=list)    # dicts: name, local, matrix, triangles, flags, object
+    lights: list = field(default_factory=list)    # dicts: see light_values(), + options, links
     camera: dict = None                           # dict: see camera_values(); None = no camera
     view_layer: str = "ViewLayer"
     problems: list = field(default_factory=list)  # messages for the user's report
@@ -305,6 +305,7 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
                 out.problems.append(str(exc))
                 continue
             light["options"] = _light_settings(obj)
+            light["links"] = compat.light_links(obj.original)
             out.lights.append(light)
             continue
         if obj.type not in GEOMETRY_TYPES:
@@ -314,7 +315,7 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
             flags = _mesh_flags(obj)
             if flags:
                 out.meshes.append({"name": base_name, "local": None, "triangles": None, "flags": flags,
-                                   "matrix": column_major(matrix)})
+                                   "matrix": column_major(matrix), "object": obj.original.name})
             continue
         # An object the viewport's depsgraph does not show (added for a render, inst None) may
         # not be evaluated there, so no update vouches for its mesh: it is read every time.
@@ -348,7 +349,7 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
         if flags == 0:
             continue
         out.meshes.append({"name": name, "local": vertices, "triangles": triangles, "flags": flags,
-                           "matrix": flat})
+                           "matrix": flat, "object": obj.original.name})
 
     if camera is None and only is None:
         camera = scene_camera(scene, depsgraph)

@@ -178,7 +178,7 @@ bool reaches(const PatchRegion& region, const GpuMesh& m, const Bounds& objectBo
 
 void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
                             const std::optional<PatchRegion>& region,
-                            const std::function<void(const GpuMesh&)>& before) {
+                            const std::function<void(const GpuMesh&)>& before, int castingFor) {
     const gl::Functions& g = gl();
     auto draw = [&](uint32_t firstTriangle, uint32_t triangles) {
         if (region) stats_.patchTriangles += triangles;
@@ -187,6 +187,7 @@ void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
     };
     for (const GpuMesh& m : meshes()) {
         if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0) continue;
+        if (castingFor >= 0 && !scene_->castsFor(m.meshIndex, castingFor)) continue;
         setPlacement(program, m);
         if (before) before(m);
         g.BindVertexArray(m.vao.id());
@@ -419,7 +420,7 @@ const CameraImages& Frame::cameraImages() {
     return *cameraImages_;
 }
 
-void Frame::drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect) {
+void Frame::drawShadowMap(ShadowMap& map, int lightIndex, const std::optional<PixelRect>& rect) {
     const gl::Functions& g = gl();
     gl::Framebuffer fb(map.size, map.size, {});
     fb.attachColor(0, map.distance.id());
@@ -433,7 +434,7 @@ void Frame::drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect) 
     prog.use();
     prog.set("uWorldToClip", map.worldToClip());
     bindShadowMapUniforms(prog, map);
-    drawMeshesWhere(prog, SS_MESH_CAST, patchRegion(rect, map.worldToClip(), map.size, map.size), {});
+    drawMeshesWhere(prog, SS_MESH_CAST, patchRegion(rect, map.worldToClip(), map.size, map.size), {}, lightIndex);
     g.Disable(GL_SCISSOR_TEST);
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing a shadow map");
@@ -453,7 +454,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
             const auto start = Clock::now();
             ShadowMap& map = *entry.map;
             std::optional<PixelRect> rect = boxesOnScreen(entry.pending, map.worldToClip(), map.size, map.size);
-            if (!rect || !rect->empty()) drawShadowMap(map, rect);
+            if (!rect || !rect->empty()) drawShadowMap(map, lightIndex, rect);
             if (rect) ++stats_.shadowMapsPatched;
             entry.pending.clear();
             gl().Finish();
@@ -468,7 +469,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     auto map = std::make_unique<ShadowMap>(fitShadowMap(L, shadowMapBounds_, size));
     map->distance = gl::Texture(size, size, GL_R32F, GL_NEAREST);
     map->depth = gl::Texture(size, size, GL_DEPTH_COMPONENT32F, GL_NEAREST);
-    drawShadowMap(*map, std::nullopt);
+    drawShadowMap(*map, lightIndex, std::nullopt);
     gl().Finish();
     stats_.shadowMapMs += msSince(start);
     ++stats_.shadowMaps;

@@ -47,7 +47,7 @@ void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bo
     if (rect) region = PatchRegion{*rect, setup.worldToClip, setup.width, setup.height};
     frame.drawMeshesWhere(program, SS_MESH_CAST, region, [&](const GpuMesh& mesh) {
         program.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
-    });
+    }, setup.lightIndex);
     gl.Disable(GL_SCISSOR_TEST);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.check("slicing the scene into occlusion textures");
