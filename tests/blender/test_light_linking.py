@@ -106,6 +106,32 @@ def test_collections_resolve_as_blender_does():
     sstest.check(_native_links(scene)["Key"] == (None, None), "an empty collection: every mesh")
 
 
+def test_the_live_scene_follows_link_edits():
+    """The preview's scene, kept across edits, gets a light's links as they change."""
+    if _no_linking_here("link edits in the live scene"):
+        return
+    scene = _scene()
+    live = ss.passes.LiveScene()
+
+    def sync():
+        graph = bpy.context.evaluated_depsgraph_get()
+        live.sync(ss.scene_export.export(graph, scene, mode="RENDER"))
+        names = [m["name"] for m in live.meshes]
+        blockers, receivers = live.scene.light_links(live.light_indices()["Key"])
+        return None if blockers is None else sorted(names[i] for i in blockers), receivers
+    try:
+        sstest.check(sync() == (None, None), "no links at first")
+        key, plate = scene.objects["Key"], scene.objects["Occluder"]
+        key.light_linking.blocker_collection = _link_collection("NoPlate", [(plate, "EXCLUDE")])
+        bpy.context.view_layer.update()
+        sstest.check(sync() == (["Ground", "Post"], None), "the blocker collection arrives")
+        key.light_linking.blocker_collection = None
+        bpy.context.view_layer.update()
+        sstest.check(sync() == (None, None), "and goes")
+    finally:
+        live.close()
+
+
 def test_a_shadow_linked_blocker_shadows_only_the_other_light():
     if _no_linking_here("shadow linking"):
         return
