@@ -20,14 +20,14 @@ constexpr uint32_t kBoth = SS_MESH_CAST | SS_MESH_RECEIVE;
 constexpr int kKey = 0, kFill = 1;
 constexpr int kGround = 0, kBlocker = 1, kOther = 2;
 
-// A ground, the box `blockerFlags` makes the linked mesh, another box; Key above the boxes and
-// Fill to the side, each with a shadow of the first box on the ground.
+// A ground, the box `blockerFlags` makes the linked mesh, another box; Key and Fill on either
+// side, each with a shadow of the first box on the ground beside it.
 Scene linkScene(uint32_t blockerFlags = kBoth) {
     Scene s;
     s.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
     s.addMesh(test::makeBox({-0.7f, -0.5f, 0.6f}, {0.0f, 0.2f, 1.0f}, blockerFlags));
     s.addMesh(test::makeBox({0.4f, -0.2f, 0.4f}, {0.9f, 0.5f, 0.9f}, kBoth));
-    s.addLight(test::makeDiskLight({-0.2f, 0.0f, 4.0f}, 1.0f, "Key"));
+    s.addLight(test::makeDiskLight({1.2f, 0.0f, 3.0f}, 1.0f, "Key"));
     s.addLight(test::makeDiskLight({-1.4f, 0.6f, 3.0f}, 0.6f, "Fill"));
     s.setCamera(test::makeTopCamera(80, 60));
     return s;
@@ -75,10 +75,11 @@ double rmseInMasks(const Layers& a, const Layers& b) {
     return n ? std::sqrt(sum / double(n)) : 0.0;
 }
 
-// What each method's V may be off the reference's on this scene (its soft shadows of boxes).
+// What each method's V may be off the reference's on this scene (measured 0.048, 0.005, 0.023,
+// 0.006, 0.045, 0.030, 0, 0.005): the linked light's pass is as good as an unlinked one.
 const std::map<std::string, double> kBoundVsReference = {
-    {"shadow_map", 0.20}, {"pcss", 0.10}, {"dbuffer", 0.08}, {"sweep", 0.06},
-    {"penumbra_map", 0.12}, {"occlusion_textures", 0.12}, {"reference", 0.0}, {"auto", 0.08}};
+    {"shadow_map", 0.07}, {"pcss", 0.02}, {"dbuffer", 0.04}, {"sweep", 0.02},
+    {"penumbra_map", 0.07}, {"occlusion_textures", 0.05}, {"reference", 0.0}, {"auto", 0.02}};
 
 TEST(LightLinksRender, AnExcludedBlockerShadowsNothingOfThatLightInEveryMethod) {
     Scene linked = linkScene();
@@ -95,7 +96,7 @@ TEST(LightLinksRender, AnExcludedBlockerShadowsNothingOfThatLightInEveryMethod) 
         EXPECT_EQ(key.find("V")->pixels, keyNoCaster.find("V")->pixels);
         EXPECT_EQ(key.find("mask")->pixels, keyNoCaster.find("mask")->pixels);
         // The box's shadow is there to take away: unlinked, it darkens many pixels.
-        EXPECT_GT(differingPixels(*keyUnlinked.find("V"), *keyNoCaster.find("V"), 0.2f), 150);
+        EXPECT_GT(differingPixels(*keyUnlinked.find("V"), *keyNoCaster.find("V"), 0.2f), 60);
         EXPECT_LE(rmseInMasks(key, truth), kBoundVsReference.at(method));
 
         // Fill is not linked: the box still shadows it, exactly as without links.
@@ -103,7 +104,7 @@ TEST(LightLinksRender, AnExcludedBlockerShadowsNothingOfThatLightInEveryMethod) 
         const Layers fillUnlinked = renderer.render(unlinked, kFill, method, RenderSettings{}, nullptr);
         const Layers fillNoCaster = renderer.render(noCaster, kFill, method, RenderSettings{}, nullptr);
         EXPECT_EQ(fill.find("V")->pixels, fillUnlinked.find("V")->pixels);
-        EXPECT_GT(differingPixels(*fill.find("V"), *fillNoCaster.find("V"), 0.2f), 150);
+        EXPECT_GT(differingPixels(*fill.find("V"), *fillNoCaster.find("V"), 0.2f), 60);
     }
 }
 
@@ -141,7 +142,8 @@ TEST(LightLinksRender, AnUnlitReceiverLeavesTheLightsMaskInEveryMethod) {
         const Layers keyNotReceiving = renderer.render(notReceiving, kKey, method, RenderSettings{}, nullptr);
         const Layers keyUnlinked = renderer.render(unlinked, kKey, method, RenderSettings{}, nullptr);
         EXPECT_EQ(key.find("mask")->pixels, keyNotReceiving.find("mask")->pixels);
-        EXPECT_GT(differingPixels(*key.find("mask"), *keyUnlinked.find("mask"), 0.5f), 300);  // the box's top
+        // The box's top leaves the mask (sweep shades its receiver plane only: never the box).
+        if (method != "sweep") EXPECT_GT(differingPixels(*key.find("mask"), *keyUnlinked.find("mask"), 0.5f), 30);
         // Where the box is, V = 1 (no shadow owed); elsewhere as it was.
         const Image &v = *key.find("V"), &mask = *key.find("mask"), &maskUnlinked = *keyUnlinked.find("mask");
         for (size_t i = 0; i < v.pixels.size(); ++i) {
