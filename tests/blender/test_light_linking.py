@@ -23,7 +23,8 @@ CYCLES_BOUND = 0.015
 def _no_linking_here(what):
     if HAS_LINKING:
         return False
-    print("  note: Blender %s has no light linking (4.0+): %s is not tested here" % (bpy.app.version_string, what))
+    print("  note: Blender %s has no light linking (4.0+), so this is not tested here: %s"
+          % (bpy.app.version_string, what))
     return True
 
 

@@ -86,7 +86,8 @@ struct CameraImages {
 };
 
 // The light-centre shadow map shared by every method for one light. Casters only
-// (SS_MESH_CAST, and the light's blockers: Scene::castsFor), two-sided. Texel (u, v) = shadow clip xy * 0.5 + 0.5 (GL orientation).
+// (SS_MESH_CAST, and the light's blockers: Scene::castsFor), two-sided. Texel (u, v) = shadow
+// clip xy * 0.5 + 0.5 (GL orientation).
 struct ShadowMap {
     static constexpr float kEmpty = 1e30f;  // distance stored where no caster is seen
     int size = 0;                           // square, size x size texels

@@ -34,7 +34,8 @@ Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings&
 
     settings.report(0.0f, "building the ray-tracing scene");
     std::shared_ptr<const TraceScene> trace =
-        cache ? cache->get(scene, lightIndex) : std::make_shared<const TraceScene>(scene, std::vector<std::shared_ptr<const MeshBvh>>{}, lightIndex);
+        cache ? cache->get(scene, lightIndex)
+              : std::make_shared<const TraceScene>(scene, std::vector<std::shared_ptr<const MeshBvh>>{}, lightIndex);
     if (adaptive) {
         const int width = camera.width, height = camera.height;
         Image visibility(width, height, 1.0f), mask(width, height, 0.0f), rays(width, height, 0.0f);

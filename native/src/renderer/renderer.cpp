@@ -258,7 +258,8 @@ Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::str
             m.prepare(frame, lightIndex, settings);
             layers = m.render(frame, lightIndex, settings);
             impl_->finished.methodMs += msSince(start);
-            if (scene.light(lightIndex).links.receivers) maskUnlitReceivers(scene, lightIndex, frame.cameraImages(), layers);
+            if (scene.light(lightIndex).links.receivers)
+                maskUnlitReceivers(scene, lightIndex, frame.cameraImages(), layers);
         });
     }
     checkLayers(layers, scene.camera(), name);
