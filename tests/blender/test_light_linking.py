@@ -28,9 +28,9 @@ def _no_linking_here(what):
     return True
 
 
-# Where the post stands: beside the plate's shadow (its own shadow falls apart), or inside the
-# plate's shadow (its top in Key's umbra).
-BESIDE, SHADOWED = (0.6, (1.0, -2.0, 0.8)), (1.0, (0.7, 0.0, 0.8))
+# The post: a box beside the plate's shadow (its own shadow falls apart), or a tile (no side a
+# pixel centre could graze) across the edge of the plate's shadow, in Key's umbra and penumbra.
+BESIDE, SHADOWED = (sstest.add_box, 0.6, (1.0, -2.0, 0.8)), (sstest.add_plane, 1.0, (1.5, 0.0, 1.3))
 
 
 def _scene(post=BESIDE):
@@ -38,7 +38,8 @@ def _scene(post=BESIDE):
     shadow under it) and a post."""
     scene = sstest.standard_scene(W, H)
     sstest.add_light("Fill", location=(-4, 0, 6), size=0.5)
-    sstest.add_box("Post", *post)
+    make, size, location = post
+    make("Post", size, location)
     for name in ("Key", "Fill"):
         scene.objects[name].data.softshadow.samples = 64
     bpy.context.view_layer.update()
@@ -204,8 +205,12 @@ def _cycles_ratio(scene, light_name, folder):
     c.max_bounces = 0
     c.seed = 1
     c.filter_width = 0.01
+    # A black world: only the light reaches Diffuse Direct (5.x worlds shade with nodes).
     world = bpy.data.worlds.new("Black")
     world.color = (0.0, 0.0, 0.0)
+    for node in (world.node_tree.nodes if world.node_tree is not None else ()):
+        if node.type == "BACKGROUND":
+            node.inputs["Strength"].default_value = 0.0
     scene.world = world
     scene.view_layers[0].use_pass_diffuse_direct = True
     lights = [o for o in scene.objects if o.type == "LIGHT"]
@@ -284,8 +289,9 @@ def test_light_linked_receiver_matches_cycles():
     bpy.context.view_layer.update()
     ours, cycles = _check_against_cycles(scene, "light-linked receivers",
                                          lambda: setattr(key.light_linking, "receiver_collection", None))
-    sstest.check((cycles < 0.5).sum() > 20, "the post's top in the plate's shadow is there to compare: %d pixels"
-                 % (cycles < 0.5).sum())
+    penumbra = int(((cycles > 0.05) & (cycles < 0.95)).sum())
+    sstest.check((cycles < 0.5).sum() > 20 and penumbra >= 3, "the tile's umbra and penumbra are there to compare:"
+                 " %d dark pixels, %d in the penumbra" % ((cycles < 0.5).sum(), penumbra))
 
 
 sstest.run(dict(globals()))
