@@ -187,8 +187,9 @@ def supports_lightgroups(view_layer):
 
 def _link_set(collection):
     """A linking collection as Blender resolves it for one light: None (every object: no
-    collection, or one with no object in it), ("only", names) when some member is included
-    (the included ones, minus those excluded), ("except", names) when all are excluded. A
+    collection, or one with no object in it), ("only", names, members) when some member is
+    included (the included ones, minus those excluded), ("except", names, members) when all are
+    excluded; `members` are every object the collection names, either way. A
     direct member's own state wins over the state of the child collection it is also reached
     through; an object in a child collection (at any depth) takes that first-level child's
     state, the later child winning."""
@@ -204,10 +205,11 @@ def _link_set(collection):
         states[obj.name] = link.light_linking.link_state
     if not states:
         return None
+    members = frozenset(states)
     included = frozenset(n for n, s in states.items() if s == "INCLUDE")
     if included:
-        return ("only", included)
-    return ("except", frozenset(states))
+        return ("only", included, members)
+    return ("except", members, members)
 
 
 def light_links(light_object):
@@ -220,12 +222,24 @@ def light_links(light_object):
             _link_set(getattr(linking, "blocker_collection", None)))
 
 
+def link_objects(meshes, link_sets):
+    """The object each exported mesh answers to for one kind of link (receivers or blockers),
+    given every light's link set of that kind: an instance takes its instancer's links when
+    some collection of that kind names the instancer (as Cycles does), else its own object's."""
+    named = set()
+    for link_set in link_sets:
+        if link_set is not None:
+            named |= link_set[2]
+    return [mesh["instancer"] if mesh.get("instancer") in named else mesh.get("object", mesh["name"])
+            for mesh in meshes]
+
+
 def linked_meshes(link_set, mesh_objects):
     """The indices of `mesh_objects` (object names, one per exported mesh) a link set holds,
     or None for every mesh."""
     if link_set is None:
         return None
-    kind, names = link_set
+    kind, names, _ = link_set
     if kind == "only":
         return [i for i, name in enumerate(mesh_objects) if name in names]
     return [i for i, name in enumerate(mesh_objects) if name not in names]

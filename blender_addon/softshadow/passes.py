@@ -45,9 +45,10 @@ def build_native_scene(exported):
             continue
         try:
             indices[light["name"]] = scene.add_light(light)
-            send_light_links(scene, indices[light["name"]], light, sent)
         except native.SoftShadowError as exc:
             exported.problems.append("light '%s' gets no pass: %s" % (light["name"], exc))
+    by_name = {light["name"]: light for light in exported.lights}
+    send_light_links(scene, {index: by_name[name] for name, index in indices.items()}, sent)
     if exported.camera is not None:
         try:
             scene.set_camera(exported.camera)
@@ -57,14 +58,17 @@ def build_native_scene(exported):
     return scene, indices
 
 
-def send_light_links(scene, index, light, meshes):
-    """Sends light `index`'s light and shadow linking (Blender 4.0+) as mesh indices of
-    `meshes` (the dicts in the library's order); a light without links sends nothing."""
-    receivers, blockers = light.get("links") or (None, None)
-    if receivers is None and blockers is None:
-        return
-    objects = [mesh.get("object", mesh["name"]) for mesh in meshes]
-    scene.set_light_links(index, compat.linked_meshes(blockers, objects), compat.linked_meshes(receivers, objects))
+def send_light_links(scene, lights, meshes):
+    """Sends the light and shadow linking (Blender 4.0+) of `lights` ({library index: light
+    dict}) as mesh indices of `meshes` (the dicts in the library's order); every light is sent,
+    those without links as every mesh (the library keeps a light's caches when its links come
+    back the same)."""
+    links = {index: light.get("links") or (None, None) for index, light in lights.items()}
+    receiver_objects = compat.link_objects(meshes, [r for r, _ in links.values()])
+    blocker_objects = compat.link_objects(meshes, [b for _, b in links.values()])
+    for index, (receivers, blockers) in links.items():
+        scene.set_light_links(index, compat.linked_meshes(blockers, blocker_objects),
+                              compat.linked_meshes(receivers, receiver_objects))
 
 
 class LiveScene:
@@ -142,14 +146,8 @@ class LiveScene:
                 for k, v in light.items() if k not in ("options", "links")}
 
     def _send_links(self):
-        """Every light's links against the meshes as they are now (the library keeps a light's
-        version, and its caches, when its links come back the same)."""
-        for index, light in enumerate(self.lights):
-            receivers, blockers = light.get("links") or (None, None)
-            if receivers is None and blockers is None:
-                self.scene.set_light_links(index, None, None)  # links it had before go
-            else:
-                send_light_links(self.scene, index, light, self.meshes)
+        """Every light's links against the meshes as they are now."""
+        send_light_links(self.scene, dict(enumerate(self.lights)), self.meshes)
 
     def _replace_light(self, index, light):
         if self._light_key(self.lights[index]) != self._light_key(light):

@@ -20,7 +20,7 @@ GEOMETRY_TYPES = ("MESH", "CURVE", "SURFACE", "FONT", "META")
 
 @dataclass
 class ExportedScene:
-    meshes: list = field(default_factory=list)    # dicts: name, local, matrix, triangles, flags, object
+    meshes: list = field(default_factory=list)    # dicts: name, local, matrix, triangles, flags, object, instancer
     lights: list = field(default_factory=list)    # dicts: see light_values(), + options, links
     camera: dict = None                           # dict: see camera_values(); None = no camera
     view_layer: str = "ViewLayer"
@@ -349,7 +349,8 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
         if flags == 0:
             continue
         out.meshes.append({"name": name, "local": vertices, "triangles": triangles, "flags": flags,
-                           "matrix": flat, "object": obj.original.name})
+                           "matrix": flat, "object": obj.original.name,
+                           "instancer": parent.original.name if is_instance and parent is not None else None})
 
     if camera is None and only is None:
         camera = scene_camera(scene, depsgraph)

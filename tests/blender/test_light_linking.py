@@ -108,6 +108,30 @@ def test_collections_resolve_as_blender_does():
     sstest.check(_native_links(scene)["Key"] == (None, None), "an empty collection: every mesh")
 
 
+def test_an_instance_answers_to_its_instancer():
+    """As in Cycles: a collection instance takes the links of the object that instances it
+    when a linking collection names that object."""
+    if _no_linking_here("links of instances"):
+        return
+    scene = _scene()
+    props = bpy.data.collections.new("Props")
+    prop = bpy.data.objects.new("Prop", scene.objects["Occluder"].data.copy())
+    props.objects.link(prop)
+    spawner = bpy.data.objects.new("Spawner", None)
+    spawner.instance_type = "COLLECTION"
+    spawner.instance_collection = props
+    spawner.location = (2.0, 2.0, 1.0)
+    scene.collection.objects.link(spawner)
+    scene.objects["Key"].light_linking.blocker_collection = _link_collection("NoSpawner", [(spawner, "EXCLUDE")])
+    bpy.context.view_layer.update()
+    exported = ss.scene_export.export(bpy.context.evaluated_depsgraph_get(), scene, mode="RENDER")
+    names = [m["name"] for m in exported.meshes]
+    sstest.check("Spawner/Prop" in names, "the instance is exported: %s" % names)
+    links = _native_links(scene)
+    sstest.check(links["Key"] == (["Ground", "Occluder", "Post"], None), "Key: %s" % (links["Key"],))
+    sstest.check(links["Fill"] == (None, None), "Fill: %s" % (links["Fill"],))
+
+
 def test_the_live_scene_follows_link_edits():
     """The preview's scene, kept across edits, gets a light's links as they change."""
     if _no_linking_here("link edits in the live scene"):
