@@ -33,7 +33,7 @@ void BM_PenumbraMapStages(benchmark::State& state) {
     // CPU stage alone: silhouette from the light centre plus cones and sheets.
     ShadowMap fitted = fitShadowMap(scene.lights()[0], scene.bounds(), res);
     auto t0 = Clock::now();
-    ConesSheets g = buildPenumbraGeometry(scene, fitted, scene.lights()[0].equivalentRadius(), {});
+    ConesSheets g = buildPenumbraGeometry(scene, 0, fitted, scene.lights()[0].equivalentRadius(), {});
     double geometryMs = msSince(t0);
 
     // Shared passes (camera G-buffer + shadow map), drawn once for every method of the frame.

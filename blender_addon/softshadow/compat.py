@@ -13,6 +13,9 @@
 - 3.0+ objects carry `visible_shadow` / `visible_camera`; older files had `cycles_visibility`.
 - Materials' EEVEE `shadow_method` went with EEVEE Next (4.2): from then on an object casts
   in both engines when its `visible_shadow` says so.
+- 4.0 added light and shadow linking: a light object's `light_linking.receiver_collection` and
+  `blocker_collection`, with each member's INCLUDE/EXCLUDE in `collection_objects[i]` and
+  `collection_children[i]` (index-paired with `objects` and `children`); 3.x has none.
 """
 
 
@@ -201,3 +204,63 @@ def lightgroup_pass(view_layer, obj, name):
 
 def supports_lightgroups(view_layer):
     return hasattr(view_layer, "lightgroups")
+
+
+def _link_set(collection):
+    """A linking collection as Blender resolves it for one light: None (every object: no
+    collection, or one with no object in it), ("only", names, members) when some member is
+    included (the included ones, minus those excluded), ("except", names, members) when all are
+    excluded; `members` are every object the collection names, either way. A
+    direct member's own state wins over the state of the child collection it is also reached
+    through; an object in a child collection (at any depth) takes that first-level child's
+    state, the later child winning."""
+    if collection is None:
+        return None
+    states = {}
+    children = list(getattr(collection, "children", ()))
+    child_links = list(getattr(collection, "collection_children", ()))
+    for child, link in zip(children, child_links):
+        for obj in child.all_objects:
+            states[obj.name] = link.light_linking.link_state
+    for obj, link in zip(list(collection.objects), list(getattr(collection, "collection_objects", ()))):
+        states[obj.name] = link.light_linking.link_state
+    if not states:
+        return None
+    members = frozenset(states)
+    included = frozenset(n for n, s in states.items() if s == "INCLUDE")
+    if included:
+        return ("only", included, members)
+    return ("except", members, members)
+
+
+def light_links(light_object):
+    """(receivers, blockers) of a light object (the original, not the evaluated copy): each
+    None (every object) or a _link_set() pair. (None, None) before 4.0."""
+    linking = getattr(light_object, "light_linking", None)
+    if linking is None:
+        return None, None
+    return (_link_set(getattr(linking, "receiver_collection", None)),
+            _link_set(getattr(linking, "blocker_collection", None)))
+
+
+def link_objects(meshes, link_sets):
+    """The object each exported mesh answers to for one kind of link (receivers or blockers),
+    given every light's link set of that kind: an instance takes its instancer's links when
+    some collection of that kind names the instancer (as Cycles does), else its own object's."""
+    named = set()
+    for link_set in link_sets:
+        if link_set is not None:
+            named |= link_set[2]
+    return [mesh["instancer"] if mesh.get("instancer") in named else mesh.get("object", mesh["name"])
+            for mesh in meshes]
+
+
+def linked_meshes(link_set, mesh_objects):
+    """The indices of `mesh_objects` (object names, one per exported mesh) a link set holds,
+    or None for every mesh."""
+    if link_set is None:
+        return None
+    kind, names, _ = link_set
+    if kind == "only":
+        return [i for i, name in enumerate(mesh_objects) if name in names]
+    return [i for i, name in enumerate(mesh_objects) if name not in names]

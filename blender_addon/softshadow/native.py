@@ -138,6 +138,11 @@ _SIGNATURES = {
     "ss_scene_remove_mesh": (_st, [_vp, ctypes.c_int32]),
     "ss_scene_update_light": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(_LightDesc)]),
     "ss_scene_remove_light": (_st, [_vp, ctypes.c_int32]),
+    "ss_scene_set_light_links": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_int32), ctypes.c_int32,
+                                       ctypes.POINTER(ctypes.c_int32), ctypes.c_int32]),
+    "ss_scene_get_light_links": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_int32), ctypes.c_int32,
+                                       ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_int32),
+                                       ctypes.c_int32, ctypes.POINTER(ctypes.c_int32)]),
     "ss_context_cache_stats": (_st, [_vp, ctypes.POINTER(_CacheStats)]),
     "ss_scene_set_camera": (_st, [_vp, ctypes.POINTER(_CameraDesc)]),
     "ss_scene_set_view_layer": (_st, [_vp, ctypes.c_char_p]),
@@ -488,6 +493,29 @@ class Scene(_Owned):
 
     def remove_light(self, index):
         _check(lib().ss_scene_remove_light(self.handle, int(index)))
+
+    def set_light_links(self, index, blockers, receivers):
+        """Shadow and light linking of light `index`: blockers, receivers each None (every
+        mesh) or a list of mesh indices (exactly those)."""
+        def mesh_set(indices):
+            if indices is None:
+                return None, -1
+            array = (ctypes.c_int32 * max(len(indices), 1))(*indices)
+            return array, len(indices)
+        blocker_array, blocker_count = mesh_set(blockers)
+        receiver_array, receiver_count = mesh_set(receivers)
+        _check(lib().ss_scene_set_light_links(self.handle, int(index), blocker_array, blocker_count,
+                                              receiver_array, receiver_count))
+
+    def light_links(self, index):
+        """(blockers, receivers) of light `index` as the library holds them (None: every mesh)."""
+        room = max(self.mesh_count(), 1)
+        blockers, receivers = (ctypes.c_int32 * room)(), (ctypes.c_int32 * room)()
+        blocker_count, receiver_count = ctypes.c_int32(), ctypes.c_int32()
+        _check(lib().ss_scene_get_light_links(self.handle, int(index), blockers, room, ctypes.byref(blocker_count),
+                                              receivers, room, ctypes.byref(receiver_count)))
+        return (None if blocker_count.value < 0 else list(blockers[:blocker_count.value]),
+                None if receiver_count.value < 0 else list(receivers[:receiver_count.value]))
 
     def add_light(self, light):
         """light: a dict as made by scene_export.light_values. Returns the index."""

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import native, scene_export
+from . import compat, native, scene_export
 
 
 @dataclass
@@ -30,9 +30,11 @@ def build_native_scene(exported):
     """ExportedScene -> (native.Scene, {light name: index}); failures go to exported.problems."""
     scene = native.Scene()
     scene.set_view_layer(exported.view_layer)
+    sent = []  # the mesh dicts the library took, in its index order
     for mesh in exported.meshes:
         try:
             index = scene.add_mesh(mesh["name"], scene_export.world_vertices(mesh), mesh["triangles"], mesh["flags"])
+            sent.append(mesh)
             if mesh.get("alpha") is not None:
                 scene.set_mesh_materials(index, mesh["alpha"])
         except native.SoftShadowError as exc:
@@ -47,6 +49,8 @@ def build_native_scene(exported):
             indices[light["name"]] = scene.add_light(light)
         except native.SoftShadowError as exc:
             exported.problems.append("light '%s' gets no pass: %s" % (light["name"], exc))
+    by_name = {light["name"]: light for light in exported.lights}
+    send_light_links(scene, {index: by_name[name] for name, index in indices.items()}, sent)
     if exported.camera is not None:
         try:
             scene.set_camera(exported.camera)
@@ -54,6 +58,19 @@ def build_native_scene(exported):
             exported.problems.append("camera: %s" % exc)
             exported.camera = None
     return scene, indices
+
+
+def send_light_links(scene, lights, meshes):
+    """Sends the light and shadow linking (Blender 4.0+) of `lights` ({library index: light
+    dict}) as mesh indices of `meshes` (the dicts in the library's order); every light is sent,
+    those without links as every mesh (the library keeps a light's caches when its links come
+    back the same)."""
+    links = {index: light.get("links") or (None, None) for index, light in lights.items()}
+    receiver_objects = compat.link_objects(meshes, [r for r, _ in links.values()])
+    blocker_objects = compat.link_objects(meshes, [b for _, b in links.values()])
+    for index, (receivers, blockers) in links.items():
+        scene.set_light_links(index, compat.linked_meshes(blockers, blocker_objects),
+                              compat.linked_meshes(receivers, receiver_objects))
 
 
 class LiveScene:
@@ -113,6 +130,7 @@ class LiveScene:
                 self._add_light(light)
             except native.SoftShadowError as exc:
                 self.problems.append("light '%s' gets no pass: %s" % (light["name"], exc))
+        self._send_links()
 
     def _replace_mesh(self, index, mesh):
         old = self.meshes[index]
@@ -132,7 +150,11 @@ class LiveScene:
     @staticmethod
     def _light_key(light):
         return {k: (np.asarray(v).tolist() if k == "light_to_world" else v)
-                for k, v in light.items() if k != "options"}
+                for k, v in light.items() if k not in ("options", "links")}
+
+    def _send_links(self):
+        """Every light's links against the meshes as they are now."""
+        send_light_links(self.scene, dict(enumerate(self.lights)), self.meshes)
 
     def _replace_light(self, index, light):
         if self._light_key(self.lights[index]) != self._light_key(light):
@@ -155,6 +177,7 @@ class LiveScene:
                     lights = [l for l in exported.lights if not scene_export.light_problem(l)]
                     for index, light in enumerate(lights):
                         self._replace_light(index, light)
+                    self._send_links()
                 self.scene_view_layer = exported.view_layer
                 self.set_camera(exported.camera)
             except Exception:
@@ -192,6 +215,7 @@ class LiveScene:
                         self._replace_light(index, light)
                     elif light is not None:
                         self._add_light(light)
+                self._send_links()
             except Exception:
                 self.close()
                 raise

@@ -20,8 +20,8 @@ GEOMETRY_TYPES = ("MESH", "CURVE", "SURFACE", "FONT", "META")
 
 @dataclass
 class ExportedScene:
-    meshes: list = field(default_factory=list)    # dicts: name, local, matrix, triangles, flags
-    lights: list = field(default_factory=list)    # dicts: see light_values()
+    meshes: list = field(default_factory=list)    # dicts: name, local, matrix, triangles, flags, object, instancer
+    lights: list = field(default_factory=list)    # dicts: see light_values(), + options, links
     camera: dict = None                           # dict: see camera_values(); None = no camera
     view_layer: str = "ViewLayer"
     problems: list = field(default_factory=list)  # messages for the user's report
@@ -403,6 +403,7 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
                 out.problems.append(str(exc))
                 continue
             light["options"] = _light_settings(obj)
+            light["links"] = compat.light_links(obj.original)
             out.lights.append(light)
             continue
         if obj.type not in GEOMETRY_TYPES:
@@ -413,7 +414,7 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
                                  scene.render.engine)
             if flags:
                 out.meshes.append({"name": base_name, "local": None, "triangles": None, "flags": flags,
-                                   "matrix": column_major(matrix)})
+                                   "matrix": column_major(matrix), "object": obj.original.name})
             continue
         # An object the viewport's depsgraph does not show (added for a render, inst None) may
         # not be evaluated there, so no update vouches for its mesh: it is read every time.
@@ -451,7 +452,8 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
         if alpha is not None and len(alpha["triangle_material"]) != len(triangles):
             alpha = None
         out.meshes.append({"name": name, "local": vertices, "triangles": triangles, "flags": flags,
-                           "matrix": flat, "alpha": alpha})
+                           "matrix": flat, "alpha": alpha, "object": obj.original.name,
+                           "instancer": parent.original.name if is_instance and parent is not None else None})
 
     line = unreadable_materials_line(unreadable)
     if line:

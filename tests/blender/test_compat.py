@@ -132,5 +132,41 @@ def test_this_blenders_shapes():
     bpy.data.lights.remove(light)
 
 
+def _linking_collection(objects=(), children=()):
+    """A 4.x linking collection: objects [(name, state)], children [(child collection, state)]."""
+    return NS(objects=[NS(name=n) for n, _ in objects],
+              collection_objects=[NS(light_linking=NS(link_state=s)) for _, s in objects],
+              children=[c for c, _ in children],
+              collection_children=[NS(light_linking=NS(link_state=s)) for _, s in children])
+
+
+def test_light_links_3x_has_none():
+    light = NS(name="Key", type="LIGHT")
+    sstest.check(compat.light_links(light) == (None, None), "3.x: no light_linking, no links")
+
+
+def test_light_links_4x_include_exclude_rules():
+    props = NS(all_objects=[NS(name="Chair"), NS(name="Table")])
+    only = _linking_collection([("Hero", "INCLUDE"), ("Table", "EXCLUDE")], [(props, "INCLUDE")])
+    every_but = _linking_collection([("Wall", "EXCLUDE")])
+    light = NS(light_linking=NS(receiver_collection=only, blocker_collection=every_but))
+    receivers, blockers = compat.light_links(light)
+    # The direct member's EXCLUDE wins over the child collection's INCLUDE.
+    sstest.check(receivers[:2] == ("only", frozenset({"Hero", "Chair"})), "included minus excluded: %s" % (receivers,))
+    sstest.check(receivers[2] == frozenset({"Hero", "Chair", "Table"}), "members: %s" % (receivers,))
+    sstest.check(blockers[:2] == ("except", frozenset({"Wall"})), "only excluded: all but those: %s" % (blockers,))
+    empty = NS(light_linking=NS(receiver_collection=_linking_collection(), blocker_collection=None))
+    sstest.check(compat.light_links(empty) == (None, None), "an empty or unset collection: every object")
+    objects = ["Ground", "Hero", "Wall", "Chair", "Hero"]
+    sstest.check(compat.linked_meshes(receivers, objects) == [1, 3, 4], "meshes of included objects")
+    sstest.check(compat.linked_meshes(blockers, objects) == [0, 1, 3, 4], "meshes but the excluded")
+    sstest.check(compat.linked_meshes(None, objects) is None, "no set: every mesh")
+    # An instance answers to its instancer when a collection of that kind names the instancer.
+    meshes = [{"name": "Tree/Leaf", "object": "Leaf", "instancer": "Tree"},
+              {"name": "Bush/Leaf", "object": "Leaf", "instancer": "Bush"}, {"name": "Rock", "object": "Rock"}]
+    names = compat.link_objects(meshes, [("except", frozenset({"Tree"}), frozenset({"Tree"})), None])
+    sstest.check(names == ["Tree", "Leaf", "Rock"], "instances' link objects: %s" % names)
+
+
 if __name__ == "__main__":
     sstest.run(dict(globals()))

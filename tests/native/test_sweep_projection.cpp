@@ -65,7 +65,7 @@ Case runCase(const Scene& scene, const LightSample& sample) {
     const Light& light = scene.lights()[0];
     ReceiverPlane plane = findReceiverPlane(scene, light, "");
     planar::Snap snap(plane.cu, plane.cv, plane.half);
-    std::vector<int> occ = sweepOccluders(scene, plane);
+    std::vector<int> occ = sweepOccluders(scene, 0, plane);
     std::vector<planar::DirectedEdge> edges;
     projectSample(scene, occ, plane, snap, sample, &edges, nullptr);
     std::vector<planar::Chain> chains = planar::linkChains(planar::hardOutline(edges));

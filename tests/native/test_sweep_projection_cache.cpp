@@ -271,7 +271,7 @@ TEST(SweepProjectionCache, KeptWeightsFollowTheSamplesNotTheTriangles) {
     for (const LightSample& s : samples) {
         std::vector<planar::DirectedEdge> edges;
         ProjectionStats stats;
-        for (int i : sweepOccluders(scene, plane)) projectMeshSample(scene.meshes()[i], plane, snap, s, &edges, &stats);
+        for (int i : sweepOccluders(scene, 0, plane)) projectMeshSample(scene.meshes()[i], plane, snap, s, &edges, &stats);
         outlines.push_back(planar::hardOutline(edges));
     }
     const planar::ShadowMesh filled =

@@ -214,6 +214,26 @@ SS_API ss_status ss_scene_set_mesh_materials(ss_scene* scene, int32_t index, con
 SS_API ss_status ss_scene_remove_mesh(ss_scene* scene, int32_t index);
 SS_API ss_status ss_scene_update_light(ss_scene* scene, int32_t index, const ss_light_desc* light);
 SS_API ss_status ss_scene_remove_light(ss_scene* scene, int32_t index);
+/* Light and shadow linking (Blender 4.0+) of light `light`: the meshes that shadow it (its
+   blocker collection) and the meshes it lights (its receiver collection), by mesh index. A count
+   of -1 means every mesh, as an empty collection does (the pointer is ignored); 0..n exactly the
+   listed meshes (NULL allowed for 0). A mesh outside the blockers casts no shadow of this light
+   in any method (it still shadows the others); a mesh outside the receivers gets no light from
+   it: its pixels are outside this light's mask, with V = 1 (the render there owes nothing to the
+   light, so the pass leaves it as it is). SS_MESH_CAST and SS_MESH_RECEIVE apply on top.
+   A change gives the light a new version (its shadow maps and prepared geometry are made again;
+   setting the links it has changes nothing). A mesh added later is in neither list of a light
+   that has lists; a removed mesh leaves them and later indices move down with it. Indices out
+   of range fail with SS_ERROR_INVALID_ARGUMENT and leave the links as they were. */
+SS_API ss_status ss_scene_set_light_links(ss_scene* scene, int32_t light, const int32_t* blocker_meshes,
+                                          int32_t blocker_count, const int32_t* receiver_meshes,
+                                          int32_t receiver_count);
+/* The links as set: each count -1 for every mesh, else the sorted unique indices, written to the
+   array when its capacity holds them (fails naming the room needed otherwise). */
+SS_API ss_status ss_scene_get_light_links(const ss_scene* scene, int32_t light, int32_t* blocker_meshes,
+                                          int32_t blocker_capacity, int32_t* blocker_count,
+                                          int32_t* receiver_meshes, int32_t receiver_capacity,
+                                          int32_t* receiver_count);
 SS_API ss_status ss_scene_set_camera(ss_scene* scene, const ss_camera_desc* camera);
 /* The scene camera (SS_ERROR_INVALID_SCENE when it has none); e.g. to change the resolution. */
 SS_API ss_status ss_scene_get_camera(const ss_scene* scene, ss_camera_desc* out);

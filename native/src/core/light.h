@@ -5,6 +5,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/light_links.h"
+
 #include "softshadow/softshadow.h"
 
 namespace ss {
@@ -25,6 +27,9 @@ struct Light {
     float spotSize = 0.0f;         // spot full cone angle, radians
     float spotBlend = 0.0f;
     bool castShadows = true;
+    // The meshes it lights and those that shadow it (every mesh unless the host linked them);
+    // set through Scene::setLightLinks, kept by Scene::updateLight.
+    LightLinks links;
     // Unique over the process for each content the light has had (set by the Scene): its
     // shadow maps are cached by it, so editing one light keeps the others' maps.
     uint64_t version = 0;

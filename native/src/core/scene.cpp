@@ -104,6 +104,11 @@ void Scene::setMeshAlpha(int index, MeshAlpha alpha) {
 void Scene::removeMesh(int index) {
     (void)mesh(index, "removing a mesh");
     meshes_.erase(meshes_.begin() + index);
+    for (Light& light : lights_)
+        if (light.links.linked()) {
+            light.links.meshRemoved(index);
+            light.version = nextVersion();
+        }
     geometryVersion_ = nextVersion();
     ++revision_;
 }
@@ -113,6 +118,7 @@ void Scene::updateLight(int index, Light light) {
     checkName("light", light.name);
     checkLightNameFree(lights_, light.name, index);
     light.validate();
+    light.links = lights_[size_t(index)].links;
     light.version = nextVersion();
     lights_[size_t(index)] = std::move(light);
     ++revision_;
@@ -124,10 +130,32 @@ void Scene::removeLight(int index) {
     ++revision_;
 }
 
+void Scene::setLightLinks(int index, LightLinks links) {
+    (void)this->light(index, "setting light links");
+    if (links.receivers) links.receivers = linkedMeshSet(std::move(*links.receivers), meshes_.size(), "receiver");
+    if (links.blockers) links.blockers = linkedMeshSet(std::move(*links.blockers), meshes_.size(), "blocker");
+    Light& light = lights_[size_t(index)];
+    if (light.links == links) return;
+    light.links = std::move(links);
+    light.version = nextVersion();
+    ++revision_;
+}
+
+bool Scene::castsFor(int mesh, int light) const {
+    return meshes_[size_t(mesh)].casts() && lights_[size_t(light)].links.blockedBy(mesh);
+}
+
+bool Scene::receivesFrom(int mesh, int light) const {
+    return meshes_[size_t(mesh)].receives() && lights_[size_t(light)].links.lights(mesh);
+}
+
 int Scene::addLight(Light light) {
     checkName("light", light.name);
     checkLightNameFree(lights_, light.name, -1);
     light.validate();
+    LightLinks& links = light.links;
+    if (links.receivers) links.receivers = linkedMeshSet(std::move(*links.receivers), meshes_.size(), "receiver");
+    if (links.blockers) links.blockers = linkedMeshSet(std::move(*links.blockers), meshes_.size(), "blocker");
     light.version = nextVersion();
     lights_.push_back(std::move(light));
     ++revision_;

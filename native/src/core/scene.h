@@ -47,6 +47,15 @@ public:
     void removeMesh(int index);  // later meshes move down one index
     void updateLight(int index, Light light);
     void removeLight(int index);  // later lights move down one index
+    // Light and shadow linking of light `index` (LightLinks): a new light version, so its
+    // shadow maps and prepared geometry are made again; the others' are kept. Mesh indices are
+    // checked against the scene's meshes now; a mesh added later is in neither set of a light
+    // that has sets, and a removed mesh leaves them (later indices move down).
+    void setLightLinks(int index, LightLinks links);
+    // Whether mesh `mesh` shadows light `light` (it casts, and the light's blockers hold it),
+    // and whether its pixels are in the light's mask (it receives, and the light lights it).
+    bool castsFor(int mesh, int light) const;
+    bool receivesFrom(int mesh, int light) const;
 
     const std::vector<Mesh>& meshes() const { return meshes_; }
     const std::vector<Light>& lights() const { return lights_; }

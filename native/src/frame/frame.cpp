@@ -180,7 +180,8 @@ bool reaches(const PatchRegion& region, const GpuMesh& m, const Bounds& objectBo
 
 void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
                             const std::optional<PatchRegion>& region,
-                            const std::function<void(const GpuMesh&)>& before, bool skipSeeThrough) {
+                            const std::function<void(const GpuMesh&)>& before, int castingFor,
+                            bool skipSeeThrough) {
     const gl::Functions& g = gl();
     auto draw = [&](uint32_t firstTriangle, uint32_t triangles) {
         if (region) stats_.patchTriangles += triangles;
@@ -190,6 +191,7 @@ void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
     for (const GpuMesh& m : meshes()) {
         if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0) continue;
         if (skipSeeThrough && m.seeThrough) continue;
+        if (castingFor >= 0 && !scene_->castsFor(m.meshIndex, castingFor)) continue;
         setPlacement(program, m);
         if (before) before(m);
         g.BindVertexArray(m.vao.id());
@@ -215,11 +217,12 @@ void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
 }
 
 void Frame::drawSeeThroughWhere(const gl::Program& program, uint32_t requiredFlags,
-                                const std::function<void(const GpuMesh&)>& before) {
+                                const std::function<void(const GpuMesh&)>& before, int castingFor) {
     const gl::Functions& g = gl();
     bool bound = false;
     for (const GpuMesh& m : meshes()) {
         if ((m.flags & requiredFlags) != requiredFlags || m.indexCount == 0 || !m.seeThrough) continue;
+        if (castingFor >= 0 && !scene_->castsFor(m.meshIndex, castingFor)) continue;
         if (!bound) bindEmptyVertexArray(), bound = true;
         setPlacement(program, m);
         if (before) before(m);
@@ -450,7 +453,7 @@ const CameraImages& Frame::cameraImages() {
     return *cameraImages_;
 }
 
-void Frame::drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect) {
+void Frame::drawShadowMap(ShadowMap& map, int lightIndex, const std::optional<PixelRect>& rect) {
     const gl::Functions& g = gl();
     gl::Framebuffer fb(map.size, map.size, {});
     fb.attachColor(0, map.distance.id());
@@ -464,14 +467,14 @@ void Frame::drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect) 
     prog.use();
     prog.set("uWorldToClip", map.worldToClip());
     bindShadowMapUniforms(prog, map);
-    drawMeshesWhere(prog, SS_MESH_CAST, patchRegion(rect, map.worldToClip(), map.size, map.size), {}, true);
+    drawMeshesWhere(prog, SS_MESH_CAST, patchRegion(rect, map.worldToClip(), map.size, map.size), {}, lightIndex, true);
     // See-through casters are alpha-tested (hashed): drawn whole, also in a patch (the scissor
     // keeps the rest of the map).
     const gl::Program& seeThrough = gl::program("shadow_map/see_through.vert.glsl", "shadow_map/see_through.frag.glsl");
     seeThrough.use();
     seeThrough.set("uWorldToClip", map.worldToClip());
     bindShadowMapUniforms(seeThrough, map);
-    drawSeeThroughWhere(seeThrough, SS_MESH_CAST, {});
+    drawSeeThroughWhere(seeThrough, SS_MESH_CAST, {}, lightIndex);
     g.Disable(GL_SCISSOR_TEST);
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("drawing a shadow map");
@@ -491,7 +494,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
             const auto start = Clock::now();
             ShadowMap& map = *entry.map;
             std::optional<PixelRect> rect = boxesOnScreen(entry.pending, map.worldToClip(), map.size, map.size);
-            if (!rect || !rect->empty()) drawShadowMap(map, rect);
+            if (!rect || !rect->empty()) drawShadowMap(map, lightIndex, rect);
             if (rect) ++stats_.shadowMapsPatched;
             entry.pending.clear();
             gl().Finish();
@@ -506,7 +509,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     auto map = std::make_unique<ShadowMap>(fitShadowMap(L, shadowMapBounds_, size));
     map->distance = gl::Texture(size, size, GL_R32F, GL_NEAREST);
     map->depth = gl::Texture(size, size, GL_DEPTH_COMPONENT32F, GL_NEAREST);
-    drawShadowMap(*map, std::nullopt);
+    drawShadowMap(*map, lightIndex, std::nullopt);
     gl().Finish();
     stats_.shadowMapMs += msSince(start);
     ++stats_.shadowMaps;

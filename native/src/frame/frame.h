@@ -89,7 +89,8 @@ struct CameraImages {
 };
 
 // The light-centre shadow map shared by every method for one light. Casters only
-// (SS_MESH_CAST), two-sided. Texel (u, v) = shadow clip xy * 0.5 + 0.5 (GL orientation).
+// (SS_MESH_CAST, and the light's blockers: Scene::castsFor), two-sided. Texel (u, v) = shadow
+// clip xy * 0.5 + 0.5 (GL orientation).
 struct ShadowMap {
     static constexpr float kEmpty = 1e30f;  // distance stored where no caster is seen
     int size = 0;                           // square, size x size texels
@@ -202,18 +203,21 @@ public:
                     const std::function<void(const GpuMesh&)>& before = {});
     // Draws as drawMeshes does; with a region, only the clusters whose bounds, where their mesh
     // is now, may cover a pixel of its rectangle (a patch after moves: movedBoxes,
-    // boxesOnScreen). With `seeThrough` set, the see-through meshes (GpuMesh::seeThrough) are
-    // left out: drawSeeThroughWhere draws them with that program.
+    // boxesOnScreen). With `castingFor` a light index, only the meshes that shadow that light
+    // (Scene::castsFor: its shadow linking). With `skipSeeThrough` set, the see-through meshes
+    // (GpuMesh::seeThrough) are left out: drawSeeThroughWhere draws them with that program.
     void drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
                          const std::optional<PatchRegion>& region,
-                         const std::function<void(const GpuMesh&)>& before, bool skipSeeThrough = false);
-    // Draws the see-through meshes that have `requiredFlags`, whole, one material at a time:
+                         const std::function<void(const GpuMesh&)>& before, int castingFor = -1,
+                         bool skipSeeThrough = false);
+    // Draws the see-through meshes that have `requiredFlags` (and, with `castingFor` a light
+    // index, shadow that light), whole, one material at a time:
     // unindexed, three vertices per triangle, with a vertex stage that includes
     // "common/see_through_vertex.glsl" and a fragment stage that includes
     // "common/see_through.glsl" (its uniforms and texture unit kAlphaTextureUnit are set here).
     // Placement uniforms, `before` and SSBO 0 as drawMeshesWhere; SSBOs 2..5 are the mesh's.
     void drawSeeThroughWhere(const gl::Program& program, uint32_t requiredFlags,
-                             const std::function<void(const GpuMesh&)>& before);
+                             const std::function<void(const GpuMesh&)>& before, int castingFor = -1);
     static constexpr int kAlphaTextureUnit = 15;
     // Where each of the scene's meshes is now (what a pass drawn now shows: movedBoxes).
     std::vector<MeshPlacement> placements() const;
@@ -245,7 +249,7 @@ private:
     // cover one of its pixel centres: listed_[0] then listed_[1] (two threads list a half each),
     // and listedRanges_ gives each mesh's run in that sequence.
     void listCoveringTriangles(const Camera& camera, const PixelRect& rect);
-    void drawShadowMap(ShadowMap& map, const std::optional<PixelRect>& rect);
+    void drawShadowMap(ShadowMap& map, int lightIndex, const std::optional<PixelRect>& rect);
     const Scene* scene_;
     std::vector<GpuMesh> meshes_;
     uint64_t meshesGeometryVersion_ = 0;  // 0: never uploaded

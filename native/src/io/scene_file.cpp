@@ -1,6 +1,7 @@
 // How a scene file is parsed into a Scene: camera, lights, meshes (inline, external, primitive).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/scene_file.h"
+#include "io/scene_file_links.h"
 #include "io/scene_file_materials.h"
 
 #include <algorithm>
@@ -121,7 +122,7 @@ glm::mat4 frameFromDirection(const JsonNode& n, const glm::vec3& position, glm::
 
 Light readLight(const JsonNode& n) {
     n.expectKeys({"name", "type", "matrix", "position", "direction", "up", "size", "size_y", "radius",
-                  "angle", "spot_size", "spot_blend", "cast_shadows", "comment"});
+                  "angle", "spot_size", "spot_blend", "cast_shadows", "receivers", "blockers", "comment"});
     Light l;
     l.name = n.at("name").string();
     std::string type = n.at("type").string();
@@ -354,6 +355,7 @@ Scene parseSceneText(const std::string& text, const std::string& baseDir, const 
         Mesh mesh = readMesh(m, baseDir);
         addWithPath(m, [&] { scene.addMesh(std::move(mesh)); });
     });
+    if (r.has("lights")) readLightLinks(r.at("lights"), scene);  // they name meshes
     return scene;
 }
 

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/scene_file.h"
+#include "io/scene_file_links.h"
 #include "io/scene_file_materials.h"
 
 namespace ss {
@@ -60,7 +61,11 @@ void saveSceneFile(const Scene& scene, const std::string& path, size_t inlineVer
                           {"pixel_aspect", c.pixelAspect}};
     }
     root["lights"] = nlohmann::json::array();
-    for (const Light& l : scene.lights()) root["lights"].push_back(lightJson(l));
+    for (const Light& l : scene.lights()) {
+        nlohmann::json j = lightJson(l);
+        writeLightLinks(l, j);
+        root["lights"].push_back(std::move(j));
+    }
 
     fs::path target(path);
     std::string stem = target.stem().string();

@@ -43,7 +43,7 @@ public:
                 // A sun's size is an angle: the penumbra grows by tan(half angle) per unit of distance.
                 p.set("uLightSize", light.type == LightType::Sun ? std::tan(light.sunHalfAngle())
                                                                  : light.equivalentRadius());
-                p.set("uNearCaster", nearestCasterDistance(frame.scene(), map));
+                p.set("uNearCaster", nearestCasterDistance(frame.scene(), lightIndex, map));
                 p.set("uMaxSearchUv", maxSearch);
             });
         return readReceiverPlaneLayers(out, settings.extraLayers, {{"blocker_distance", 2}, {"kernel_texels", 3}});

@@ -23,7 +23,7 @@ namespace ss {
 float penumbraMapLightRadius(const Light& light) { return light.equivalentRadius(); }
 
 // The cones and sheets of every casting mesh for one light and shadow map.
-ConesSheets buildPenumbraGeometry(const Scene& scene, const ShadowMap& map, float radius,
+ConesSheets buildPenumbraGeometry(const Scene& scene, int lightIndex, const ShadowMap& map, float radius,
                                   const ConeSheetSettings& settings) {
     PenumbraLight pl;
     pl.centre = map.origin;
@@ -32,8 +32,9 @@ ConesSheets buildPenumbraGeometry(const Scene& scene, const ShadowMap& map, floa
     pl.nearDepth = map.nearPlane;
     pl.farDepth = map.farPlane;
     ConesSheets all;
-    for (const Mesh& mesh : scene.meshes()) {
-        if (!mesh.casts()) continue;
+    for (size_t i = 0; i < scene.meshes().size(); ++i) {
+        if (!scene.castsFor(int(i), lightIndex)) continue;
+        const Mesh& mesh = scene.meshes()[i];
         PointSilhouette sil = pointSilhouette(mesh, map.origin);
         all.append(buildConesSheets(mesh, sil, pl, settings));
     }
@@ -82,7 +83,7 @@ public:
             return;
         const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
         settings.report(0.1f, "penumbra_map cones and sheets");
-        ConesSheets cpu = buildPenumbraGeometry(frame.scene(), map, radius, cs);
+        ConesSheets cpu = buildPenumbraGeometry(frame.scene(), lightIndex, map, radius, cs);
         const gl::Functions& api = frame.gl();
         g = GpuConesSheets{};
         g.key = scene.lightGeometryKey(lightIndex);

@@ -20,9 +20,9 @@ enum class PenumbraIntensity { Coverage = 0, Paper = 1 };
 // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) for a value other than "coverage" or "paper".
 PenumbraIntensity intensityRule(const RenderSettings& settings);
 
-// The cones and sheets of every casting mesh, silhouettes taken from the map's origin, cone
-// bases on its far plane.
-ConesSheets buildPenumbraGeometry(const Scene& scene, const ShadowMap& map, float radius,
+// The cones and sheets of every mesh that shadows light `lightIndex` (Scene::castsFor),
+// silhouettes taken from the map's origin, cone bases on its far plane.
+ConesSheets buildPenumbraGeometry(const Scene& scene, int lightIndex, const ShadowMap& map, float radius,
                                   const ConeSheetSettings& settings);
 
 }  // namespace ss

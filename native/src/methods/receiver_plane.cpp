@@ -56,11 +56,11 @@ Layers readReceiverPlaneLayers(const gl::Framebuffer& out, bool extraLayers,
     return layers;
 }
 
-float nearestCasterDistance(const Scene& scene, const ShadowMap& map) {
+float nearestCasterDistance(const Scene& scene, int lightIndex, const ShadowMap& map) {
     float best = map.farPlane;
-    for (const Mesh& m : scene.meshes()) {
-        if (!m.casts()) continue;
-        for (const glm::vec3& p : m.positions) {
+    for (size_t i = 0; i < scene.meshes().size(); ++i) {
+        if (!scene.castsFor(int(i), lightIndex)) continue;
+        for (const glm::vec3& p : scene.meshes()[i].positions) {
             float d = map.distanceOf(p);
             if (d > 0.0f) best = std::min(best, d);
         }

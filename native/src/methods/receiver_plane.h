@@ -19,9 +19,9 @@ namespace ss {
 glm::mat3 shadowRayBasis(const ShadowMap& map);
 void setShadowRayBasis(const gl::Program& program, const ShadowMap& map);
 
-// The smallest map quantity (distance, or depth for a sun) of any caster vertex, never below
-// the map's near plane; the map's far plane when nothing casts.
-float nearestCasterDistance(const Scene& scene, const ShadowMap& map);
+// The smallest map quantity (distance, or depth for a sun) of any vertex of a mesh that shadows
+// light `lightIndex`, never below the map's near plane; the map's far plane when nothing casts.
+float nearestCasterDistance(const Scene& scene, int lightIndex, const ShadowMap& map);
 
 // The camera pass both methods end with: `fragment` drawn full-screen over the shared camera pass
 // into the RGBA32F scratch target `target` (cleared to `clear` first), with the shadow map, the

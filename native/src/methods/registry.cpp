@@ -78,16 +78,20 @@ bool facesOneSideOfLight(const Mesh& mesh, const Light& light) {
 // or backdrop: Blender lets every object cast by default) is not a problem for the volumes:
 // its only silhouette is its border, whose volumes point away from the light, behind it. Any
 // other open or non-manifold caster is.
-bool castersClosedForVolumes(const Scene& scene, const Light& light) {
-    for (const Mesh& m : scene.meshes())
-        if (m.casts() && !m.report.closedManifold() && !isPlanarMesh(m) && !facesOneSideOfLight(m, light))
+bool castersClosedForVolumes(const Scene& scene, int lightIndex) {
+    const Light& light = scene.light(lightIndex);
+    for (size_t i = 0; i < scene.meshes().size(); ++i) {
+        const Mesh& m = scene.meshes()[i];
+        if (scene.castsFor(int(i), lightIndex) && !m.report.closedManifold() && !isPlanarMesh(m) &&
+            !facesOneSideOfLight(m, light))
             return false;
+    }
     return true;
 }
 }  // namespace
 
 std::vector<std::string> autoCandidates(const Scene& scene, int lightIndex) {
-    const bool closed = castersClosedForVolumes(scene, scene.light(lightIndex));
+    const bool closed = castersClosedForVolumes(scene, lightIndex);
     std::vector<std::string> out;
     for (const std::string& name : methodNames()) {
         if (name == "reference") continue;  // the truth itself: not an interactive method
@@ -112,7 +116,7 @@ std::string chooseAutoMethodByShape(const Scene& scene, int lightIndex) {
     // Used only where the sparse check cannot run (docs/methods/README.md): each light gets the
     // method whose paper models its shape, unless the scene breaks that method's assumptions.
     const Light& light = scene.light(lightIndex);
-    const bool castersClosed = castersClosedForVolumes(scene, light);
+    const bool castersClosed = castersClosedForVolumes(scene, lightIndex);
     switch (light.type) {
         case LightType::Square:
         case LightType::Rectangle:

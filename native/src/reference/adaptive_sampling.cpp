@@ -34,19 +34,20 @@ bool decidedByAgreement(const SampleSums& s, const AdaptiveSampling& a) {
 
 struct Tracer {
     const Scene& scene;
+    const int lightIndex;
     const Light& light;
     const TraceScene& trace;
     const LightSampler sampler;
     const CameraRays rays;
     const uint32_t seed;
 
-    // False when the pixel sees no receiving surface.
+    // False when the pixel sees no surface that receives this light (its mesh flags and light linking).
     bool surface(int x, int y, SurfaceHit* hit) const {
         Ray ray;
         float tNear, tFar;
         if (!rays.span(x, y, &ray, &tNear, &tFar)) return false;
         *hit = trace.intersect(ray, tNear, tFar);
-        return hit->hit && scene.meshes()[hit->mesh].receives();
+        return hit->hit && scene.receivesFrom(int(hit->mesh), lightIndex);
     }
     void add(const SurfaceHit& hit, int x, int y, uint32_t begin, uint32_t end, SampleSums* sums) const {
         addSamples(trace, sampler, hit, SampleSequence(seed, uint32_t(x), uint32_t(y)), begin, end,
@@ -121,7 +122,7 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
     const Camera& camera = scene.camera();
     const int width = camera.width, height = camera.height;
     const Light& light = scene.light(lightIndex);
-    const Tracer t{scene, light, trace, LightSampler(light), CameraRays(camera), settings.seed};
+    const Tracer t{scene, lightIndex, light, trace, LightSampler(light), CameraRays(camera), settings.seed};
     const size_t count = size_t(width) * size_t(height);
     std::vector<PixelState> state(count, PixelState::Outside);
     std::vector<SampleSums> sums(count);

@@ -34,7 +34,8 @@ Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings&
 
     settings.report(0.0f, "building the ray-tracing scene");
     std::shared_ptr<const TraceScene> trace =
-        cache ? cache->get(scene) : std::make_shared<const TraceScene>(scene);
+        cache ? cache->get(scene, lightIndex)
+              : std::make_shared<const TraceScene>(scene, std::vector<std::shared_ptr<const MeshBvh>>{}, lightIndex);
     if (adaptive) {
         const int width = camera.width, height = camera.height;
         Image visibility(width, height, 1.0f), mask(width, height, 0.0f), rays(width, height, 0.0f);
@@ -57,7 +58,7 @@ Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings&
             float tNear, tFar;
             if (!rays.span(x, y, &ray, &tNear, &tFar)) continue;
             SurfaceHit hit = trace->intersect(ray, tNear, tFar);
-            if (!hit.hit || !scene.meshes()[hit.mesh].receives()) continue;
+            if (!hit.hit || !scene.receivesFrom(int(hit.mesh), lightIndex)) continue;
             SampleSequence sequence(settings.seed, uint32_t(x), uint32_t(y));
             PointVisibility pv =
                 estimateVisibility(*trace, sampler, hit, sequence, samples, light.castShadows);

@@ -38,7 +38,7 @@ std::vector<PixelVisibility> tracePixels(const TraceScene& trace, const Scene& s
             float tNear, tFar;
             if (!rays.span(out[i].x, out[i].y, &ray, &tNear, &tFar)) continue;
             SurfaceHit hit = trace.intersect(ray, tNear, tFar);
-            if (!hit.hit || !scene.meshes()[hit.mesh].receives()) continue;
+            if (!hit.hit || !scene.receivesFrom(int(hit.mesh), lightIndex)) continue;
             out[i].mesh = int(hit.mesh);
             SampleSequence sequence(seed, uint32_t(out[i].x), uint32_t(out[i].y));
             out[i].centreVisible = lightCentreVisible(trace, sampler, hit, light.castShadows);

@@ -152,8 +152,10 @@ struct TraceScene::Impl {
     }
 };
 
-TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<const MeshBvh>>& reusable)
+TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<const MeshBvh>>& reusable,
+                       int castersOf)
     : impl_(std::make_unique<Impl>()), sceneId_(scene.id()), geometryVersion_(scene.geometryVersion()) {
+    if (castersOf >= 0) blockers_ = scene.light(castersOf, "TraceScene").links.blockers;
     Impl& m = *impl_;
     RTCDevice device = embreeDevice();
     m.filterSupported = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED) != 0;
@@ -193,7 +195,8 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<con
             m.alpha[i] = mesh.alpha;
         }
         if (!(mesh.flags & SS_MESH_CAMERA_HIDDEN)) Impl::instance(device, m.all, in, uint32_t(i));
-        if (mesh.casts()) Impl::instance(device, m.casters, in, uint32_t(i));
+        if (castersOf < 0 ? mesh.casts() : scene.castsFor(int(i), castersOf))
+            Impl::instance(device, m.casters, in, uint32_t(i));
     }
     rtcCommitScene(m.all);
     checkEmbree(device, "building the camera-ray scene");

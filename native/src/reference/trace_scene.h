@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -33,13 +34,18 @@ struct SurfaceHit {
 // moved object costs its instance; the camera-ray and shadow-ray scenes share one BVH per mesh.
 class TraceScene {
 public:
-    explicit TraceScene(const Scene& scene, const std::vector<std::shared_ptr<const MeshBvh>>& reusable = {});
+    // `castersOf` a light index: the shadow rays meet only the meshes that shadow that light
+    // (Scene::castsFor: its shadow linking); -1: every casting mesh.
+    explicit TraceScene(const Scene& scene, const std::vector<std::shared_ptr<const MeshBvh>>& reusable = {},
+                        int castersOf = -1);
     ~TraceScene();
     TraceScene(const TraceScene&) = delete;
     TraceScene& operator=(const TraceScene&) = delete;
 
     uint64_t sceneId() const { return sceneId_; }
     uint64_t geometryVersion() const { return geometryVersion_; }
+    // The blocker set its shadow rays see (LightLinks::blockers; nullopt: every casting mesh).
+    const std::optional<std::vector<int>>& blockers() const { return blockers_; }
     // Largest absolute coordinate of any vertex: the scale robust offsets are measured against.
     float extent() const { return extent_; }
     // Mesh BVHs this TraceScene built (those it took over do not count).
@@ -64,6 +70,7 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     uint64_t sceneId_ = 0, geometryVersion_ = 0;
+    std::optional<std::vector<int>> blockers_;
     float extent_ = 0.0f;
     int meshBvhBuilds_ = 0;
 };

@@ -15,9 +15,26 @@ bool shows(const TraceScene& trace, const Scene& scene) {
 
 }  // namespace
 
-std::shared_ptr<const TraceScene> TraceSceneCache::get(const Scene& scene) {
+std::shared_ptr<const TraceScene> TraceSceneCache::get(const Scene& scene, int lightIndex) {
     std::lock_guard<std::mutex> lock(mutex_);
+    std::shared_ptr<const TraceScene> all = currentLocked(scene);
+    if (lightIndex < 0) return all;
+    const std::optional<std::vector<int>>& blockers = scene.light(lightIndex, "TraceSceneCache").links.blockers;
+    if (!blockers) return all;
+    for (const auto& trace : linked_)
+        if (trace->blockers() == blockers) return trace;
+    // A few blocker sets are kept: a scene rarely has more linked lights than that.
+    constexpr size_t kLinkedKept = 8;
+    if (linked_.size() >= kLinkedKept) linked_.erase(linked_.begin());
+    linked_.push_back(std::make_shared<const TraceScene>(scene, all->meshBvhs(), lightIndex));
+    ++builds_;
+    meshBvhBuilds_ += linked_.back()->meshBvhBuilds();
+    return linked_.back();
+}
+
+std::shared_ptr<const TraceScene> TraceSceneCache::currentLocked(const Scene& scene) {
     if (!current_ || !shows(*current_, scene)) {
+        linked_.clear();
         // The meshes whose shape stayed keep their BVHs; the others' go with the old scene.
         if (current_) kept_ = current_->meshBvhs();
         current_.reset();
@@ -39,6 +56,7 @@ void TraceSceneCache::dropStale(const Scene& scene) {
     for (const auto& bvh : current_->meshBvhs())
         if (shapes.count(bvh->key().packed())) kept_.push_back(bvh);
     current_.reset();
+    linked_.clear();
 }
 
 int TraceSceneCache::builds() const {

@@ -1,4 +1,5 @@
-// Which Embree scene to reuse: one TraceScene kept per (scene id, geometry version), rebuilt on change.
+// Which Embree scene to reuse: one TraceScene kept per (scene id, geometry version), rebuilt on
+// change, and one per shadow-linked blocker set beside it.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <memory>
@@ -15,7 +16,10 @@ namespace ss {
 // BVH whose shape is unchanged (a moved object costs its instance, not its BVH).
 class TraceSceneCache {
 public:
-    std::shared_ptr<const TraceScene> get(const Scene& scene);
+    // With `lightIndex`, the TraceScene whose shadow rays see that light's blockers: the
+    // unlinked one for a light without shadow linking, else one per blocker set, sharing the
+    // unlinked one's mesh BVHs (its build costs the instances only).
+    std::shared_ptr<const TraceScene> get(const Scene& scene, int lightIndex = -1);
     // Lets go of a TraceScene that no longer shows `scene`'s geometry (its memory is the BVH's),
     // keeping the BVHs of the meshes `scene` still has in the same shape.
     void dropStale(const Scene& scene);
@@ -25,6 +29,8 @@ public:
 private:
     mutable std::mutex mutex_;
     std::shared_ptr<const TraceScene> current_;
+    std::vector<std::shared_ptr<const TraceScene>> linked_;  // of current_'s geometry, by blocker set
+    std::shared_ptr<const TraceScene> currentLocked(const Scene& scene);
     std::vector<std::shared_ptr<const MeshBvh>> kept_;  // for the next build
     int builds_ = 0;
     int meshBvhBuilds_ = 0;

@@ -99,7 +99,7 @@ Refinement refineUncertainPixels(const Scene& scene, int lightIndex, const Rende
     Image select = uncertainPixels(*visibility, *mask, margin);
 
     settings.report(0.0f, "building the ray-tracing scene");
-    std::shared_ptr<const TraceScene> trace = cache.get(scene);
+    std::shared_ptr<const TraceScene> trace = cache.get(scene, lightIndex);
     const int width = visibility->width, height = visibility->height;
     // The check covers every pixel, not only the method's mask: outside it the method said V = 1
     // (sweep shades its receiver plane only, leaving the casters and other receivers lit), and

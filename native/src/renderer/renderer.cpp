@@ -18,6 +18,7 @@
 #include "frame/frame.h"
 #include "methods/sparse_check.h"
 #include "renderer/refinement.h"
+#include "renderer/unlit_receivers.h"
 
 namespace ss {
 
@@ -257,6 +258,8 @@ Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::str
             m.prepare(frame, lightIndex, settings);
             layers = m.render(frame, lightIndex, settings);
             impl_->finished.methodMs += msSince(start);
+            if (scene.light(lightIndex).links.receivers)
+                maskUnlitReceivers(scene, lightIndex, frame.cameraImages(), layers);
         });
     }
     checkLayers(layers, scene.camera(), name);
@@ -273,7 +276,7 @@ bool Renderer::sparseCheck(const Scene& scene, int lightIndex, int pixels, int s
                            SparseCheck* out) {
     if (pixels <= 0) return false;
     try {
-        std::shared_ptr<const TraceScene> trace = impl_->cacheFor(scene).frame->traceScenes().get(scene);
+        std::shared_ptr<const TraceScene> trace = impl_->cacheFor(scene).frame->traceScenes().get(scene, lightIndex);
         *out = runSparseCheck(*trace, scene, lightIndex, pixels, samples, seed);
     } catch (const Error& e) {
         if (e.status() == SS_ERROR_CANCELLED) throw;

@@ -33,8 +33,8 @@ std::atomic<size_t> builds{0};
 
 // `earlier`: the last build for this light (may be null); a mesh's volumes depend only on the
 // mesh, the disk and the extrusion length, so its part is taken when all three are the same.
-std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& disk, const DbufferGeometry* earlier,
-                                             const std::atomic<bool>* cancel) {
+std::shared_ptr<const DbufferGeometry> build(const Scene& scene, int lightIndex, const Disk& disk,
+                                             const DbufferGeometry* earlier, const std::atomic<bool>* cancel) {
     auto g = std::make_shared<DbufferGeometry>();
     g->disk = disk;
     Bounds all = scene.bounds();
@@ -43,8 +43,9 @@ std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& dis
     float reach = all.empty() ? 1.0f : glm::length(all.center() - disk.centre) + all.diagonal();
     g->extrusionLength = 2.0f * reach;
     if (earlier && !(sameDisk(earlier->disk, disk) && earlier->extrusionLength == g->extrusionLength)) earlier = nullptr;
-    for (const Mesh& mesh : scene.meshes()) {
-        if (!mesh.casts() || mesh.triangles.empty()) continue;
+    for (size_t i = 0; i < scene.meshes().size(); ++i) {
+        const Mesh& mesh = scene.meshes()[i];
+        if (!scene.castsFor(int(i), lightIndex) || mesh.triangles.empty()) continue;
         if (cancel && cancel->load(std::memory_order_relaxed))
             fail(SS_ERROR_CANCELLED, "cancelled during dbuffer: silhouettes and volumes");
         DbufferGeometry::MeshPart part{mesh.version, nullptr};
@@ -75,9 +76,9 @@ std::shared_ptr<const DbufferGeometry> build(const Scene& scene, const Disk& dis
 std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex,
                                                        const std::atomic<bool>* cancel) {
     Bounds casters;
-    for (const Mesh& m : scene.meshes())
-        if (m.casts())
-            for (const glm::vec3& p : m.positions) casters.extend(p);
+    for (size_t i = 0; i < scene.meshes().size(); ++i)
+        if (scene.castsFor(int(i), lightIndex))
+            for (const glm::vec3& p : scene.meshes()[i].positions) casters.extend(p);
     Key key{scene.lightGeometryKey(lightIndex),
             dbufferDisk(scene.light(lightIndex), casters, scene.bounds())};
     std::shared_ptr<const DbufferGeometry> earlier;  // the newest build for this light, if any
@@ -93,7 +94,7 @@ std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int l
             if (!earlier && k == key.geometry) earlier = it->second;
         }
     }
-    auto g = build(scene, key.disk, earlier.get(), cancel);
+    auto g = build(scene, lightIndex, key.disk, earlier.get(), cancel);
     std::lock_guard<std::mutex> lock(cacheMutex);
     cache.emplace_front(key, g);
     if (cache.size() > kCacheEntries) cache.pop_back();

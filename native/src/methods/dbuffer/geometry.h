@@ -13,7 +13,7 @@ namespace ss {
 
 struct DbufferGeometry {
     Disk disk;              // the light as the method sees it (methods/dbuffer/light.h)
-    ShadowVolumes volumes;  // every casting mesh's volumes, concatenated
+    ShadowVolumes volumes;  // the volumes of every mesh that shadows the light, concatenated
     float extrusionLength = 0.0f;
     // Each casting mesh's volumes, in `volumes` order, with the Mesh::version they were made
     // from: the next build after a move takes the unchanged meshes' parts.
@@ -26,7 +26,7 @@ struct DbufferGeometry {
     double silhouetteMs = 0.0, extrusionMs = 0.0;  // CPU time of the two stages when built
 };
 
-// The volumes of casting meshes for light `lightIndex`, built on first use and kept for the same
+// The volumes of the meshes that shadow light `lightIndex` (Scene::castsFor), built on first use and kept for the same
 // (Scene::lightGeometryKey, disk): a mesh edit or move, or this light's edit, rebuilds them; a
 // camera edit or another light's keeps them. A few recent entries are kept (thread-safe). A
 // rebuild after moves or mesh edits takes the volumes of every mesh whose version is unchanged

@@ -101,7 +101,7 @@ private:
         }
         occlusion::KernelLight kernel = occlusion::kernelLight(frame.light(lightIndex), scene.bounds());
         occlusion::SliceSetup setup =
-            occlusion::fitSlices(scene, kernel, key.sliceCount, key.resolution, key.projection);
+            occlusion::fitSlices(scene, kernel, key.sliceCount, key.resolution, key.projection, lightIndex);
         std::vector<MeshPlacement> now = frame.placements();
         Scene::LightGeometryKey earlier = kept ? kept->geometry : Scene::LightGeometryKey{};
         earlier.geometryVersion = geometry.geometryVersion;  // everything but the meshes the same?

@@ -83,7 +83,7 @@ glm::vec2 SliceSetup::ndcPerUnit(float depth) const {
 }
 
 SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCount, int resolution,
-                     Projection projection) {
+                     Projection projection, int lightIndex) {
     if (sliceCount < 1 || sliceCount > 16)
         fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: slices = " + std::to_string(sliceCount) +
                                             " is outside 1..16");
@@ -94,22 +94,31 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
     float zAllMax = 0.0f, zCastMin = inf, zCastMax = 0.0f, zReceiveMax = 0.0f;
     float d = inf;
     float coverX = light.halfX, coverY = light.halfY;  // orthographic: the extent to cover
-    for (const Mesh& mesh : scene.meshes()) {
-        if (!mesh.casts() && !mesh.receives()) continue;
+    for (size_t i = 0; i < scene.meshes().size(); ++i) {
+        const Mesh& mesh = scene.meshes()[i];
+        const bool casts = lightIndex < 0 ? mesh.casts() : scene.castsFor(int(i), lightIndex);
+        const bool receives = lightIndex < 0 ? mesh.receives() : scene.receivesFrom(int(i), lightIndex);
+        if (!casts && !receives) continue;
         for (const glm::vec3& p : mesh.positions) {
             glm::vec3 q = light.toLocal(p);
             if (q.z <= 0.0f) continue;
             zAllMax = std::max(zAllMax, q.z);
             coverX = std::max(coverX, std::abs(q.x)), coverY = std::max(coverY, std::abs(q.y));
-            if (mesh.casts()) zCastMin = std::min(zCastMin, q.z), zCastMax = std::max(zCastMax, q.z);
-            if (mesh.receives()) zReceiveMax = std::max(zReceiveMax, q.z);
+            if (casts) zCastMin = std::min(zCastMin, q.z), zCastMax = std::max(zCastMax, q.z);
+            if (receives) zReceiveMax = std::max(zReceiveMax, q.z);
             // Inside the frustum when |x| <= a (z + d) / d, i.e. d <= a z / (|x| - a).
             if (std::abs(q.x) > light.halfX) d = std::min(d, light.halfX * q.z / (std::abs(q.x) - light.halfX));
             if (std::abs(q.y) > light.halfY) d = std::min(d, light.halfY * q.z / (std::abs(q.y) - light.halfY));
         }
     }
-    if (!(zCastMax > 0.0f))
-        fail(SS_ERROR_UNSUPPORTED, "occlusion_textures: no casting geometry lies in front of the light");
+    if (!(zAllMax > 0.0f))
+        fail(SS_ERROR_UNSUPPORTED, "occlusion_textures: no casting or receiving geometry lies in front of the light");
+    if (!(zCastMax > 0.0f)) {
+        // Nothing shadows this light (its blockers are elsewhere or none): empty slices over the
+        // receivers' depths, so every receiver reads V = 1.
+        zCastMin = 0.5f * zAllMax;
+        zCastMax = zAllMax;
+    }
     float dMin = std::max(light.halfX, light.halfY) / std::tan(kMaxHalfAngle);
     SliceSetup s;
     s.light = light;
@@ -120,6 +129,7 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
     s.orthoHalf = glm::vec2(light.halfX, light.halfY) * cover;
     s.d = std::clamp(d, dMin, std::max(dMin, 4.0f * zAllMax));
     s.receiverDepthMax = zReceiveMax;
+    s.lightIndex = lightIndex;
     // Vertices touching the light plane would make the first slice start at 0 depth; keep a
     // thin gap so the slicing camera's near plane stays positive.
     float z0 = std::max(zCastMin, 1e-4f * zCastMax);

@@ -46,6 +46,7 @@ struct SliceSetup {
     int width = 256, height = 256;  // occlusion texture size (aspect of the light)
     glm::mat4 worldToClip{1.0f};    // the slicing camera (COP) for the slicing pass
     float receiverDepthMax = 0.0f;  // the deepest receiving vertex in front of the light
+    int lightIndex = -1;  // the scene light whose blockers are sliced (-1: every casting mesh)
     int count() const { return int(planes.size()) - 1; }
     bool operator==(const SliceSetup&) const = default;
     // Slice holding depth z (clamped to the range).
@@ -58,9 +59,10 @@ struct SliceSetup {
 // inside the frustum (half-angle capped at 80 degrees), slices spread uniformly in depth over
 // the casters' depth range. Orthographic: the textures cover every casting or receiving vertex
 // in front of the light (and the light), with the light's aspect. Throws ss::Error when no
-// geometry lies in front of the light.
+// geometry lies in front of the light. With `lightIndex`, the casters and receivers are that
+// light's (Scene::castsFor, Scene::receivesFrom: its light and shadow linking).
 SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCount, int resolution,
-                     Projection projection = Projection::Perspective);
+                     Projection projection = Projection::Perspective, int lightIndex = -1);
 
 // How a point (light-local) reads slice k: texture centre (uv in [0, 1]), kernel size in
 // texels (w, h) and the slice's weight (0: not used).

@@ -47,7 +47,7 @@ void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bo
     if (rect) region = PatchRegion{*rect, setup.worldToClip, setup.width, setup.height};
     frame.drawMeshesWhere(program, SS_MESH_CAST, region, [&](const GpuMesh& mesh) {
         program.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
-    }, true);
+    }, setup.lightIndex, true);
     // See-through casters occlude their slice by their alpha (drawn whole; the scissor keeps
     // a patch's outside).
     const gl::Program& seeThrough = gl::program("occlusion_textures/slice_see_through.vert.glsl",
@@ -60,7 +60,7 @@ void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bo
     seeThrough.set("sliceCount", setup.count());
     frame.drawSeeThroughWhere(seeThrough, SS_MESH_CAST, [&](const GpuMesh& mesh) {
         seeThrough.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
-    });
+    }, setup.lightIndex);
     gl.Disable(GL_SCISSOR_TEST);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.check("slicing the scene into occlusion textures");

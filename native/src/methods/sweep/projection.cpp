@@ -61,10 +61,10 @@ void addTriangle(const Projector& pr, const planar::Snap& snap, glm::dvec3 a, gl
 
 }  // namespace
 
-std::vector<int> sweepOccluders(const Scene& scene, const ReceiverPlane& plane) {
+std::vector<int> sweepOccluders(const Scene& scene, int lightIndex, const ReceiverPlane& plane) {
     std::vector<int> out;
     for (size_t i = 0; i < scene.meshes().size(); ++i)
-        if (int(i) != plane.mesh && scene.meshes()[i].casts()) out.push_back(int(i));
+        if (int(i) != plane.mesh && scene.castsFor(int(i), lightIndex)) out.push_back(int(i));
     return out;
 }
 

@@ -20,8 +20,8 @@ struct ProjectionStats {
     int meshesProjected = 0, meshesReused = 0;
 };
 
-// Occluders: casting meshes other than the receiver.
-std::vector<int> sweepOccluders(const Scene& scene, const ReceiverPlane& plane);
+// Occluders: the meshes other than the receiver that shadow light `lightIndex` (Scene::castsFor).
+std::vector<int> sweepOccluders(const Scene& scene, int lightIndex, const ReceiverPlane& plane);
 
 // Whether a mesh can use silhouette edges (closed, consistently oriented, manifold).
 bool usesSilhouettes(const Mesh& mesh);

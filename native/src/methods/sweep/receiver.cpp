@@ -66,7 +66,7 @@ ReceiverPlane findReceiverPlane(const Scene& scene, const Light& light, const st
     } else {
         double best = 0;
         for (size_t i = 0; i < meshes.size(); ++i) {
-            if (!meshes[i].receives() || !isPlanarMesh(meshes[i])) continue;
+            if (!meshes[i].receives() || !light.links.lights(int(i)) || !isPlanarMesh(meshes[i])) continue;
             double a = meshArea(meshes[i]);
             if (a > best) {
                 best = a;

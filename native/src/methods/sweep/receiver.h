@@ -27,7 +27,8 @@ struct ReceiverPlane {
 // True when every vertex of the mesh lies within a relative 1e-5 of its largest face's plane.
 bool isPlanarMesh(const Mesh& mesh);
 
-// `name` empty: the receiving (SS_MESH_RECEIVE) planar mesh of largest area. Throws ss::Error
+// `name` empty: the receiving (SS_MESH_RECEIVE) planar mesh of largest area that the light
+// lights (its light linking). Throws ss::Error
 // naming the problem when the named mesh is missing, not planar or does not receive, when no
 // planar receiver exists, or when the light lies in the plane.
 ReceiverPlane findReceiverPlane(const Scene& scene, const Light& light, const std::string& name);

@@ -118,7 +118,7 @@ SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOp
     SweepShadow out;
     out.plane = findReceiverPlane(scene, light, options.receiver);
     out.snap = planar::Snap(out.plane.cu, out.plane.cv, out.plane.half);
-    std::vector<int> occluders = sweepOccluders(scene, out.plane);
+    std::vector<int> occluders = sweepOccluders(scene, lightIndex, out.plane);
 
     LightSampleOptions so;
     so.seed = options.seed;
