@@ -85,12 +85,12 @@ public:
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         settings.report(0.0f, "silhouettes and volumes");
-        geometry_ = dbufferGeometry(frame.scene(), lightIndex, settings.cancel);
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex, frame.shadowFitBounds(lightIndex), settings.cancel);
     }
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         // A cache hit when prepare() ran for this light (the cache keys on scene and light).
-        geometry_ = dbufferGeometry(frame.scene(), lightIndex, settings.cancel);
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex, frame.shadowFitBounds(lightIndex), settings.cancel);
         const DbufferGeometry& geo = *geometry_;
         const gl::Functions& g = frame.gl();
         // finish_stages (benchmark): glFinish at each stage so the progress marks time the GPU.
