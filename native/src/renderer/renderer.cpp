@@ -15,6 +15,7 @@
 #include "gl/capabilities.h"
 #include "gl/context.h"
 #include "gl/render_thread.h"
+#include "gl/scratch_targets.h"
 #include "frame/frame.h"
 #include "methods/sparse_check.h"
 #include "renderer/refinement.h"
@@ -42,8 +43,9 @@ struct Renderer::Impl {
     // scenes (coarse and full size, each with its own camera pass) and its render_passes scene
     // (one context) do not evict each other.
     static constexpr size_t kKeptScenes = 3;
-    // The CPU copy of a camera pass (sweep's) kept from one render to the next: up to about
-    // 1.4M pixels (a 1920 x 720 preview); larger ones are read back for each render instead.
+    // The CPU copy of a camera pass (sweep's) and each scratch target kept from one render to
+    // the next: up to 64 MiB (a 1920 x 720 preview's camera images, a 2048² RGBA32F target);
+    // larger ones are made again for each render instead.
     static constexpr size_t kKeptCameraImagesBytes = size_t(64) << 20;
     std::vector<std::unique_ptr<Cached>> caches;
     CacheStats finished;  // of frames already dropped (and every method run's time)
@@ -156,6 +158,7 @@ struct Renderer::Impl {
         }
         current.trimCache(shadowMapBudget);
         for (const auto& c : caches) c->frame->trimCameraImages(kKeptCameraImagesBytes);
+        gl::trimThreadScratchTargets(kKeptCameraImagesBytes);
     }
 };
 
