@@ -20,7 +20,7 @@ void BM_DbufferStages(benchmark::State& state) {
     const int res = int(state.range(0)), m = int(state.range(1));
     Scene scene = bench::sphereOverGround(m, SS_MESH_CAST | SS_MESH_RECEIVE, LightType::Disk, res);
     // First build of the volumes (the scene is new, so the cache misses).
-    std::shared_ptr<const DbufferGeometry> geo = dbufferGeometry(scene, 0);
+    std::shared_ptr<const DbufferGeometry> geo = dbufferGeometry(scene, 0, scene.bounds());
     RenderSettings settings;
     settings.extraLayers = false;
     settings.options = {{"finish_stages", "1"}};

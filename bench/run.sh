@@ -122,6 +122,14 @@ if [ "$QUICK" = 1 ]; then COUNTS="50 200"; else COUNTS="50 500 2000"; fi
     secs=$(sed -n 's/.*total \([0-9.]*\) s/\1/p' "$WORK/lights_$n.txt")
     echo "| $n | $((2 * n)) | $((rss / 1024)) | $secs |"
   done
+  echo
+  echo "# Memory against the resolution"
+  echo
+  echo "One light over a plane, a box and a torus (bench/memory_budget.sh), maximum resident set of"
+  echo "\`softshadow render\` beside the budget of docs/reliability.md (core/memory_budget.h)."
+  echo
+  if [ "$QUICK" = 1 ]; then SIDES="1024"; else SIDES="1024 4096 8192"; fi
+  bash "$HERE/memory_budget.sh" "$CLI" "$WORK/memory" "$SIDES" "shadow_map auto+refine"
 } > "$OUT/memory.md"
 cat "$OUT/memory.md"
 

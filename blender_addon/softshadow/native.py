@@ -156,6 +156,7 @@ _SIGNATURES = {
     "ss_result_method": (ctypes.c_char_p, [_vp]),
     "ss_result_light": (ctypes.c_char_p, [_vp]),
     "ss_result_estimated_rmse": (ctypes.c_double, [_vp]),
+    "ss_result_warnings": (ctypes.c_char_p, [_vp]),
     "ss_result_layer_count": (ctypes.c_int32, [_vp]),
     "ss_result_layer": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_char_p),
                               ctypes.POINTER(ctypes.POINTER(ctypes.c_float)),
@@ -598,6 +599,12 @@ class Result(_Owned):
         where none was made ('auto' always makes one)."""
         value = lib().ss_result_estimated_rmse(self.handle)
         return None if math.isnan(value) else value
+
+    @property
+    def warnings(self):
+        """What the render left out, one message each (a mesh beyond the scene range, named)."""
+        text = lib().ss_result_warnings(self.handle) or b""
+        return [line for line in text.decode("utf-8", "replace").split("\n") if line]
 
     def layers(self):
         """{layer name: float32 (height, width) copy, row 0 = top}."""

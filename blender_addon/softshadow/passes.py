@@ -311,6 +311,9 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
                 out.failed_lights.append(light["name"])
                 continue
             ran = result.method
+            for warning in result.warnings:  # each once, however many lights give it
+                if warning not in out.problems:
+                    out.problems.append(warning)
             # Arrays are keyed by the method that ran, so 'auto' resolving to a method also asked
             # for gives one array; the EXR names passes by the method asked for ('<light>_auto'
             # stays wired whatever auto picks), so there both results are kept.

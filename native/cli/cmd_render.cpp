@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
+#include <sstream>
 
 #include "cli_common.h"
 #include "progress_bar.h"
@@ -15,6 +17,13 @@
 namespace ss::cli {
 
 namespace {
+
+// "warning: <line>" on stderr for each line of a result's warnings not printed before.
+void printWarnings(const char* text, std::set<std::string>& printed) {
+    std::istringstream lines(text ? text : "");
+    for (std::string line; std::getline(lines, line);)
+        if (!line.empty() && printed.insert(line).second) std::fprintf(stderr, "warning: %s\n", line.c_str());
+}
 
 namespace fs = std::filesystem;
 
@@ -146,6 +155,7 @@ int runRender(const std::vector<std::string>& argv) {
         double estimate = 0.0;  // expected RMSE against the reference; NaN: none made
     };
     std::vector<Row> rows;
+    std::set<std::string> warned;  // each warning once, however many renders give it
     int32_t width = 0, height = 0;
     int passCount = 0;
     auto total0 = std::chrono::steady_clock::now();
@@ -167,6 +177,7 @@ int runRender(const std::vector<std::string>& argv) {
             row.asked = method;
             row.used = ss_result_method(raw);
             row.estimate = ss_result_estimated_rmse(raw);
+            printWarnings(ss_result_warnings(raw), warned);
             check(ss_exr_writer_add(writer.get(), raw));
             for (int32_t i = 0; i < ss_result_layer_count(raw); ++i) {
                 const char* name;

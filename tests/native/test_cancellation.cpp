@@ -17,9 +17,9 @@ using test::statusOf;
 TEST(Cancellation, DbufferVolumesStopWhenCancelled) {
     Scene scene = test::sceneConcave();
     std::atomic<bool> cancel{true};
-    EXPECT_EQ(statusOf([&] { dbufferGeometry(scene, 0, &cancel); }), SS_ERROR_CANCELLED);
+    EXPECT_EQ(statusOf([&] { dbufferGeometry(scene, 0, scene.bounds(), &cancel); }), SS_ERROR_CANCELLED);
     cancel = false;
-    EXPECT_EQ(statusOf([&] { dbufferGeometry(scene, 0, &cancel); }), SS_OK);
+    EXPECT_EQ(statusOf([&] { dbufferGeometry(scene, 0, scene.bounds(), &cancel); }), SS_OK);
 }
 
 TEST(Cancellation, SweepSamplesStopWhenCancelled) {

@@ -54,8 +54,8 @@ Metrics againstReference(Renderer& r, const Scene& scene, const std::string& wha
 TEST(DbufferCache, VolumesAreReusedUntilTheSceneOrLightChanges) {
     Scene scene = test::sceneBox();
     size_t before = dbufferGeometryBuilds();
-    auto first = dbufferGeometry(scene, 0);
-    auto again = dbufferGeometry(scene, 0);
+    auto first = dbufferGeometry(scene, 0, scene.bounds());
+    auto again = dbufferGeometry(scene, 0, scene.bounds());
     EXPECT_EQ(dbufferGeometryBuilds(), before + 1);
     EXPECT_EQ(first.get(), again.get());
     // Rendering twice through the renderer re-uses them too.
@@ -67,12 +67,12 @@ TEST(DbufferCache, VolumesAreReusedUntilTheSceneOrLightChanges) {
     test::SceneParams moved;
     moved.lightShift = {0.5f, 0.0f};
     Scene other = test::sceneBox(moved);
-    auto shifted = dbufferGeometry(other, 0);
+    auto shifted = dbufferGeometry(other, 0, other.bounds());
     EXPECT_EQ(dbufferGeometryBuilds(), before + 2);
     EXPECT_NE(shifted->disk.centre, first->disk.centre);
     // An added mesh bumps the revision: rebuilt, with more volume.
     scene.addMesh(test::makeBox({1.0f, 1.0f, 0.5f}, {1.4f, 1.4f, 0.9f}, SS_MESH_CAST));
-    auto grown = dbufferGeometry(scene, 0);
+    auto grown = dbufferGeometry(scene, 0, scene.bounds());
     EXPECT_EQ(dbufferGeometryBuilds(), before + 3);
     EXPECT_GT(grown->volumes.umbra.size() + grown->volumes.penumbra.size(),
               first->volumes.umbra.size() + first->volumes.penumbra.size());
@@ -92,13 +92,14 @@ TEST(DbufferCache, AMoveBuildsOnlyTheMovedMeshsVolumes) {
         return s;
     };
     Scene moving = scene(0.0f);
-    auto first = dbufferGeometry(moving, 0);
+    auto first = dbufferGeometry(moving, 0, moving.bounds());
     EXPECT_EQ(first->meshesBuilt, 3u);
     moving.setMeshTransform(2, glm::translate(glm::mat4(1.0f), glm::vec3(-0.2f, 0.0f, 0.0f)));
-    auto moved = dbufferGeometry(moving, 0);
+    auto moved = dbufferGeometry(moving, 0, moving.bounds());
     EXPECT_EQ(moved->meshesBuilt, 1u);
     EXPECT_EQ(moved->meshesReused, 2u);
-    auto fresh = dbufferGeometry(scene(-0.2f), 0);
+    Scene freshScene = scene(-0.2f);
+    auto fresh = dbufferGeometry(freshScene, 0, freshScene.bounds());
     EXPECT_EQ(fresh->meshesReused, 0u);
     auto same = [](const std::vector<VolumeVertex>& a, const std::vector<VolumeVertex>& b) {
         return a.size() == b.size() &&

@@ -12,6 +12,9 @@
  * - Images are float32, width x height, row 0 = the TOP row of the picture.
  * - Method names (contract): "shadow_map", "pcss", "dbuffer", "sweep", "penumbra_map",
  *   "occlusion_textures", "reference", or "auto".
+ * - The scene range: meshes and lights must lie within 10000 x the camera's far clip distance
+ *   of the camera (and within 1e15): a mesh beyond it is skipped (ss_result_warnings), a light
+ *   beyond it gets no pass (SS_ERROR_INVALID_SCENE). See docs/reliability.md.
  */
 #ifndef SOFTSHADOW_H
 #define SOFTSHADOW_H
@@ -267,6 +270,10 @@ SS_API double ss_result_estimated_rmse(const ss_result* result);
  * it rendered and scored (its prior and the sparse check's lower bounds leave the others out;
  * 1 where the check could not be made). 0 for a null result. */
 SS_API int32_t ss_result_methods_rendered(const ss_result* result);
+/* What the render left out, one line each ending in '\n' ("" when nothing): a mesh beyond the
+ * scene range (docs/reliability.md) is skipped, named here, and the rest keeps its shadows.
+ * NULL for a null result. */
+SS_API const char* ss_result_warnings(const ss_result* result);
 SS_API int32_t ss_result_layer_count(const ss_result* result);
 /* Layer names: "V" (visibility), "mask", "umbra", "penumbra", and method debug layers. */
 SS_API ss_status ss_result_layer(const ss_result* result, int32_t index, const char** name,

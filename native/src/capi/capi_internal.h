@@ -41,6 +41,7 @@ struct ss_result {
     std::string light;   // the light's real name
     double estimatedRmse = std::numeric_limits<double>::quiet_NaN();  // from the sparse exact check; NaN where none was made
     int32_t methodsRendered = 1;  // auto: the candidates it rendered at full size
+    std::string warnings;  // one line per problem the render left out (ss_result_warnings)
 };
 
 namespace ss::capi {

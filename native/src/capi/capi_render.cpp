@@ -52,8 +52,10 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         result->light = light.name;
         result->requested = method;
         ss::Renderer::AutoTrials trials;
+        std::vector<std::string> warnings;
         result->layers = context->renderer.render(scene->scene, light_index, method, settings, &result->method,
-                                                      &result->estimatedRmse, &trials);
+                                                      &result->estimatedRmse, &trials, &warnings);
+        for (const std::string& w : warnings) result->warnings += w + "\n";
         if (!trials.rendered.empty()) result->methodsRendered = int32_t(trials.rendered.size());
         if (result->method.empty()) result->method = method;
         *out = result.release();
@@ -74,6 +76,10 @@ SS_API double ss_result_estimated_rmse(const ss_result* result) {
 
 SS_API int32_t ss_result_methods_rendered(const ss_result* result) {
     return result ? result->methodsRendered : 0;
+}
+
+SS_API const char* ss_result_warnings(const ss_result* result) {
+    return result ? result->warnings.c_str() : nullptr;
 }
 
 SS_API const char* ss_result_light(const ss_result* result) {

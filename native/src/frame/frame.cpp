@@ -424,12 +424,13 @@ const CameraPass& Frame::cameraPass() {
         auto pass = std::make_unique<CameraPass>();
         pass->width = cam.width;
         pass->height = cam.height;
-        pass->framebuffer = gl::Framebuffer(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F},
+        pass->framebuffer = gl::Framebuffer(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RG32F},
                                             GL_DEPTH_COMPONENT32F);
         drawCameraPass(*pass, std::nullopt);
         camera_ = std::move(pass);
     }
     gl().Finish();
+    receiversInView_.reset();
     stats_.cameraPassMs += msSince(start);
     ++stats_.cameraPasses;
     cameraPlacements_ = std::move(now);
@@ -462,7 +463,9 @@ void Frame::drawShadowMap(ShadowMap& map, int lightIndex, const std::optional<Pi
     scissor(g, rect);
     fb.clearColor(0, glm::vec4(ShadowMap::kEmpty));
     fb.clearDepth(1.0f);
-    gl::apply(gl::states::opaque);
+    // Casters nearer the light than the near plane (beyond the fit box, towards the light)
+    // still shadow: clamped onto it, they keep their true distance.
+    gl::apply(gl::states::opaqueDepthClamped);
     const gl::Program& prog = gl::program("common/mesh.vert.glsl", "shadow_map/distance.frag.glsl");
     prog.use();
     prog.set("uWorldToClip", map.worldToClip());
@@ -482,9 +485,15 @@ void Frame::drawShadowMap(ShadowMap& map, int lightIndex, const std::optional<Pi
 
 const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     if (size <= 0) size = kDefaultShadowMapSize;
-    dropStalePasses();
+    const Bounds fit = shadowFitBounds(lightIndex);  // drops the stale passes
     auto key = std::make_pair(light(lightIndex).version, size);
     auto it = shadowMaps_.find(key);
+    if (it != shadowMaps_.end() && !(it->second.fit.lo == fit.lo && it->second.fit.hi == fit.hi)) {
+        // Fit around what the camera sees, and that moved: drawn afresh.
+        stats_.shadowMapBytes -= it->second.bytes;
+        shadowMaps_.erase(it);
+        it = shadowMaps_.end();
+    }
     if (it != shadowMaps_.end()) {
         CachedShadowMap& entry = it->second;
         entry.lastUse = ++useClock_;
@@ -506,7 +515,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     const Light& L = light(lightIndex);
     meshes();  // uploads timed apart
     const auto start = Clock::now();
-    auto map = std::make_unique<ShadowMap>(fitShadowMap(L, shadowMapBounds_, size));
+    auto map = std::make_unique<ShadowMap>(fitShadowMap(L, fit, size));
     map->distance = gl::Texture(size, size, GL_R32F, GL_NEAREST);
     map->depth = gl::Texture(size, size, GL_DEPTH_COMPONENT32F, GL_NEAREST);
     drawShadowMap(*map, lightIndex, std::nullopt);
@@ -516,6 +525,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     CachedShadowMap entry;
     entry.map = std::move(map);
     entry.lastUse = ++useClock_;
+    entry.fit = fit;
     entry.bytes = size_t(size) * size_t(size) * (sizeof(float) + sizeof(float));  // R32F + depth 32F
     stats_.shadowMapBytes += entry.bytes;
     stats_.shadowMapBytesPeak = std::max(stats_.shadowMapBytesPeak, stats_.shadowMapBytes);
@@ -536,6 +546,11 @@ void Frame::dropStale() {
             it = shadowMaps_.erase(it);
         }
     }
+}
+
+void Frame::trimCameraImages(size_t keepBytes) {
+    if (cameraImages_ && size_t(cameraImages_->width) * size_t(cameraImages_->height) * 3 * sizeof(glm::vec4) > keepBytes)
+        cameraImages_.reset();
 }
 
 void Frame::trimCache(size_t budgetBytes) {

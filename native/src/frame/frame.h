@@ -67,7 +67,7 @@ struct CameraPass {
     //                   the camera axis, > 0) where a surface is seen, 0 where none is.
     // colour 1 RGBA32F: unit geometric (face) normal turned to face the camera; w = 1 when the
     //                   surface's mesh has SS_MESH_RECEIVE, else 0.
-    // colour 2 RGBA32F: x = mesh index, y = triangle index within the mesh (-1, -1 background).
+    // colour 2 RG32F:   x = mesh index, y = triangle index within the mesh (-1, -1 background).
     // depth DEPTH_COMPONENT32F: window depth; attach it to a camera-resolution framebuffer for
     //                   depth-tested passes (with depth writes off).
     gl::Framebuffer framebuffer;
@@ -118,6 +118,14 @@ struct ShadowMap {
 
 // The frustum a light's shadow map uses (exposed for tests and CPU methods); no GL needed.
 ShadowMap fitShadowMap(const Light& light, const Bounds& bounds, int size);
+// How much larger than what can shadow the receivers in view the scene may be and still be
+// what the maps fit (shadowFitBounds).
+inline constexpr float kSceneFitSlack = 8.0f;
+// The box a light's shadow map (and dbuffer's volumes) fit: the scene's bounds, unless they
+// reach more than kSceneFitSlack times past the receivers the camera sees (`receivers`, with
+// a margin for the light's extent), as one far vertex makes them; then the scene clipped to
+// that region, so one outlier never spreads a map over its own extent. No GL needed.
+Bounds shadowFitBounds(const Light& light, const Bounds& scene, const Bounds& receivers);
 
 struct FrameStats {
     // meshUploads counts meshes uploaded (one per mesh shape: a move uploads nothing),
@@ -175,6 +183,11 @@ public:
     const std::vector<GpuMesh>& meshes();
     const CameraPass& cameraPass();
     const CameraImages& cameraImages();  // read back on first call
+    // The world bounds of the receiving surfaces the camera pass sees (read back a band of
+    // rows at a time; empty when none), kept with the camera pass.
+    const Bounds& receiversInView();
+    // shadowFitBounds for light `lightIndex` with the scene and receiversInView().
+    Bounds shadowFitBounds(int lightIndex);
     // size 0 = kDefaultShadowMapSize; one map per (light, size), kept until trimCache() evicts
     // it. The reference stays valid until the next trimCache().
     const ShadowMap& shadowMap(int lightIndex, int size = 0);
@@ -186,6 +199,9 @@ public:
     // the scene: only after setScene() with the scene as it is now.
     void dropStale();
     size_t shadowMapBytes() const { return stats_.shadowMapBytes; }
+    // Drops the CPU copy of the camera pass (cameraImages(), 48 bytes a pixel) when it holds more
+    // than `keepBytes`: called between renders, so a large one lives for one render only.
+    void trimCameraImages(size_t keepBytes);
 
     // ---- the ray tracer's scene (no GL; any thread) ----
     // The one Embree BVH of this scene's geometry: the reference, refine=on and the sparse check
@@ -255,6 +271,7 @@ private:
     uint64_t meshesGeometryVersion_ = 0;  // 0: never uploaded
     std::unique_ptr<CameraPass> camera_;
     std::unique_ptr<CameraImages> cameraImages_;
+    std::optional<Bounds> receiversInView_;  // of the camera pass as drawn, null until asked
     uint64_t cameraPassCamera_ = 0, cameraPassGeometry_ = 0;  // versions the camera pass shows
     std::vector<MeshPlacement> cameraPlacements_;            // what the camera pass shows
     uint64_t shadowMapsGeometry_ = 0;                         // the geometry the maps show
@@ -265,6 +282,7 @@ private:
         uint64_t lastUse = 0;
         size_t bytes = 0;
         std::vector<Bounds> pending;  // world boxes moved meshes touched since it was drawn
+        Bounds fit;                   // the box it was fit to (shadowFitBounds)
     };
     std::map<std::pair<uint64_t, int>, CachedShadowMap> shadowMaps_;  // (Light::version, size)
     uint64_t useClock_ = 0;

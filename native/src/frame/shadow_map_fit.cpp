@@ -39,7 +39,37 @@ float tanToHold(const glm::vec3& origin, const glm::vec3& axis, const std::vecto
     return t;
 }
 
+// `b` with each half extent `factor` times as long around its centre, plus `pad` on every side.
+Bounds grownAround(const Bounds& b, float factor, float pad) {
+    const glm::vec3 c = b.center(), half = 0.5f * (b.hi - b.lo) * factor + glm::vec3(pad);
+    Bounds g;
+    g.extend(c - half);
+    g.extend(c + half);
+    return g;
+}
+
+bool holds(const Bounds& outer, const Bounds& inner) {
+    return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) && glm::all(glm::lessThanEqual(inner.hi, outer.hi));
+}
+
 }  // namespace
+
+Bounds shadowFitBounds(const Light& light, const Bounds& scene, const Bounds& receivers) {
+    if (receivers.empty() || scene.empty()) return scene;
+    // What can shadow a receiver in view lies between it and the light: within the receivers'
+    // box grown by the light's own extent (an area light's rim) and a margin for filter
+    // kernels; casters farther out towards the light are drawn depth-clamped onto the near
+    // plane, so they still shadow.
+    const float margin = 0.25f * receivers.diagonal() + 2.0f * light.equivalentRadius() + 1e-4f;
+    const Bounds relevant = grownAround(receivers, 1.0f, margin);
+    // The whole scene when it is not much larger than that: such a fit does not follow the
+    // camera, so the maps stay valid across camera moves.
+    if (holds(grownAround(relevant, kSceneFitSlack, 0.0f), scene)) return scene;
+    Bounds clipped;
+    clipped.lo = glm::max(scene.lo, relevant.lo);
+    clipped.hi = glm::min(scene.hi, relevant.hi);
+    return clipped.empty() ? relevant : clipped;
+}
 
 ShadowMap fitShadowMap(const Light& light, const Bounds& sceneBounds, int size) {
     ShadowMap m;

@@ -72,29 +72,16 @@ void Framebuffer::clearDepth(float depth) const {
     gl.ClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &depth);
 }
 
-void Framebuffer::readGlRows(int index, GLenum format, void* out, size_t bytes) const {
+void Framebuffer::readGlRows(int index, GLenum format, void* out, size_t bytes, int firstRow, int rows) const {
     const Functions& gl = api();
     if (index >= 0) gl.NamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0 + index);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    gl.ReadnPixels(0, 0, width_, height_, format, GL_FLOAT, GLsizei(bytes), out);
+    gl.ReadnPixels(0, firstRow, width_, rows < 0 ? height_ : rows, format, GL_FLOAT, GLsizei(bytes), out);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     gl.check(index >= 0 ? "reading back a colour attachment" : "reading back depth");
 }
 
-namespace {
-
-// Channel `channel` of GL rows (bottom row first, `stride` floats a pixel) as a top-row-first Image.
-Image flipRowsToImage(const float* glRows, int width, int height, int stride, int channel) {
-    Image img(width, height);
-    for (int y = 0; y < height; ++y) {
-        const float* row = glRows + size_t(height - 1 - y) * width * stride;
-        for (int x = 0; x < width; ++x) img.at(x, y) = row[size_t(x) * stride + channel];
-    }
-    return img;
-}
-
-}  // namespace
 
 std::vector<glm::vec4> Framebuffer::readRgba(int index) const {
     std::vector<glm::vec4> rows(size_t(width_) * height_);
@@ -107,20 +94,53 @@ std::vector<glm::vec4> Framebuffer::readRgba(int index) const {
     return rows;
 }
 
+std::vector<glm::vec4> Framebuffer::readRgbaRows(int index, int firstRow, int rows) const {
+    if (firstRow < 0 || rows < 0 || firstRow + rows > height_) fail(SS_ERROR_INTERNAL, "rows outside the framebuffer");
+    std::vector<glm::vec4> out(size_t(width_) * size_t(rows));
+    readGlRows(index, GL_RGBA, out.data(), out.size() * sizeof(glm::vec4), firstRow, rows);
+    return out;
+}
+
+namespace {
+
+// GL rows (bottom row first) in place to top-row-first.
+void flipRows(Image& img) {
+    const size_t w = size_t(img.width);
+    for (int y = 0; y < img.height / 2; ++y)
+        std::swap_ranges(img.pixels.begin() + ptrdiff_t(size_t(y) * w), img.pixels.begin() + ptrdiff_t(size_t(y) * w + w),
+                         img.pixels.begin() + ptrdiff_t(size_t(img.height - 1 - y) * w));
+}
+
+}  // namespace
+
 std::vector<Image> Framebuffer::readChannels(int index, int count) const {
-    static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    static const GLenum formats[] = {GL_RED, GL_GREEN, GL_BLUE};
     if (count < 1 || count > 4) fail(SS_ERROR_INTERNAL, "channel count must be 1..4");
-    std::vector<float> rows(size_t(width_) * height_ * size_t(count));
-    readGlRows(index, formats[count - 1], rows.data(), rows.size() * sizeof(float));
+    // One read-back per channel straight into its image, so the layers are the only full copy
+    // held; alpha, which a core context cannot read alone, comes from RGBA bands of ~16 MiB.
     std::vector<Image> out;
-    for (int c = 0; c < count; ++c) out.push_back(flipRowsToImage(rows.data(), width_, height_, count, c));
+    for (int c = 0; c < count; ++c) {
+        Image img(width_, height_);
+        if (c < 3) {
+            readGlRows(index, formats[c], img.pixels.data(), img.pixels.size() * sizeof(float));
+        } else {
+            const int band = std::max(1, int((size_t(16) << 20) / (sizeof(glm::vec4) * size_t(width_))));
+            for (int y = 0; y < height_; y += band) {
+                const std::vector<glm::vec4> rows = readRgbaRows(index, y, std::min(band, height_ - y));
+                for (size_t i = 0; i < rows.size(); ++i) img.pixels[size_t(y) * size_t(width_) + i] = rows[i].w;
+            }
+        }
+        flipRows(img);
+        out.push_back(std::move(img));
+    }
     return out;
 }
 
 Image Framebuffer::readDepth() const {
-    std::vector<float> rows(size_t(width_) * height_);
-    readGlRows(-1, GL_DEPTH_COMPONENT, rows.data(), rows.size() * sizeof(float));
-    return flipRowsToImage(rows.data(), width_, height_, 1, 0);
+    Image img(width_, height_);
+    readGlRows(-1, GL_DEPTH_COMPONENT, img.pixels.data(), img.pixels.size() * sizeof(float));
+    flipRows(img);
+    return img;
 }
 
 }  // namespace ss::gl

@@ -42,6 +42,9 @@ public:
 
     // All four channels of colour attachment i, top row first (missing channels read 0,0,0,1).
     std::vector<glm::vec4> readRgba(int index) const;
+    // Rows firstRow..firstRow+rows-1 of colour attachment i in GL order (bottom row first), for
+    // reading a large attachment a band at a time.
+    std::vector<glm::vec4> readRgbaRows(int index, int firstRow, int rows) const;
     // Channels 0..count-1 (count 1..4) of colour attachment i from one read-back, top row first.
     std::vector<Image> readChannels(int index, int count) const;
     // The depth attachment's [0,1] window depth as an Image, top row first.
@@ -50,8 +53,9 @@ public:
 private:
     void checkComplete() const;
     // The one glReadnPixels of this framebuffer: colour attachment `index` (depth when < 0) in
-    // `format`, GL row order (bottom row first), into `out` of `bytes`.
-    void readGlRows(int index, GLenum format, void* out, size_t bytes) const;
+    // `format`, GL row order (bottom row first), into `out` of `bytes`; all rows, or `rows` from
+    // `firstRow`.
+    void readGlRows(int index, GLenum format, void* out, size_t bytes, int firstRow = 0, int rows = -1) const;
     int width_ = 0, height_ = 0;
     FramebufferHandle fbo_;
     std::vector<Texture> colors_;

@@ -60,6 +60,35 @@ GLuint scratchTextureArray(const std::string& purpose, int width, int height, in
     return a.texture.id();
 }
 
+namespace {
+
+size_t texelBytes(GLenum format) {
+    switch (format) {
+        case GL_R32F: case GL_R32UI: case GL_R32I: case GL_RGBA8: case GL_DEPTH_COMPONENT32F: case GL_DEPTH_COMPONENT24:
+            return 4;
+        case GL_RG32F: case GL_RGBA16F: return 8;
+        default: return 16;
+    }
+}
+
+}  // namespace
+
+void trimThreadScratchTargets(size_t keepBytes) {
+    if (tScratch)
+        for (auto it = tScratch->begin(); it != tScratch->end();) {
+            size_t texel = it->second.depth ? texelBytes(it->second.depth) : 0;
+            for (GLenum c : it->second.colors) texel += texelBytes(c);
+            if (size_t(it->second.width) * size_t(it->second.height) * texel > keepBytes) it = tScratch->erase(it);
+            else ++it;
+        }
+    if (tArrays)
+        for (auto it = tArrays->begin(); it != tArrays->end();) {
+            const ScratchArray& a = it->second;
+            if (size_t(a.width) * size_t(a.height) * size_t(a.layers) * texelBytes(a.format) > keepBytes) it = tArrays->erase(it);
+            else ++it;
+        }
+}
+
 void releaseThreadScratchTargets() {
     delete tScratch;
     tScratch = nullptr;

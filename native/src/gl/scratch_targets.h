@@ -20,6 +20,10 @@ Framebuffer& scratchFramebuffer(const std::string& purpose, int width, int heigh
 // compute pass's output that is rebuilt every frame.
 GLuint scratchTextureArray(const std::string& purpose, int width, int height, int layers, GLenum format);
 
+// Deletes this thread's scratch targets larger than `keepBytes` each: between renders, so a
+// full-size target of a large render (auto leaves one per candidate) lives for one render only.
+void trimThreadScratchTargets(size_t keepBytes);
+
 // Deletes this thread's scratch targets (the render thread calls it before its context dies).
 void releaseThreadScratchTargets();
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 
 #include "core/camera.h"
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "io/json_node.h"
 #include "io/input_file.h"
 #include "io/json_reader.h"
@@ -185,13 +187,33 @@ float positiveSize(const JsonNode& n, const char* key, float fallback) {
     return v;
 }
 
-TriangleSoup readPrimitive(const JsonNode& n) {
+// What the meshes of one scene file have taken so far, against kMaxSceneTriangles and
+// kMaxSceneVertices; each mesh's share is taken before anything is allocated for it.
+struct GeometryBudget {
+    int64_t triangles = 0, vertices = 0;
+    void take(const JsonNode& n, int64_t moreTriangles, int64_t moreVertices) {
+        triangles += moreTriangles;
+        vertices += moreVertices;
+        if (triangles <= kMaxSceneTriangles && vertices <= kMaxSceneVertices) return;
+        char text[400];
+        std::snprintf(text, sizeof text,
+                      "the scene's meshes would reach %lld triangles and %lld vertices with this one, past the "
+                      "budget of %lld of each for a scene file (about %.0f GB at %.0f bytes a triangle; "
+                      "docs/reliability.md)",
+                      (long long)triangles, (long long)vertices, (long long)kMaxSceneTriangles,
+                      double(kMaxSceneTriangles) * kBudgetBytesPerTriangle / 1e9, kBudgetBytesPerTriangle);
+        n.fail(text);
+    }
+};
+
+TriangleSoup readPrimitive(const JsonNode& n, GeometryBudget& budget) {
     std::string type = n.at("type").string();
     if (type == "plane") {
         n.expectKeys({"type", "size", "size_x", "size_y", "subdivisions"});
         float size = positiveSize(n, "size", 2.0f);
-        return makePlane(positiveSize(n, "size_x", size), positiveSize(n, "size_y", size),
-                         positiveCount(n, "subdivisions", 1, 1));
+        const int k = positiveCount(n, "subdivisions", 1, 1);
+        budget.take(n, 2 * int64_t(k) * k, int64_t(k + 1) * (k + 1));
+        return makePlane(positiveSize(n, "size_x", size), positiveSize(n, "size_y", size), k);
     }
     if (type == "box") {
         n.expectKeys({"type", "size", "subdivisions"});
@@ -201,33 +223,47 @@ TriangleSoup readPrimitive(const JsonNode& n) {
             size = s.value().is_array() ? s.vec3() : glm::vec3(s.real());
             if (!(size.x > 0 && size.y > 0 && size.z > 0)) s.fail("must be greater than zero");
         }
-        return makeBox(size, positiveCount(n, "subdivisions", 1, 1));
+        const int k = positiveCount(n, "subdivisions", 1, 1);
+        budget.take(n, 12 * int64_t(k) * k, 6 * int64_t(k + 1) * (k + 1));
+        return makeBox(size, k);
     }
     if (type == "uv_sphere") {
         n.expectKeys({"type", "radius", "segments", "rings"});
-        return makeUvSphere(positiveSize(n, "radius", 1.0f), positiveCount(n, "segments", 32, 3),
-                            positiveCount(n, "rings", 16, 2));
+        const int segments = positiveCount(n, "segments", 32, 3), rings = positiveCount(n, "rings", 16, 2);
+        budget.take(n, 2 * int64_t(segments) * rings, int64_t(segments) * rings + 2);
+        return makeUvSphere(positiveSize(n, "radius", 1.0f), segments, rings);
     }
     if (type == "disk") {
         n.expectKeys({"type", "radius", "segments"});
-        return makeDisk(positiveSize(n, "radius", 1.0f), positiveCount(n, "segments", 32, 3));
+        const int segments = positiveCount(n, "segments", 32, 3);
+        budget.take(n, segments, segments + 1);
+        return makeDisk(positiveSize(n, "radius", 1.0f), segments);
     }
     if (type == "torus") {
         n.expectKeys({"type", "major_radius", "minor_radius", "major_segments", "minor_segments"});
         float major = positiveSize(n, "major_radius", 1.0f), minor = positiveSize(n, "minor_radius", 0.25f);
         if (!(minor < major)) n.fail("minor_radius must be smaller than major_radius");
-        return makeTorus(major, minor, positiveCount(n, "major_segments", 48, 3),
-                         positiveCount(n, "minor_segments", 12, 3));
+        const int u = positiveCount(n, "major_segments", 48, 3), v = positiveCount(n, "minor_segments", 12, 3);
+        budget.take(n, 2 * int64_t(u) * v, int64_t(u) * v);
+        return makeTorus(major, minor, u, v);
     }
     if (type == "cylinder") {
         n.expectKeys({"type", "radius", "depth", "segments"});
-        return makeCylinder(positiveSize(n, "radius", 1.0f), positiveSize(n, "depth", 2.0f),
-                            positiveCount(n, "segments", 32, 3));
+        const int segments = positiveCount(n, "segments", 32, 3);
+        budget.take(n, 4 * int64_t(segments), 2 * int64_t(segments) + 2);
+        return makeCylinder(positiveSize(n, "radius", 1.0f), positiveSize(n, "depth", 2.0f), segments);
     }
     n.at("type").fail("unknown primitive '" + type + "' (expected plane, box, uv_sphere, disk, torus or cylinder)");
 }
 
-TriangleSoup readGeometry(const JsonNode& n, const std::string& baseDir) {
+// The size of a mesh file as the budget sees it (0 when it cannot be told: readRaw then says why).
+int64_t tripletsIn(const JsonNode& node, const std::string& baseDir) {
+    std::error_code ec;
+    const uintmax_t bytes = fs::file_size(externalFilePath(node, baseDir), ec);
+    return ec ? 0 : int64_t(bytes / 12);
+}
+
+TriangleSoup readGeometry(const JsonNode& n, const std::string& baseDir, GeometryBudget& budget) {
     int kinds = int(n.has("positions") || n.has("triangles")) +
                 int(n.has("positions_file") || n.has("triangles_file")) + int(n.has("primitive"));
     if (kinds != 1)
@@ -236,8 +272,9 @@ TriangleSoup readGeometry(const JsonNode& n, const std::string& baseDir) {
     std::vector<float> xyz;
     std::vector<uint32_t> idx;
     if (n.has("primitive")) {
-        soup = readPrimitive(n.at("primitive"));
+        soup = readPrimitive(n.at("primitive"), budget);
     } else if (n.has("positions_file") || n.has("triangles_file")) {
+        budget.take(n, tripletsIn(n.at("triangles_file"), baseDir), tripletsIn(n.at("positions_file"), baseDir));
         xyz = readRaw<float>(n.at("positions_file"), baseDir);
         idx = readRaw<uint32_t>(n.at("triangles_file"), baseDir);
         for (size_t i = 0; i < xyz.size(); ++i)
@@ -246,6 +283,7 @@ TriangleSoup readGeometry(const JsonNode& n, const std::string& baseDir) {
                                             std::to_string(i / 3) + ") is not finite");
     } else {
         JsonNode p = n.at("positions"), t = n.at("triangles");
+        budget.take(n, int64_t(t.size() / 3), int64_t(p.size() / 3));
         xyz = p.reals();
         if (xyz.size() % 3) p.fail("has " + std::to_string(xyz.size()) + " numbers, not a multiple of 3");
         size_t count = t.size();
@@ -283,7 +321,7 @@ TriangleSoup readGeometry(const JsonNode& n, const std::string& baseDir) {
     return soup;
 }
 
-Mesh readMesh(const JsonNode& n, const std::string& baseDir) {
+Mesh readMesh(const JsonNode& n, const std::string& baseDir, GeometryBudget& budget) {
     n.expectKeys({"name", "cast", "receive", "thin", "camera_visible", "positions", "triangles", "positions_file",
                   "triangles_file", "primitive", "transform", "translate", "rotate_deg", "scale",
                   "materials", "comment"});
@@ -293,7 +331,7 @@ Mesh readMesh(const JsonNode& n, const std::string& baseDir) {
               (n.boolean("receive", true) ? SS_MESH_RECEIVE : 0u) |
               (n.boolean("thin", false) ? SS_MESH_THIN : 0u) |
               (n.boolean("camera_visible", true) ? 0u : SS_MESH_CAMERA_HIDDEN);
-    TriangleSoup soup = readGeometry(n, baseDir);
+    TriangleSoup soup = readGeometry(n, baseDir, budget);
     m.positions = std::move(soup.positions);
     m.triangles = std::move(soup.triangles);
     if (n.has("materials")) m.alpha = std::make_shared<const MeshAlpha>(readMeshAlpha(n.at("materials")));
@@ -351,8 +389,9 @@ Scene parseSceneText(const std::string& text, const std::string& baseDir, const 
         Light light = readLight(l);
         addWithPath(l, [&] { scene.addLight(std::move(light)); });
     });
+    GeometryBudget budget;
     forEachElement(r, "meshes", kMaxMeshes, [&](const JsonNode& m) {
-        Mesh mesh = readMesh(m, baseDir);
+        Mesh mesh = readMesh(m, baseDir, budget);
         addWithPath(m, [&] { scene.addMesh(std::move(mesh)); });
     });
     if (r.has("lights")) readLightLinks(r.at("lights"), scene);  // they name meshes

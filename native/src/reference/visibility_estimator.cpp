@@ -10,7 +10,11 @@
 namespace ss {
 
 float shadowRayOffset(const SurfaceHit& hit, float sceneExtent) {
-    return 4.0f * glm::dot(glm::abs(hit.normal), hit.pointError) + 1e-6f * sceneExtent;
+    // The traversal's error grows with the coordinates near the point, not with the farthest
+    // vertex: one stray vertex at 1e6 must not lift every shadow ray off its surface by a metre.
+    const glm::vec3 a = glm::abs(hit.point);
+    const float local = std::min(sceneExtent, std::max({a.x, a.y, a.z, 1.0f}));
+    return 4.0f * glm::dot(glm::abs(hit.normal), hit.pointError) + 1e-6f * local;
 }
 
 namespace {

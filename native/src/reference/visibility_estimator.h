@@ -48,7 +48,8 @@ bool lightCentreVisible(const TraceScene& scene, const LightSampler& light, cons
                         bool castShadows);
 
 // The distance a shadow ray's origin is moved along the normal: the projected rounding error
-// of the point, 4x for safety, plus 1e-6 of the scene extent for the traversal's own error.
+// of the point, 4x for safety, plus 1e-6 of the point's largest coordinate (at least 1, at most
+// the scene extent) for the traversal's own error.
 float shadowRayOffset(const SurfaceHit& hit, float sceneExtent);
 
 }  // namespace ss

@@ -15,9 +15,12 @@
 #include "gl/capabilities.h"
 #include "gl/context.h"
 #include "gl/render_thread.h"
+#include "gl/scratch_targets.h"
 #include "frame/frame.h"
 #include "methods/sparse_check.h"
 #include "renderer/refinement.h"
+#include "renderer/render_memory.h"
+#include "renderer/scene_in_range.h"
 #include "renderer/unlit_receivers.h"
 
 namespace ss {
@@ -41,8 +44,13 @@ struct Renderer::Impl {
     // scenes (coarse and full size, each with its own camera pass) and its render_passes scene
     // (one context) do not evict each other.
     static constexpr size_t kKeptScenes = 3;
+    // The CPU copy of a camera pass (sweep's) and each scratch target kept from one render to
+    // the next: up to 64 MiB (a 1920 x 720 preview's camera images, a 2048² RGBA32F target);
+    // larger ones are made again for each render instead.
+    static constexpr size_t kKeptCameraImagesBytes = size_t(64) << 20;
     std::vector<std::unique_ptr<Cached>> caches;
     CacheStats finished;  // of frames already dropped (and every method run's time)
+    ScenesInRange inRange;  // the scenes without their meshes beyond the scene range
     size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
 
     void count(const Cached& c, CacheStats& into) const {
@@ -150,6 +158,8 @@ struct Renderer::Impl {
             others -= held - c->frame->shadowMapBytes();
         }
         current.trimCache(shadowMapBudget);
+        for (const auto& c : caches) c->frame->trimCameraImages(kKeptCameraImagesBytes);
+        gl::trimThreadScratchTargets(kKeptCameraImagesBytes);
     }
 };
 
@@ -285,12 +295,16 @@ bool Renderer::sparseCheck(const Scene& scene, int lightIndex, int pixels, int s
     return out->maskedPixels() > 0;
 }
 
-Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& method,
-                        const RenderSettings& settings, std::string* methodUsed, double* estimateOut,
-                        AutoTrials* trialsOut) {
+Layers Renderer::render(const Scene& given, int lightIndex, const std::string& method,
+                        const RenderSettings& givenSettings, std::string* methodUsed, double* estimateOut,
+                        AutoTrials* trialsOut, std::vector<std::string>* warnings) {
     std::lock_guard lock(impl_->m);
-    const Camera& camera = scene.camera();  // throws when the scene has no camera
-    (void)scene.light(lightIndex);  // throws for an index out of range, before any work
+    (void)given.camera();  // throws when the scene has no camera
+    (void)given.light(lightIndex);  // throws for an index out of range, before any work
+    RenderSettings settings = givenSettings;
+    checkRenderMemory(given, lightIndex, method, settings);  // takes its own setting out
+    const Scene& scene = impl_->inRange.forRender(given, lightIndex, warnings);
+    const Camera& camera = scene.camera();
     impl_->forgetStoppedThread();
     double estimate = std::numeric_limits<double>::quiet_NaN();
     std::string name = method;
@@ -340,6 +354,11 @@ Layers Renderer::render(const Scene& scene, int lightIndex, const std::string& m
                 if (!std::isfinite(e)) return;
                 best = std::min(best, e);
                 scored.emplace(candidate, std::make_pair(e, std::move(tried)));
+                // A result the best so far is clearly better than can never be chosen (the
+                // choice below only ever moves to a clearly better one): its layers go now, so
+                // auto holds about one result, not one per candidate.
+                for (auto& [other, score] : scored)
+                    if (clearlyBetter(best, score.first)) score.second = Layers();
             };
             for (const std::string& candidate : first) attempt(candidate);
             for (const std::string& candidate : bounded) {

@@ -43,9 +43,13 @@ public:
     // other GL method when the setting "estimate_rmse=1" asks for it (a CPU method: never).
     // "auto" renders the candidates its prior keeps, then those whose lower bound leaves them a
     // chance, and keeps the one whose estimate is lowest (the cheaper on a tie).
+    // Meshes beyond the scene range (core/scene_range.h) are left out, one message each in
+    // *warnings (may be null); a light or camera beyond it, or a render past the memory budget
+    // (renderer/render_memory.h), fails before any work.
     Layers render(const Scene& scene, int lightIndex, const std::string& method,
                   const RenderSettings& settings, std::string* methodUsed,
-                  double* estimatedRmse = nullptr, AutoTrials* trials = nullptr);
+                  double* estimatedRmse = nullptr, AutoTrials* trials = nullptr,
+                  std::vector<std::string>* warnings = nullptr);
 
     // How many frames were made (one per scene id) and how often their shared passes were
     // drawn (meshUploads: meshes uploaded; traceSceneBuilds: Embree scenes built for the

@@ -23,7 +23,10 @@ bool sameDisk(const Disk& a, const Disk& b) {
 struct Key {
     Scene::LightGeometryKey geometry;
     Disk disk;
-    bool operator==(const Key& o) const { return geometry == o.geometry && sameDisk(disk, o.disk); }
+    Bounds fit;
+    bool operator==(const Key& o) const {
+        return geometry == o.geometry && sameDisk(disk, o.disk) && fit.lo == o.fit.lo && fit.hi == o.fit.hi;
+    }
 };
 
 constexpr size_t kCacheEntries = 8;
@@ -33,11 +36,10 @@ std::atomic<size_t> builds{0};
 
 // `earlier`: the last build for this light (may be null); a mesh's volumes depend only on the
 // mesh, the disk and the extrusion length, so its part is taken when all three are the same.
-std::shared_ptr<const DbufferGeometry> build(const Scene& scene, int lightIndex, const Disk& disk,
+std::shared_ptr<const DbufferGeometry> build(const Scene& scene, int lightIndex, const Disk& disk, const Bounds& all,
                                              const DbufferGeometry* earlier, const std::atomic<bool>* cancel) {
     auto g = std::make_shared<DbufferGeometry>();
     g->disk = disk;
-    Bounds all = scene.bounds();
     // Far enough that every volume reaches past every receiver: from the light to the far side
     // of the scene, twice over.
     float reach = all.empty() ? 1.0f : glm::length(all.center() - disk.centre) + all.diagonal();
@@ -73,14 +75,15 @@ std::shared_ptr<const DbufferGeometry> build(const Scene& scene, int lightIndex,
 
 }  // namespace
 
-std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex,
+std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex, const Bounds& fit,
                                                        const std::atomic<bool>* cancel) {
     Bounds casters;
     for (size_t i = 0; i < scene.meshes().size(); ++i)
         if (scene.castsFor(int(i), lightIndex))
             for (const glm::vec3& p : scene.meshes()[i].positions) casters.extend(p);
-    Key key{scene.lightGeometryKey(lightIndex),
-            dbufferDisk(scene.light(lightIndex), casters, scene.bounds())};
+    casters.lo = glm::max(casters.lo, fit.lo);
+    casters.hi = glm::min(casters.hi, fit.hi);
+    Key key{scene.lightGeometryKey(lightIndex), dbufferDisk(scene.light(lightIndex), casters, fit), fit};
     std::shared_ptr<const DbufferGeometry> earlier;  // the newest build for this light, if any
     {
         std::lock_guard<std::mutex> lock(cacheMutex);
@@ -94,7 +97,7 @@ std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int l
             if (!earlier && k == key.geometry) earlier = it->second;
         }
     }
-    auto g = build(scene, lightIndex, key.disk, earlier.get(), cancel);
+    auto g = build(scene, lightIndex, key.disk, fit, earlier.get(), cancel);
     std::lock_guard<std::mutex> lock(cacheMutex);
     cache.emplace_front(key, g);
     if (cache.size() > kCacheEntries) cache.pop_back();

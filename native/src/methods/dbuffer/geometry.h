@@ -32,7 +32,9 @@ struct DbufferGeometry {
 // rebuild after moves or mesh edits takes the volumes of every mesh whose version is unchanged
 // from the last build for the same light, disk and extrusion length (meshesReused).
 // Throws ss::Error(SS_ERROR_CANCELLED) between meshes once `cancel` is set.
-std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex,
+// `fit`: the box the volumes must reach across and a sun's disk is placed from (the scene's
+// bounds, or Frame::shadowFitBounds: never a far outlier's extent); part of the key.
+std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex, const Bounds& fit,
                                                        const std::atomic<bool>* cancel = nullptr);
 
 // How many times volumes were really built (not found in the cache) since the process started.

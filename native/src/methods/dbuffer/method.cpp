@@ -85,12 +85,12 @@ public:
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         settings.report(0.0f, "silhouettes and volumes");
-        geometry_ = dbufferGeometry(frame.scene(), lightIndex, settings.cancel);
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex, frame.shadowFitBounds(lightIndex), settings.cancel);
     }
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         // A cache hit when prepare() ran for this light (the cache keys on scene and light).
-        geometry_ = dbufferGeometry(frame.scene(), lightIndex, settings.cancel);
+        geometry_ = dbufferGeometry(frame.scene(), lightIndex, frame.shadowFitBounds(lightIndex), settings.cancel);
         const DbufferGeometry& geo = *geometry_;
         const gl::Functions& g = frame.gl();
         // finish_stages (benchmark): glFinish at each stage so the progress marks time the GPU.
@@ -111,7 +111,7 @@ public:
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
         settings.report(0.3f, "D-buffer pass");
         const bool firstExit = settings.choice("umbra_rule", "first_exit", {"first_exit", "farthest"}) == "first_exit";
-        const DbufferKey key{frame.scene().lightGeometryKey(lightIndex), map.size, firstExit, paper};
+        const DbufferKey key{frame.scene().lightGeometryKey(lightIndex), map.size, firstExit, paper, map.worldToClip()};
         if (dbufferKey_ && *dbufferKey_ == key) {
             ++stats_.lightWorkKept;
         } else {
@@ -179,6 +179,7 @@ private:
         Scene::LightGeometryKey geometry;
         int mapSize = 0;
         bool firstExit = true, paper = false;
+        glm::mat4 mapView{1.0f};  // a map fit around what the camera sees moves with it
         bool operator==(const DbufferKey&) const = default;
     };
 

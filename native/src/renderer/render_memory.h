@@ -1,0 +1,19 @@
+// Whether a render fits the memory budget (core/memory_budget.h), checked before any work.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+#include <string>
+
+#include "core/scene.h"
+#include "core/settings.h"
+
+namespace ss {
+
+// The setting every method (and auto) takes: the memory a render may need, in MiB; 0 (the
+// default): the machine's physical memory.
+inline constexpr const char* kMemoryLimitKey = "memory_limit_mb";
+
+// Takes kMemoryLimitKey out of `settings` and throws ss::Error(SS_ERROR_INVALID_ARGUMENT) when
+// the render's budget (renderPeakBytes) is over the limit, with both figures in the message.
+void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& method, RenderSettings& settings);
+
+}  // namespace ss
