@@ -38,7 +38,7 @@ double meanV(const fs::path& exr, const std::string& method) {
 
 // 1. A positions_file holding 1e30, and an inline scene inside the documented 1e15 bound
 // (positions 1e15 scaled 1e15), aborted with reference and auto.
-TEST(Issue29, N05_FarCoordinatesInSceneFilesRenderTheRestWithAWarning) {
+TEST(CliRangeMemory, FarCoordinatesInSceneFilesRenderTheRestWithAWarning) {
     fs::path dir = tempDir("i29_05");
     const float xyz[9] = {-2, 2, 0.1f, 1e30f, 2, 0.1f, -2, 2.5f, 0.1f};
     const uint32_t tri[3] = {0, 1, 2};
@@ -65,7 +65,7 @@ TEST(Issue29, N05_FarCoordinatesInSceneFilesRenderTheRestWithAWarning) {
 
 // 3. A 7 KB scene file (100 boxes of 2048 subdivisions) grew to tens of GB; a resolution past
 // the memory budget rendered until the kernel stepped in.
-TEST(Issue29, N06_ScenesAndResolutionsPastTheBudgetAreRefusedUpFront) {
+TEST(CliRangeMemory, ScenesAndResolutionsPastTheBudgetAreRefusedUpFront) {
     fs::path dir = tempDir("i29_06");
     std::string boxes;
     for (int i = 0; i < 100; ++i)

@@ -123,7 +123,7 @@ bool has(const std::string& text, const std::string& fragment) { return text.fin
 // 1. One vertex at 1e30 (or an object scaled 1e30) aborted in Embree (ray.valid()) with the
 // reference and auto: the mesh is now skipped, named in the result's warnings, and the rest of
 // the scene renders exactly as it does without it.
-TEST(Issue29, N01_MeshBeyondTheSceneRangeIsSkippedAndNamed) {
+TEST(LibraryRangeMemory, MeshBeyondTheSceneRangeIsSkippedAndNamed) {
     Context ctx;
     Scene clean(48, 36), far(48, 36), scaled(48, 36);
     far.addTet("Far", 1e30f);
@@ -155,7 +155,7 @@ TEST(Issue29, N01_MeshBeyondTheSceneRangeIsSkippedAndNamed) {
 // 2. One stray vertex far out (inside the range) spread every shadow map over its own extent:
 // shadow_map and dbuffer were lit everywhere (mean 1.000 where the truth is lower), and it
 // lifted the reference's shadow rays off their surfaces by a millionth of its distance.
-TEST(Issue29, N02_OneFarVertexDoesNotSpreadTheShadowMaps) {
+TEST(LibraryRangeMemory, OneFarVertexDoesNotSpreadTheShadowMaps) {
     Context ctx;
     const glm::vec3 stray(2e5f, 1e5f, 3e4f);
     Scene scene(64, 48, &stray);
@@ -185,7 +185,7 @@ TEST(Issue29, N02_OneFarVertexDoesNotSpreadTheShadowMaps) {
 
 // 2b. A light at 1e30 gave a pass lit everywhere and no word: it is refused, named; the scene's
 // other lights render.
-TEST(Issue29, N03_LightBeyondTheSceneRangeIsRefusedByName) {
+TEST(LibraryRangeMemory, LightBeyondTheSceneRangeIsRefusedByName) {
     Context ctx;
     Scene scene(32, 24);
     ss_light_desc far = diskLight("Faraway", {1e30f, 0.0f, 4.0f});
@@ -201,7 +201,7 @@ TEST(Issue29, N03_LightBeyondTheSceneRangeIsRefusedByName) {
 
 // 3. Memory went far past the documented budget at 8192²: the budget is now worked out before
 // any work, and a render past the limit is refused with both figures.
-TEST(Issue29, N04_RenderPastTheMemoryLimitIsRefusedUpFront) {
+TEST(LibraryRangeMemory, RenderPastTheMemoryLimitIsRefusedUpFront) {
     Context ctx;
     Scene scene(1024, 1024);
     for (const char* method : {"shadow_map", "auto", "reference"}) {
