@@ -124,7 +124,10 @@ def _render_job(live, edits, camera, cancelled, coarse=False, refine=False, prog
 def _stage_settings(method, coarse, refine):
     """The settings string of one light's render in a stage. The viewport cannot wait for auto to
     render every candidate: it takes auto's rule by the light's shape (docs/methods/README.md)."""
-    parts = ["check_pixels=0"] if method == "auto" else [COARSE_SETTINGS[method]] if coarse and method in COARSE_SETTINGS else []
+    if method == "auto":
+        parts = ["check_pixels=0"]
+    else:
+        parts = [COARSE_SETTINGS[method]] if coarse and method in COARSE_SETTINGS else []
     if refine:
         parts.append(REFINE_SETTINGS)
     return ";".join(parts) or None

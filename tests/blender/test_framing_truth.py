@@ -46,7 +46,8 @@ def _border_pixels():
 
 def _only(result, light="Key"):
     keys = [k for k in result if k[0] == light]
-    sstest.check(len(keys) == 1, "one pass for %s: %s (problems %s)" % (light, list(result), ss.render_passes.last_problems))
+    sstest.check(len(keys) == 1,
+                 "one pass for %s: %s (problems %s)" % (light, list(result), ss.render_passes.last_problems))
     return result[keys[0]]
 
 
@@ -162,13 +163,14 @@ def test_second_view_layer_has_its_own_collections_and_flags_and_matches_cycles(
     passes = {layer.name: _only(ss.render_passes(scene, view_layer=layer.name)) for layer in (first, other)}
     sstest.check(ss.render_passes.last_problems == [], "clean: %s" % ss.render_passes.last_problems)
     through_card = sstest.pixel_of(scene, (1.5, 0.0, 2.5))
-    sstest.check(passes["ViewLayer"][through_card] > 0.95, "ViewLayer sees the lit card: %.3f" % passes["ViewLayer"][through_card])
+    sstest.check(passes["ViewLayer"][through_card] > 0.95,
+                 "ViewLayer sees the lit card: %.3f" % passes["ViewLayer"][through_card])
     sstest.check(passes["Other"][through_card] < 0.05, "Other sees the umbra through the Indirect Only card: %.3f"
                  % passes["Other"][through_card])
     second_shadow = sstest.pixel_of(scene, (1.0, -2.4, 0.0))
     sstest.check(passes["Other"][second_shadow] < 0.05 < 0.95 < passes["ViewLayer"][second_shadow],
-                 "the Extra plate shadows Other only: %.3f vs %.3f" % (passes["Other"][second_shadow],
-                                                                   passes["ViewLayer"][second_shadow]))
+                 "the Extra plate shadows Other only: %.3f vs %.3f"
+                 % (passes["Other"][second_shadow], passes["ViewLayer"][second_shadow]))
     default = _only(ss.render_passes(scene))
     sstest.check(float(np.abs(default - passes["ViewLayer"]).max()) <= 0.05, "the default is the context's layer")
     for layer in (first, other):
@@ -183,7 +185,8 @@ def test_second_view_layer_has_its_own_collections_and_flags_and_matches_cycles(
     scene.softshadow.output_path = os.path.join(folder, "{view_layer}_####.exr")
     for layer in (first, other):
         path, problems, _ = ss.api.render_frame(scene, view_layer=layer)
-        sstest.check(path and os.path.basename(path) == "%s_0001.exr" % layer.name, "%s: %s %s" % (layer.name, path, problems))
+        sstest.check(path and os.path.basename(path) == "%s_0001.exr" % layer.name,
+                     "%s: %s %s" % (layer.name, path, problems))
         written = sstest.exr_channel(path, "%s.Key_auto.V" % layer.name)
         sstest.check(cycles_truth.rmse(written, passes[layer.name], np.ones((H, W), bool)) <= 0.01,
                      "%s's file holds its own layer's pass" % layer.name)
@@ -251,8 +254,8 @@ def _plain_render(folder, blend):
                      "layers = next(n for n in tree.nodes if n.bl_idname == 'CompositorNodeRLayers')\n"
                      "output, _ = compat.compositor_output(tree, bpy.types)\n"
                      "tree.links.new(layers.outputs['Image'], output.inputs['Image'])\n"
-                     "scene.render.filepath = %r\n" % (os.path.dirname(os.path.abspath(__file__)),
-                                                      os.path.join(folder, "plain_####")))
+                     "scene.render.filepath = %r\n"
+                     % (os.path.dirname(os.path.abspath(__file__)), os.path.join(folder, "plain_####")))
     run = sstest.blender_batch(folder, blend, ["--python", script, "-f", "2"])
     sstest.check(run.returncode == 0, "plain render: exit %d\n%s" % (run.returncode, run.log[-2000:]))
     return sstest.exr_rgb(os.path.join(folder, "plain_0002.exr"))
@@ -296,10 +299,11 @@ def test_a_failed_light_with_continue_leaves_the_frame_as_without_the_add_on():
     bpy.ops.wm.save_as_mainfile(filepath=blend)
     run = sstest.blender_batch(folder, blend, ["-f", "2"])
     sstest.check(run.returncode == ss.handlers.EXIT_FAILED, "Stop: exit %d\n%s" % (run.returncode, run.log[-2000:]))
-    sstest.check("frame 2" in run.stderr and "blocker_sample" in run.stderr, "names the cause:\n%s" % run.stderr[-2000:])
+    sstest.check("frame 2" in run.stderr and "blocker_sample" in run.stderr,
+                 "names the cause:\n%s" % run.stderr[-2000:])
     sstest.check(not os.path.exists(os.path.join(folder, "render_0002.exr")), "no picture")
-    sstest.check(sstest.exr_channels(os.path.join(folder, "passes", "softshadow_0002.exr")) and
-                 not any("Key_" in c for c in sstest.exr_channels(os.path.join(folder, "passes", "softshadow_0002.exr"))),
+    channels = sstest.exr_channels(os.path.join(folder, "passes", "softshadow_0002.exr"))
+    sstest.check(channels and not any("Key_" in c for c in channels),
                  "the frame's file holds Fill's pass, not Key's")
 
 
@@ -346,7 +350,8 @@ def test_the_failure_popup_starts_with_the_cause():
 
 
 def test_failure_causes_name_each_light():
-    causes = ss.handlers.failure_causes(["light 'Key' with pcss: no setting 'x'", "object 'A' skipped"], ["Key", "Fill"])
+    causes = ss.handlers.failure_causes(["light 'Key' with pcss: no setting 'x'", "object 'A' skipped"],
+                                        ["Key", "Fill"])
     sstest.check(causes == {"Key": "light 'Key' with pcss: no setting 'x'", "Fill": "no pass was produced"},
                  "%s" % causes)
 

@@ -178,8 +178,8 @@ def test_a_light_linked_receiver_gets_no_shadow_of_that_light():
         return
     scene = _scene()
     plate, post = scene.objects["Occluder"], scene.objects["Post"]
-    scene.objects["Key"].light_linking.receiver_collection = _link_collection("NoGround", [(plate, "INCLUDE"),
-                                                                                          (post, "INCLUDE")])
+    linked = [(plate, "INCLUDE"), (post, "INCLUDE")]
+    scene.objects["Key"].light_linking.receiver_collection = _link_collection("NoGround", linked)
     bpy.context.view_layer.update()
     result = ss.render_passes(scene, methods=GL_METHODS + ["reference"])
     under = sstest.pixel_of(scene, UNDER)
@@ -282,7 +282,8 @@ def _check_against_cycles(scene, what, unlink):
     print("  %s: final pass vs Cycles-%d shadow ratio: RMSE %.4f (bound %.3f; %.4f without the link)"
           % (what, CYCLES_SAMPLES, rmse, CYCLES_BOUND, unlinked))
     sstest.check(rmse <= CYCLES_BOUND, "%s: RMSE %.4f against Cycles > %.3f" % (what, rmse, CYCLES_BOUND))
-    sstest.check(unlinked > 4 * CYCLES_BOUND, "%s: without the link RMSE %.4f: the case tests nothing" % (what, unlinked))
+    sstest.check(unlinked > 4 * CYCLES_BOUND,
+                 "%s: without the link RMSE %.4f: the case tests nothing" % (what, unlinked))
     return ours, cycles
 
 

@@ -87,7 +87,8 @@ def test_coarse_then_full_and_a_newer_edit_cancels():
         fourth = preview.request_render("fourth", camera)
         _wait(lambda: (fourth, full, "full") in state.delivered or state.error, "the fourth full image")
         sstest.check(state.error == "", "the worker rendered: %s" % state.error)
-        sstest.check(not any(g == third and stage != "coarse" for g, _size, stage in state.delivered), "the stale full image was never handed over")
+        sstest.check(not any(g == third and stage != "coarse" for g, _size, stage in state.delivered),
+                     "the stale full image was never handed over")
         sstest.check((third, full) in state.cancelled, "the third full render was cancelled: %s" % state.cancelled)
         mine = [(size, stage) for g, size, stage in state.delivered if g == fourth]
         sstest.check(mine[:2] == [(coarse, "coarse"), (full, "full")], "the newer edit got coarse then full: %s" % mine)
