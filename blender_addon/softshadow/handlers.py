@@ -72,18 +72,6 @@ def _compute(scene):
         return {"": ("", ["internal error: %s: %s" % (type(exc).__name__, exc)], {}, [])}
 
 
-def _failures(layers):
-    """The causes that make a frame's passes failed: no file, or a light that got no pass."""
-    causes = []
-    for name, (path, problems, _chosen, failed) in layers.items():
-        where = "view layer '%s': " % name if name else ""
-        if not path:
-            causes.append(where + ("; ".join(problems) or "no pass file was written"))
-        elif failed:
-            causes.append(where + "no pass for light(s) %s: %s" % (", ".join(failed), "; ".join(problems)))
-    return causes
-
-
 def _stop(frame, causes):
     """Ends a background render before the frame renders: no picture from missing passes."""
     where = "before the first frame" if frame is None else "frame %d" % frame
@@ -149,7 +137,7 @@ def on_render_pre(scene, *_args):
     frame = scene.frame_current
     layers = _compute(scene)
     _record(frame, layers)
-    causes = _failures(layers)
+    causes = api.failure_causes(layers)
     if causes and bpy.app.background and scene.softshadow.on_failure == "STOP":
         _stop(frame, causes)
 

@@ -30,9 +30,10 @@ def default_template(render_filepath):
     return os.path.join(folder, SUBFOLDER, name)
 
 
-def expand(template, scene, view_layer, frame):
+def expand(template, scene, view_layer, frame, light=None):
     """The file of one frame: {scene} and {view_layer} filled in, the last # run replaced by the
-    frame padded to its length (no # run: "_####" is added before the extension)."""
+    frame padded to its length (no # run: "_####" is added before the extension). With `light`,
+    the file of that light's passes alone: its name goes before the frame number."""
     path = template.replace("{scene}", _safe(scene)).replace("{view_layer}", _safe(view_layer))
     folder, name = os.path.split(path)
     stem, ext = os.path.splitext(name)
@@ -44,7 +45,10 @@ def expand(template, scene, view_layer, frame):
         runs = list(_HASHES.finditer(stem))
     last = runs[-1]
     number = "%0*d" % (len(last.group()), frame)
-    stem = stem[:last.start()] + number + stem[last.end():]
+    before = stem[:last.start()]
+    if light is not None:
+        before += ("" if not before or before[-1] in "_.-" else "_") + _safe(light) + "_"
+    stem = before + number + stem[last.end():]
     return os.path.join(folder, stem + ext)
 
 

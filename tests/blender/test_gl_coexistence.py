@@ -66,7 +66,7 @@ def test_clean_exit_after_calls_and_a_render():
     folder = sstest.tempdir("coexist-exit")
     here = os.path.dirname(os.path.abspath(__file__))
     script = EXIT_SCRIPT % (here, os.path.join(folder, "frame.png"))
-    run = subprocess.run([bpy.app.binary_path, "--background", "--factory-startup", "--python-exit-code", "1",
+    run = subprocess.run([sstest.blender_binary(), "--background", "--factory-startup", "--python-exit-code", "1",
                           "--python-expr", script], capture_output=True, text=True, timeout=600)
     log = run.stdout + run.stderr
     sstest.check("SCRIPT-DONE" in log, "the script ran:\n%s" % log[-3000:])
