@@ -26,9 +26,11 @@ SUITES=${SOFTSHADOW_MATRIX_SUITES:-trixie sid}
 # Every Blender test but those about the source tree itself (SOFTSHADOW_LIB, package.sh, the
 # bench's scripts).
 SOURCE_ONLY=" test_register test_package test_scene_export_pure test_error_regions "
+# SOFTSHADOW_MATRIX_TESTS (test names) runs only those, everywhere.
 TESTS=()
 for t in "$ROOT"/tests/blender/test_*.py; do
   name=$(basename "$t" .py)
+  [ -z "${SOFTSHADOW_MATRIX_TESTS:-}" ] || [[ " $SOFTSHADOW_MATRIX_TESTS " == *" $name "* ]] || continue
   [[ "$SOURCE_ONLY" == *" $name "* ]] || TESTS+=("$name")
 done
 
