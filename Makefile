@@ -16,7 +16,7 @@ DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-
   libopenexr-dev libglm-dev libembree-dev libegl-dev libegl1-mesa-dev libosmesa6-dev \
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
   blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev \
-  clang-14 libclang-rt-14-dev clang-format-14 time mmdebstrap nodejs flake8
+  clang-14 libclang-rt-14-dev clang-format-14 time mmdebstrap nodejs flake8 python3-venv
 
 .PHONY: deps build demo check lint test test-native test-asan test-tsan test-blender test-matrix test-fuzz test-farm bench addon clean
 
@@ -69,8 +69,9 @@ test-farm:
 test-blender:
 	bash tests/blender/run.sh $(BUILD)
 
-# The zip in every supported Blender: the host's 3.4 and Debian trixie (4.3) / sid (5.x) root file
-# systems holding Blender and GL runtime only (built once with mmdebstrap, cached; needs root).
+# The zip in every supported Blender: the host's 3.4, Debian trixie (4.3) / sid (5.x) root file
+# systems holding Blender and GL runtime only (built once with mmdebstrap, cached; needs root),
+# and 4.2 LTS / 4.5 LTS as PyPI's bpy modules (installed once into cached virtual environments).
 test-matrix: addon
 	bash tests/matrix/run.sh dist/softshadow-$(VERSION).zip
 

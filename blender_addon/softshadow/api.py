@@ -3,7 +3,8 @@
 
 import bpy
 
-from . import cancel, compositor, mesh_cache, native, output_paths, pass_file_target, passes, replace, scene_export
+from . import (cancel, compositor, frame_ranges, mesh_cache, native, output_paths, pass_file_target, passes, replace,
+               scene_export)
 
 
 def _evaluated_depsgraph(scene, depsgraph=None):
@@ -88,12 +89,13 @@ def pass_file_template(scene):
     return bpy.path.abspath(template)
 
 
-def frame_exr_path(scene, frame=None, view_layer=None):
-    """The pass file of one frame and view layer (default: the current frame, the context's layer)."""
+def frame_exr_path(scene, frame=None, view_layer=None, light=None):
+    """The pass file of one frame and view layer (default: the current frame, the context's
+    layer); with `light`, the file of that light's passes alone (write_pass_files)."""
     frame = scene.frame_current if frame is None else frame
     if view_layer is None:
         view_layer = context_view_layer(scene)
-    return output_paths.expand(pass_file_template(scene), scene.name, view_layer.name, frame)
+    return output_paths.expand(pass_file_template(scene), scene.name, view_layer.name, frame, light)
 
 
 def _layer_depsgraph(scene, view_layer):
@@ -118,10 +120,12 @@ def render_frame(scene, depsgraph=None, progress=None, view_layer=None):
     return _render_layer(scene, view_layer, depsgraph, progress)[:3]
 
 
-def _render_layer(scene, view_layer, depsgraph=None, progress=None):
+def _render_layer(scene, view_layer, depsgraph=None, progress=None, light=None):
+    """One view layer's pass file at the current frame: every enabled light's passes, or with
+    `light` that light's alone in a file of its own (the compositor keeps reading the full file)."""
     if view_layer is None:
         view_layer = depsgraph.view_layer if depsgraph is not None else context_view_layer(scene)
-    target = frame_exr_path(scene, view_layer=view_layer)
+    target = frame_exr_path(scene, view_layer=view_layer, light=light)
     try:
         pass_file_target.prepare(target)
     except native.SoftShadowError as exc:
@@ -129,7 +133,8 @@ def _render_layer(scene, view_layer, depsgraph=None, progress=None):
     graph = depsgraph if depsgraph is not None else _layer_depsgraph(scene, view_layer)
     exported = scene_export.export(graph, scene, mode="RENDER", view_layer=view_layer,
                                    reuse=mesh_cache.render_meshes)
-    result = passes.compute(exported, extra_layers=scene.softshadow.extra_layers, keep_results=True,
+    result = passes.compute(exported, lights=None if light is None else [light],
+                            extra_layers=scene.softshadow.extra_layers, keep_results=True,
                             progress=progress, final=True)
     path = ""
     try:
@@ -140,10 +145,11 @@ def _render_layer(scene, view_layer, depsgraph=None, progress=None):
             except (OSError, native.SoftShadowError) as exc:
                 result.problems.append("cannot write the pass file %s: %s" % (target, exc))
         elif not result.problems:
-            result.problems.append("no light casts a soft-shadow pass (enable one in the light's properties)")
+            result.problems.append("no light casts a soft-shadow pass (enable one in the light's properties)"
+                                   if light is None else "light '%s' casts no shadow" % light)
     finally:
         result.close()
-    if path and _is_compositor_layer(scene, view_layer):
+    if path and light is None and _is_compositor_layer(scene, view_layer):
         problem = compositor.refresh(scene, path)
         if problem:
             result.problems.append(problem)
@@ -166,19 +172,72 @@ def remove_frame_files(scene):
         _remove_stale(frame_exr_path(scene, view_layer=layer))
 
 
-def render_frame_layers(scene):
+def render_frame_layers(scene, light=None):
     """Every rendering view layer's passes at the current frame, as the render handler needs
-    them: [(view layer name, path or '', problems, chosen, failed lights)]."""
+    them: [(view layer name, path or '', problems, chosen, failed lights)]. With `light`, that
+    light's passes alone, in files of their own."""
     layers = rendering_view_layers(scene)
     problem = output_paths.template_problem(pass_file_template(scene), len(layers))
     if problem:
         return [(layer.name, "", [problem], {}, []) for layer in layers]
     try:
-        return [(layer.name,) + tuple(_render_layer(scene, layer, progress=cancel.progress)) for layer in layers]
+        return [(layer.name,) + tuple(_render_layer(scene, layer, progress=cancel.progress, light=light))
+                for layer in layers]
     except native.SoftShadowError as exc:
         if exc.cancelled and cancel.requested():
             raise native.SoftShadowError(exc.status, "the passes were stopped: %s" % cancel.requested())
         raise
+
+
+def failure_causes(layers):
+    """Why a frame's passes failed, from {view layer: (path, problems, chosen, failed lights)}:
+    no file, or a light that got no pass. [] when the frame's passes are complete."""
+    causes = []
+    for name, (path, problems, _chosen, failed) in layers.items():
+        where = "view layer '%s': " % name if name else ""
+        if not path:
+            causes.append(where + ("; ".join(problems) or "no pass file was written"))
+        elif failed:
+            causes.append(where + "no pass for light(s) %s: %s" % (", ".join(failed), "; ".join(problems)))
+    return causes
+
+
+class PassesFailed(RuntimeError):
+    """Some frames of write_pass_files got no complete pass file; the message names each."""
+
+
+def write_pass_files(scene, frames, lights=None):
+    """Only the passes, nothing rendered: for each frame, each rendering view layer's pass file
+    as a render of that frame writes it (a compositor can iterate on shadows without re-rendering).
+
+    frames: a range such as '1-12', '3, 5-7' or '1..4', or frame numbers.
+    lights: None (every light whose pass is enabled: the render's own files), or light names:
+    each light's passes in a file of its own (its name before the frame number), so that farm
+    tasks sharing one frame's lights never write the same file.
+    Every frame is tried; returns [(frame, view layer name, path)] of the files written, or
+    raises PassesFailed naming each frame whose passes failed (ValueError for a bad range,
+    native.LibraryUnavailable without the library). The scene is left at its current frame."""
+    wanted = frame_ranges.parse(frames)
+    names = [None] if lights is None else ([lights] if isinstance(lights, str) else list(lights))
+    if not native.available():
+        raise native.LibraryUnavailable(native.status()["error"])
+    written, causes = [], []
+    original = scene.frame_current
+    try:
+        for frame in wanted:
+            scene.frame_set(frame)
+            for light in names:
+                layers = {row[0]: row[1:] for row in render_frame_layers(scene, light)}
+                written += [(frame, name, row[0]) for name, row in layers.items() if row[0]]
+                for cause in failure_causes(layers):
+                    causes.append("frame %d: %s" % (frame, cause))
+    finally:
+        scene.frame_set(original)
+    for frame, name, path in written:
+        print("softshadow: frame %d: wrote %s" % (frame, path))
+    if causes:
+        raise PassesFailed("the passes failed: " + " | ".join(causes))
+    return written
 
 
 def export_scene_file(scene, path, depsgraph=None):

@@ -72,18 +72,6 @@ def _compute(scene):
         return {"": ("", ["internal error: %s: %s" % (type(exc).__name__, exc)], {}, [])}
 
 
-def _failures(layers):
-    """The causes that make a frame's passes failed: no file, or a light that got no pass."""
-    causes = []
-    for name, (path, problems, _chosen, failed) in layers.items():
-        where = "view layer '%s': " % name if name else ""
-        if not path:
-            causes.append(where + ("; ".join(problems) or "no pass file was written"))
-        elif failed:
-            causes.append(where + "no pass for light(s) %s: %s" % (", ".join(failed), "; ".join(problems)))
-    return causes
-
-
 def _stop(frame, causes):
     """Ends a background render before the frame renders: no picture from missing passes."""
     where = "before the first frame" if frame is None else "frame %d" % frame
@@ -100,7 +88,7 @@ def _enabled(scene):
     return props is not None and props.enabled
 
 
-def failure_causes(problems, failed_lights):
+def failed_light_causes(problems, failed_lights):
     """{light: the problem that names it} for each light that got no pass."""
     causes = {}
     for light in failed_lights:
@@ -114,7 +102,7 @@ def _record(frame, layers):
     for name, (path, layer_problems, layer_chosen, layer_failed) in layers.items():
         problems += layer_problems
         chosen.update(layer_chosen)
-        failed.update(failure_causes(layer_problems, layer_failed))
+        failed.update(failed_light_causes(layer_problems, layer_failed))
         if path:
             paths.append(path)
     last_report.clear()
@@ -165,7 +153,7 @@ def on_render_pre(scene, *_args):
     frame = scene.frame_current
     layers = _compute(scene)
     _record(frame, layers)
-    causes = _failures(layers)
+    causes = api.failure_causes(layers)
     if causes and bpy.app.background and scene.softshadow.on_failure == "STOP":
         _stop(frame, causes)
 

@@ -32,10 +32,11 @@ def default_template(render_filepath):
     return os.path.join(folder, SUBFOLDER, name)
 
 
-def expand(template, scene, view_layer, frame):
+def expand(template, scene, view_layer, frame, light=None):
     """The file of one frame: the template's last # run replaced by the frame padded to its
     length (no # run: "_####" is added before the extension), then {scene} and {view_layer}
-    filled in. Names go in last, so a '#' or a '.exr' in a name stays text."""
+    filled in. Names go in last, so a '#' or a '.exr' in a name stays text. With `light`, the
+    file of that light's passes alone: its name goes before the frame number."""
     folder, name = os.path.split(template)
     stem, ext = os.path.splitext(name)
     if ext.lower() != ".exr":
@@ -46,11 +47,13 @@ def expand(template, scene, view_layer, frame):
         runs = list(_HASHES.finditer(stem))
     last = runs[-1]
     number = "%0*d" % (len(last.group()), frame)
-    stem = stem[:last.start()] + number + stem[last.end():]
 
     def fill(text):
         return text.replace("{scene}", _safe(scene)).replace("{view_layer}", _safe(view_layer))
-    return os.path.join(fill(folder), fill(stem) + ext)
+    before, after = fill(stem[:last.start()]), fill(stem[last.end():])
+    if light is not None:
+        before += ("" if not before or before[-1] in "_.-" else "_") + _safe(light) + "_"
+    return os.path.join(fill(folder), before + number + after + ext)
 
 
 def template_problem(template, view_layer_count):

@@ -154,6 +154,11 @@ class SoftShadowSceneSettings(bpy.types.PropertyGroup):
         return api.render_passes(self.id_data, lights=lights, methods=methods, extra_layers=extra_layers,
                                  final=final, view_layer=view_layer)
 
+    def write_pass_files(self, frames, lights=None):
+        """Only the pass files of `frames` ('1-12'), nothing rendered: see api.write_pass_files."""
+        from . import api
+        return api.write_pass_files(self.id_data, frames, lights=lights)
+
     def passes_problems(self):
         """What the last render_passes call left out, and why."""
         from . import api

@@ -1,14 +1,20 @@
 // What a Flamenco 3 Manager runs to render a .blend with soft-shadow passes: chunked Blender
-// render tasks with the softshadow add-on enabled, each failing when a frame's passes fail.
+// render tasks with the softshadow add-on enabled, each failing when a frame's passes fail; or,
+// passes only, chunked tasks that write the pass files without rendering (one per light if asked).
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// Install: copy this file into the Manager's `scripts/` folder and restart the Manager; the job
-// type "Blender Render with Soft Shadows" appears in the Blender add-on's submission panel.
-// Each task runs:
+// Install: copy this file into the Manager's `scripts/` folder (the Manager reads that folder
+// again whenever job types are asked for: no restart); the job type "Blender Render with Soft
+// Shadows" (named softshadow-blender-render after this file) appears in the Blender add-on's
+// submission panel after its job types are refreshed. Each render task runs:
 //   blender -b -y FILE.blend --python-exit-code 3 --addons ADDON_MODULE
 //           --python-expr CHECK --render-output OUT --render-format FMT --render-frame A..B
-// and exits non-zero when the add-on is missing on the worker (CHECK) or a frame's passes fail
-// (the add-on exits 3 before that frame is rendered): Flamenco then fails the task.
+// and each passes-only task:
+//   blender -b -y FILE.blend --python-exit-code 3 --addons ADDON_MODULE --render-output OUT
+//           --python-expr "CHECK; bpy.context.scene.softshadow.write_pass_files('A-B'[, lights=[...]])"
+// Both exit non-zero when the add-on is missing on the worker (CHECK) or a frame's passes fail
+// (the add-on exits 3 before that frame is rendered; write_pass_files raises): Flamenco then
+// fails the task.
 
 const JOB_TYPE = {
     label: "Blender Render with Soft Shadows",
@@ -42,6 +48,22 @@ const JOB_TYPE = {
                 "bl_ext.user_default.softshadow)",
         },
         {
+            key: "passes_only", type: "bool", default: false, visible: "submission",
+            description: "Write only the soft-shadow pass files of the frames, rendering nothing " +
+                "(a compositor iterates on the shadows without re-rendering the frames)",
+        },
+        {
+            key: "task_per_light", type: "bool", default: false, visible: "submission",
+            description: "Passes only: one task per light and chunk, so Workers share a frame's " +
+                "lights; each light's passes go in files of their own (its name before the frame number)",
+        },
+        {
+            key: "lights", type: "string", visible: "web",
+            eval: "'\\n'.join(o.name for o in C.scene.objects if o.type == 'LIGHT' and " +
+                "getattr(getattr(o.data, 'softshadow', None), 'enabled', False))",
+            description: "The lights whose passes are enabled, one name a line (for per-light tasks)",
+        },
+        {
             key: "fail_on_pass_failure", type: "bool", default: true, visible: "submission",
             description: "Fail the task when a frame's soft-shadow passes fail (sets every " +
                 "scene's On Failure to Stop the Render)",
@@ -62,7 +84,7 @@ const EXIT_FAILED = 3;
 
 function compileJob(job) {
     const settings = job.settings;
-    if (videoFormats.indexOf(settings.format) >= 0) {
+    if (!settings.passes_only && videoFormats.indexOf(settings.format) >= 0) {
         throw `This job type renders images, not "${settings.format}": the passes are per frame`;
     }
     if (!(settings.chunk_size >= 1)) {
@@ -72,45 +94,87 @@ function compileJob(job) {
     if (!renderOutput) {
         throw "no render_output_path setting";
     }
-    for (const task of authorRenderTasks(settings, renderOutput)) {
+    if (settings.task_per_light && !settings.passes_only) {
+        throw "task_per_light needs passes_only: a render task renders all of a frame's lights";
+    }
+    const tasks = settings.passes_only ? authorPassesTasks(settings, renderOutput)
+        : authorRenderTasks(settings, renderOutput);
+    for (const task of tasks) {
         job.addTask(task);
     }
 }
 
-// The Python run on the worker before rendering: the add-on must be registered, and (by default)
-// every scene stops the render when a frame's passes fail.
+// The light names of the `lights` setting (one a line), for per-light tasks.
+function lightNames(settings) {
+    const names = String(settings.lights || "").split("\n").map((n) => n.trim()).filter((n) => n.length);
+    if (names.length === 0) {
+        throw "task_per_light: the lights setting names no light whose passes are enabled";
+    }
+    return names;
+}
+
+// The Python run on the worker first: the add-on must be registered.
+const ADDON_CHECK = "import bpy; assert hasattr(bpy.types.Scene, 'softshadow'), " +
+    "'the softshadow add-on is not installed or not enabled on this worker'";
+
+// Before rendering: the add-on check, and (by default) every scene stops the render when a
+// frame's passes fail.
 function workerCheck(settings) {
-    const lines = [
-        "import bpy",
-        "assert hasattr(bpy.types.Scene, 'softshadow'), 'the softshadow add-on is not installed or not enabled on this worker'",
-    ];
+    const lines = [ADDON_CHECK];
     if (settings.fail_on_pass_failure !== false) {
         lines.push("[setattr(s.softshadow, 'on_failure', 'STOP') for s in bpy.data.scenes]");
     }
     return lines.join("; ");
 }
 
+// One Blender run on the worker: the file, its scene, the add-on enabled, then `args`.
+function blenderCommand(settings, args) {
+    const sceneArgs = settings.scene ? ["--scene", settings.scene] : [];
+    return author.Command("blender-render", {
+        exe: "{blender}",
+        exeArgs: "{blenderArgs}",
+        argsBefore: [],
+        blendfile: settings.blendfile,
+        args: sceneArgs.concat([
+            "--python-exit-code", String(EXIT_FAILED),
+            "--addons", settings.addon_module || "softshadow",
+        ], args),
+    });
+}
+
 function authorRenderTasks(settings, renderOutput) {
     const tasks = [];
-    const chunks = frameChunker(settings.frames, settings.chunk_size);
-    const sceneArgs = settings.scene ? ["--scene", settings.scene] : [];
-    for (const chunk of chunks) {
+    for (const chunk of frameChunker(settings.frames, settings.chunk_size)) {
         const task = author.Task(`render-${chunk}`, "blender");
-        task.addCommand(author.Command("blender-render", {
-            exe: "{blender}",
-            exeArgs: "{blenderArgs}",
-            argsBefore: [],
-            blendfile: settings.blendfile,
-            args: sceneArgs.concat([
-                "--python-exit-code", String(EXIT_FAILED),
-                "--addons", settings.addon_module || "softshadow",
-                "--python-expr", workerCheck(settings),
-                "--render-output", renderOutput,
-                "--render-format", settings.format,
-                "--render-frame", chunk.replaceAll("-", ".."), // Blender's range notation
-            ]),
-        }));
+        task.addCommand(blenderCommand(settings, [
+            "--python-expr", workerCheck(settings),
+            "--render-output", renderOutput,
+            "--render-format", settings.format,
+            "--render-frame", chunk.replaceAll("-", ".."), // Blender's range notation
+        ]));
         tasks.push(task);
+    }
+    return tasks;
+}
+
+// Passes only: the render output still decides where the pass files go (beside the frames,
+// unless the file sets its own template); nothing renders, as no frame is asked of Blender.
+// JSON string literals are Python string literals too.
+function authorPassesTasks(settings, renderOutput) {
+    const tasks = [];
+    const lights = settings.task_per_light ? lightNames(settings) : [null];
+    for (const chunk of frameChunker(settings.frames, settings.chunk_size)) {
+        for (const light of lights) {
+            const name = light === null ? `passes-${chunk}` : `passes-${chunk}-${light}`;
+            const lightArg = light === null ? "" : `, lights=[${JSON.stringify(light)}]`;
+            const task = author.Task(name, "blender");
+            task.addCommand(blenderCommand(settings, [
+                "--render-output", renderOutput,
+                "--python-expr", ADDON_CHECK +
+                    `; bpy.context.scene.softshadow.write_pass_files(${JSON.stringify(chunk)}${lightArg})`,
+            ]));
+            tasks.push(task);
+        }
     }
     return tasks;
 }

@@ -263,13 +263,19 @@ def flat_white_workbench(scene):
     scene.render.image_settings.file_format = "PNG"
 
 
+def blender_binary():
+    """The Blender a test starts as a child: this one. Over the bpy module (tests/matrix/bpy.sh),
+    whose bpy.app.binary_path is empty, the wrapper that runs it names itself here."""
+    return os.environ.get("SOFTSHADOW_BLENDER") or bpy.app.binary_path
+
+
 def blender_batch(folder, blend, args, env=None, argv=None):
     """`blender -b blend <the add-on> args...`, or `blender -b argv...` as given, with the add-on
     reachable the way this Blender loads it -> CompletedProcess (stdout+stderr in .log)."""
     addon_args, full_env = child_blender(folder)
     full_env.update(env or {})
     tail = list(argv) if argv is not None else [blend] + addon_args + list(args)
-    run = subprocess.run([bpy.app.binary_path, "-b"] + tail, capture_output=True, text=True,
+    run = subprocess.run([blender_binary(), "-b"] + tail, capture_output=True, text=True,
                          env=full_env, timeout=900)
     run.log = run.stdout + run.stderr
     return run

@@ -217,7 +217,7 @@ def test_flamenco_tasks_run_and_fail_as_a_worker_would():
                              "render_output_path": out, "fail_on_pass_failure": True,
                              "blendfile": blend, "format": "PNG", "scene": scene.name,
                              "addon_module": sstest.child_blender(folder)[0][1]})
-    sstest.check([t["name"] for t in tasks] == ["render-2-3", "render-4"], "chunks: %s" % tasks)
+    sstest.check([t["name"] for t in tasks] == ["render-2,3", "render-4"], "chunks: %s" % tasks)
     for task in tasks:
         run = _run_task(folder, task)
         sstest.check(run.returncode == 0, "%s: exit %d\n%s" % (task["name"], run.returncode, run.log[-3000:]))

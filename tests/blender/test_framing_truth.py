@@ -349,9 +349,9 @@ def test_the_failure_popup_starts_with_the_cause():
                  and "blocker_sample" in first, "the first line gives the cause: %s" % outcome)
 
 
-def test_failure_causes_name_each_light():
-    causes = ss.handlers.failure_causes(["light 'Key' with pcss: no setting 'x'", "object 'A' skipped"],
-                                        ["Key", "Fill"])
+def test_failed_light_causes_name_each_light():
+    causes = ss.handlers.failed_light_causes(["light 'Key' with pcss: no setting 'x'", "object 'A' skipped"],
+                                             ["Key", "Fill"])
     sstest.check(causes == {"Key": "light 'Key' with pcss: no setting 'x'", "Fill": "no pass was produced"},
                  "%s" % causes)
 

@@ -57,7 +57,7 @@ def test_extension_validates():
     if not (ZIP and EXTENSIONS):
         print("   (no zip or Blender < 4.2: nothing to validate)")
         return
-    run = subprocess.run([bpy.app.binary_path, "--background", "--factory-startup", "--command",
+    run = subprocess.run([sstest.blender_binary(), "--background", "--factory-startup", "--command",
                           "extension", "validate", ZIP], capture_output=True, text=True, timeout=300)
     out = run.stdout + run.stderr
     sstest.check(run.returncode == 0 and "Success" in out, "extension validate:\n%s" % out[-2000:])

@@ -9,7 +9,6 @@ import zipfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sstest  # noqa: E402
-import bpy  # noqa: E402
 
 INSTALL = r"""
 import os, bpy, addon_utils
@@ -93,7 +92,7 @@ def test_zip_installs_and_loads_bundled_library():
     env = {k: v for k, v in os.environ.items() if k not in ("SOFTSHADOW_LIB", "PYTHONPATH")}
     env["BLENDER_USER_SCRIPTS"] = os.path.join(folder, "scripts")
     env["BLENDER_USER_CONFIG"] = os.path.join(folder, "config")
-    run = subprocess.run([bpy.app.binary_path, "--background", "--factory-startup", "--python-expr",
+    run = subprocess.run([sstest.blender_binary(), "--background", "--factory-startup", "--python-expr",
                           INSTALL % zip_path], capture_output=True, text=True, env=env, timeout=300)
     out = run.stdout + run.stderr
     installed = os.path.join(folder, "scripts", "addons", "softshadow", "lib", "libsoftshadow.so")

@@ -78,7 +78,7 @@ print("DONE")
 
 def test_status_without_library():
     env = dict(os.environ, SOFTSHADOW_LIB="/nonexistent/dir/libsoftshadow.so")
-    out = subprocess.run([bpy.app.binary_path, "--background", "--factory-startup", "--python-expr",
+    out = subprocess.run([sstest.blender_binary(), "--background", "--factory-startup", "--python-expr",
                           SCRIPT_WITHOUT_LIBRARY % sstest.ADDON_PATH],
                          capture_output=True, text=True, env=env, timeout=300).stdout
     lines = dict((line + " ").split(" ", 1) for line in out.splitlines()
