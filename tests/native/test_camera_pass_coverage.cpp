@@ -34,7 +34,7 @@ GBuffer read(const gl::Framebuffer& fb) {
 // The camera pass drawn the plain way: every triangle of every mesh, one indexed draw per mesh
 // (tests/shaders/camera/every_triangle.frag.glsl).
 GBuffer drawEveryTriangle(Frame& frame, const Camera& cam) {
-    gl::Framebuffer fb(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RGBA32F}, GL_DEPTH_COMPONENT32F);
+    gl::Framebuffer fb(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RG32F}, GL_DEPTH_COMPONENT32F);  // as the camera pass
     fb.bind();
     fb.clearColor(0, glm::vec4(0.0f));
     fb.clearColor(1, glm::vec4(0.0f));
