@@ -25,7 +25,7 @@ def _render_exr(scene, path):
     return sstest.exr_rgb(path).mean(axis=2)
 
 
-def shadow_ratio(scene, light, samples=64, layer=""):
+def shadow_ratio(scene, light, samples=256, layer=""):
     """(ratio, lit) for `light` (an object) as Cycles renders the scene's camera (of view layer
     `layer`, default the first that renders): ratio per pixel (row 0 = top), lit where it is
     defined. The scene's settings are put back."""
