@@ -124,7 +124,7 @@ def test_a_read_only_mount_is_an_output_error():
     blend = os.path.join(folder, "ro.blend")
     bpy.ops.wm.save_as_mainfile(filepath=blend)
     addon_args, env = sstest.child_blender(folder)
-    command = " ".join("'%s'" % a for a in [bpy.app.binary_path, "-b", blend] + addon_args + ["-f", "1"])
+    command = " ".join("'%s'" % a for a in [sstest.blender_binary(), "-b", blend] + addon_args + ["-f", "1"])
     run = subprocess.run(["unshare", "-rm", "sh", "-c", "mount -t tmpfs -o ro tmpfs '%s' && exec %s" % (
         os.path.join(folder, "ro"), command)], capture_output=True, text=True, env=env, timeout=600)
     log = run.stdout + run.stderr
@@ -176,7 +176,7 @@ def test_sigterm_during_the_pass_file_write_leaves_no_temporary_file():
     addon_args, env = sstest.child_blender(folder)
     passes = os.path.join(folder, "passes")
     for sig in (signal.SIGTERM, signal.SIGKILL):
-        child = subprocess.Popen([bpy.app.binary_path, "-b", blend] + addon_args + ["-f", "1"], env=env,
+        child = subprocess.Popen([sstest.blender_binary(), "-b", blend] + addon_args + ["-f", "1"], env=env,
                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         seen = []
         deadline = time.time() + 600
