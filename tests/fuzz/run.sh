@@ -19,8 +19,8 @@ FLAGS=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recov
        -DSS_VERSION="\"$VERSION\"" -I"$ROOT/native/src" -I"$ROOT/native/include"
        $(pkg-config --cflags OpenEXR))
 LIBS=("$BUILD/libsoftshadow_static.a" -lembree3 $(pkg-config --libs OpenEXR) -ldl -pthread)
-CORE=("$ROOT"/native/src/core/{names,scene,light,camera,mesh}.cpp)
-SCENE=("$ROOT"/native/src/io/{scene_file,json_node,json_reader,input_file,primitives}.cpp)
+CORE=("$ROOT"/native/src/core/{names,scene,light,light_links,camera,mesh,mesh_alpha,scene_range,memory_budget}.cpp)
+SCENE=("$ROOT"/native/src/io/{scene_file,scene_file_materials,scene_file_links,json_node,json_reader,input_file,primitives}.cpp)
 EXR=("$ROOT"/native/src/io/{exr_file,exr_limits,input_file,atomic_file}.cpp)
 
 build() {  # name sources...
