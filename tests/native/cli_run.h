@@ -2,16 +2,22 @@
 // "softshadow: error:" line, the fragments it must name.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <iterator>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -42,6 +48,35 @@ inline CliRun cli(const std::string& args) {
     r.err.assign(std::istreambuf_iterator<char>(e), {});
     fs::remove(errFile);
     return r;
+}
+
+// A CLI run stopped by a signal while it writes: started with `args` (argv after the program),
+// sent `signal` as soon as `writing()` sees its temporary file, then waited for.
+struct SignalledRun {
+    pid_t pid = 0;
+    bool signalled = false;  // false: the run ended before its temporary file was seen
+    int status = 0;
+};
+
+inline SignalledRun signalWhileWriting(std::vector<std::string> args, int signal, const std::function<bool()>& writing) {
+    args.insert(args.begin(), SS_CLI_PATH);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    SignalledRun run;
+    if (posix_spawn(&run.pid, SS_CLI_PATH, nullptr, nullptr, argv.data(), environ) != 0) return run;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (std::chrono::steady_clock::now() < deadline) {
+        if (writing()) {
+            run.signalled = true;
+            kill(run.pid, signal);
+            break;
+        }
+        if (waitpid(run.pid, &run.status, WNOHANG) == run.pid) return run;
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    waitpid(run.pid, &run.status, 0);
+    return run;
 }
 
 inline fs::path tempDir(const std::string& name) {

@@ -101,28 +101,12 @@ TEST(CliNamesFilesLimits, DocumentedSideLimitIsTheOneChecked) {
 TEST(CliNamesFilesLimits, AKilledWritersTemporaryFileGoesAtTheNextWrite) {
     fs::path dir = tempDir("i29_05");
     writeFile(dir / "big.json", scene(disk("Key"), 4096, 4096));
-    std::string scenePath = (dir / "big.json").string(), outPath = (dir / "out.exr").string();
-    std::vector<std::string> args = {SS_CLI_PATH, "render", scenePath, "-m", "shadow_map", "-o", outPath};
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    ASSERT_EQ(posix_spawn(&pid, SS_CLI_PATH, nullptr, nullptr, argv.data(), environ), 0);
-    bool sawTemp = false;
-    auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    int status = 0;
-    while (std::chrono::steady_clock::now() < deadline) {
-        if (!temporaryFiles(dir).empty()) {
-            sawTemp = true;
-            kill(pid, SIGKILL);
-            break;
-        }
-        if (waitpid(pid, &status, WNOHANG) == pid) break;
-        std::this_thread::sleep_for(std::chrono::microseconds(200));
-    }
-    if (sawTemp) waitpid(pid, &status, 0);
-    ASSERT_TRUE(sawTemp) << "the write finished before the test saw its temporary file";
-    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+    SignalledRun run = signalWhileWriting(
+        {"render", (dir / "big.json").string(), "-m", "shadow_map", "-o", (dir / "out.exr").string()}, SIGKILL,
+        [&] { return !temporaryFiles(dir).empty(); });
+    const pid_t pid = run.pid;
+    ASSERT_TRUE(run.signalled) << "the write finished before the test saw its temporary file";
+    ASSERT_TRUE(WIFSIGNALED(run.status) && WTERMSIG(run.status) == SIGKILL);
     std::vector<fs::path> left = temporaryFiles(dir);
     ASSERT_EQ(left.size(), 1u);
     EXPECT_FALSE(fs::exists(dir / "out.exr"));  // the final name never holds a half file

@@ -263,28 +263,11 @@ TEST(CliReliability, SignalsRemoveTemporaryFilesAndLongNamesWork) {
     // A big EXR takes long enough to write that SIGTERM lands while its temporary file exists.
     writeFile(dir / "big.json", sceneJson(disk("Key"), 4096, 4096));
     writeFile(dir / "out.exr", "old");
-    std::string scenePath = (dir / "big.json").string(), outPath = (dir / "out.exr").string();
-    std::vector<std::string> args = {SS_CLI_PATH, "render", scenePath, "-m", "shadow_map", "-o", outPath};
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    ASSERT_EQ(posix_spawn(&pid, SS_CLI_PATH, nullptr, nullptr, argv.data(), environ), 0);
-    bool sawTemp = false;
-    auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    int status = 0;
-    while (std::chrono::steady_clock::now() < deadline) {
-        if (hasTemporaryFile(dir)) {
-            sawTemp = true;
-            kill(pid, SIGTERM);
-            break;
-        }
-        if (waitpid(pid, &status, WNOHANG) == pid) break;
-        std::this_thread::sleep_for(std::chrono::microseconds(200));
-    }
-    if (sawTemp) waitpid(pid, &status, 0);
-    ASSERT_TRUE(sawTemp) << "the write finished before the test saw its temporary file";
-    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+    SignalledRun run = signalWhileWriting(
+        {"render", (dir / "big.json").string(), "-m", "shadow_map", "-o", (dir / "out.exr").string()}, SIGTERM,
+        [&] { return hasTemporaryFile(dir); });
+    ASSERT_TRUE(run.signalled) << "the write finished before the test saw its temporary file";
+    EXPECT_TRUE(WIFSIGNALED(run.status) && WTERMSIG(run.status) == SIGTERM);
     EXPECT_FALSE(hasTemporaryFile(dir));
     EXPECT_EQ(readFile(dir / "out.exr"), "old");
     fs::remove_all(dir);
