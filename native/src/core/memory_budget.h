@@ -24,10 +24,10 @@ inline constexpr double kBudgetBytesPerPixelCpu = 24.0;
 // normals, edge adjacency, then GPU buffers (shadow_map: 376 measured) or the Embree BVH
 // (reference: 435 measured).
 inline constexpr double kBudgetBytesPerTriangle = 440.0;
-// What a scene file may build in all (primitives, inline and external meshes), checked before
-// anything is allocated for it (16.8M: about 7.4 GB by kBudgetBytesPerTriangle).
+// What a scene file may build in all (primitives, inline and external meshes), triangles and
+// vertices each, checked before anything is allocated for it (16.8M: about 7.4 GB by
+// kBudgetBytesPerTriangle).
 inline constexpr int64_t kMaxSceneTriangles = int64_t(1) << 24;
-inline constexpr int64_t kMaxSceneVertices = int64_t(1) << 24;
 
 enum class BudgetKind { Gl, Auto, Cpu };
 double renderPeakBytes(BudgetKind kind, int64_t pixels, int64_t triangles, int shadowMapSize);

@@ -187,21 +187,23 @@ float positiveSize(const JsonNode& n, const char* key, float fallback) {
     return v;
 }
 
-// What the meshes of one scene file have taken so far, against kMaxSceneTriangles and
-// kMaxSceneVertices; each mesh's share is taken before anything is allocated for it.
+// What the meshes of one scene file have taken so far, against a limit of triangles and of
+// vertices (kMaxSceneTriangles for users); each mesh's share is taken before anything is
+// allocated for it.
 struct GeometryBudget {
+    int64_t limit = kMaxSceneTriangles;
     int64_t triangles = 0, vertices = 0;
     void take(const JsonNode& n, int64_t moreTriangles, int64_t moreVertices) {
         triangles += moreTriangles;
         vertices += moreVertices;
-        if (triangles <= kMaxSceneTriangles && vertices <= kMaxSceneVertices) return;
+        if (triangles <= limit && vertices <= limit) return;
         char text[400];
         std::snprintf(text, sizeof text,
                       "the scene's meshes would reach %lld triangles and %lld vertices with this one, past the "
                       "budget of %lld of each for a scene file (about %.0f GB at %.0f bytes a triangle; "
                       "docs/reliability.md)",
-                      (long long)triangles, (long long)vertices, (long long)kMaxSceneTriangles,
-                      double(kMaxSceneTriangles) * kBudgetBytesPerTriangle / 1e9, kBudgetBytesPerTriangle);
+                      (long long)triangles, (long long)vertices, (long long)limit,
+                      double(limit) * kBudgetBytesPerTriangle / 1e9, kBudgetBytesPerTriangle);
         n.fail(text);
     }
 };
@@ -361,7 +363,8 @@ void forEachElement(const JsonNode& n, const char* key, size_t most, F&& read) {
 
 }  // namespace
 
-Scene parseSceneText(const std::string& text, const std::string& baseDir, const std::string& shownName) {
+Scene parseSceneText(const std::string& text, const std::string& baseDir, const std::string& shownName,
+                     int64_t maxGeometry) {
     std::string where = "scene '" + shownName + "'";
     nlohmann::json root = parseJsonStrict(text, where);
     JsonNode r(root, where, "");
@@ -389,7 +392,7 @@ Scene parseSceneText(const std::string& text, const std::string& baseDir, const 
         Light light = readLight(l);
         addWithPath(l, [&] { scene.addLight(std::move(light)); });
     });
-    GeometryBudget budget;
+    GeometryBudget budget{maxGeometry};
     forEachElement(r, "meshes", kMaxMeshes, [&](const JsonNode& m) {
         Mesh mesh = readMesh(m, baseDir, budget);
         addWithPath(m, [&] { scene.addMesh(std::move(mesh)); });

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/memory_budget.h"
 #include "core/scene.h"
 
 namespace ss {
@@ -24,7 +25,10 @@ inline constexpr size_t kMaxMeshes = 100000;
 Scene loadSceneFile(const std::string& path);
 
 // The same from text; `baseDir` resolves external mesh files, `shownName` is used in messages.
-Scene parseSceneText(const std::string& text, const std::string& baseDir, const std::string& shownName);
+// `maxGeometry` bounds the triangles and the vertices of all meshes together (each, checked
+// before allocating); the fuzzer passes a smaller one so that every accepted input stays fast.
+Scene parseSceneText(const std::string& text, const std::string& baseDir, const std::string& shownName,
+                     int64_t maxGeometry = kMaxSceneTriangles);
 
 // Writes the scene (lights and camera as matrices) atomically. Meshes with more than
 // `inlineVertexLimit` vertices go to raw little-endian files next to it
