@@ -3,8 +3,8 @@
 
 import bpy
 
-from . import (cancel, compositor, frame_ranges, mesh_cache, native, output_paths, pass_file_target, passes, replace,
-               scene_export)
+from . import (cancel, compositor, frame_ranges, mesh_cache, native, output_paths, pass_file_target, passes,
+               plain_text, replace, scene_export)
 
 
 def _evaluated_depsgraph(scene, depsgraph=None):
@@ -64,9 +64,9 @@ def render_passes(scene, lights=None, methods=None, depsgraph=None, extra_layers
     render_passes.last_chosen = dict(result.chosen)
     render_passes.last_estimates = dict(result.estimates)
     for problem in result.problems:
-        print("softshadow:", problem)
+        plain_text.log(problem)
     for (light, method), rmse in sorted(result.estimates.items()):
-        print("softshadow: %s with %s: estimated RMSE %.4f" % (light, method, rmse))
+        plain_text.log("%s with %s: estimated RMSE %.4f" % (light, method, rmse))
     return result.arrays
 
 
@@ -234,7 +234,7 @@ def write_pass_files(scene, frames, lights=None):
     finally:
         scene.frame_set(original)
     for frame, name, path in written:
-        print("softshadow: frame %d: wrote %s" % (frame, path))
+        plain_text.log("frame %d: wrote %s" % (frame, path))
     if causes:
         raise PassesFailed("the passes failed: " + " | ".join(causes))
     return written

@@ -18,7 +18,7 @@ import threading
 
 import bpy
 
-from . import api, app_handlers, compositor, native
+from . import api, app_handlers, compositor, native, plain_text
 
 # Blender exits 0 on success and 1 on its own errors (e.g. a failed --python script); 3 says
 # "the soft-shadow passes of a frame failed".
@@ -75,9 +75,8 @@ def _compute(scene):
 def _stop(frame, causes):
     """Ends a background render before the frame renders: no picture from missing passes."""
     where = "before the first frame" if frame is None else "frame %d" % frame
-    message = "softshadow: %s: the passes failed, stopping the render (exit code %d): %s" % (
-        where, EXIT_FAILED, " | ".join(causes))
-    print(message, file=sys.stderr)
+    plain_text.log("%s: the passes failed, stopping the render (exit code %d): %s" % (
+        where, EXIT_FAILED, " | ".join(causes)), file=sys.stderr)
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(EXIT_FAILED)  # (a SystemExit raised in a handler is caught and printed by Blender)
@@ -109,9 +108,9 @@ def _record(frame, layers):
     last_report.update(frame=frame, path=paths[0] if paths else "", problems=problems, chosen=chosen,
                        layers=dict(layers), failed=failed)
     for problem in problems:
-        print("softshadow: frame %d: %s" % (frame, problem))
+        plain_text.log("frame %d: %s" % (frame, problem))
     for path in paths:
-        print("softshadow: frame %d: wrote %s (%s)" % (
+        plain_text.log("frame %d: wrote %s (%s)" % (
             frame, path, ", ".join("%s: %s" % item for item in chosen.items())))
 
 
@@ -132,11 +131,11 @@ def on_render_init(scene, *_args):
     except Exception as exc:
         causes.append("internal error: %s: %s" % (type(exc).__name__, exc))
     for cause in causes:
-        print("softshadow: %s" % cause)
+        plain_text.log(cause)
     try:
         for name in compositor.unguarded_groups(scene):
-            print("softshadow: the compositor's '%s' is from an older version of the add-on: a failed "
-                  "pass would darken the frame through it; run Set Up Compositor again" % name)
+            plain_text.log("the compositor's '%s' is from an older version of the add-on: a failed "
+                           "pass would darken the frame through it; run Set Up Compositor again" % name)
     except Exception as exc:
         print("softshadow: internal error: %s: %s" % (type(exc).__name__, exc))
     if causes and bpy.app.background and scene.softshadow.on_failure == "STOP":

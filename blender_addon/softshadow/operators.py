@@ -6,18 +6,19 @@ import os
 import bpy
 
 from . import api, compositor, native, replace, scene_export
+from .plain_text import plain
 
 
 def _library_ready(op):
     if native.available():
         return True
-    op.report({"ERROR"}, "Soft Shadow: %s" % native.status()["error"])
+    op.report({"ERROR"}, plain("Soft Shadow: %s" % native.status()["error"]))
     return False
 
 
 def _report_problems(op, problems):
     for problem in problems:
-        op.report({"WARNING"}, "Soft Shadow: %s" % problem)
+        op.report({"WARNING"}, plain("Soft Shadow: %s" % problem))
 
 
 class SOFTSHADOW_OT_render_passes(bpy.types.Operator):
@@ -37,23 +38,23 @@ class SOFTSHADOW_OT_render_passes(bpy.types.Operator):
             # manager must not be touched.
             path, problems, chosen = api.render_frame(scene, context.evaluated_depsgraph_get())
         except (native.SoftShadowError, native.LibraryUnavailable) as exc:
-            self.report({"ERROR"}, "Soft Shadow: %s" % exc)
+            self.report({"ERROR"}, plain("Soft Shadow: %s" % exc))
             return {"CANCELLED"}
         except Exception as exc:
-            self.report({"ERROR"}, "Soft Shadow internal error: %s: %s" % (type(exc).__name__, exc))
+            self.report({"ERROR"}, plain("Soft Shadow internal error: %s: %s" % (type(exc).__name__, exc)))
             return {"CANCELLED"}
         finally:
             wm.progress_end()
-        scene.softshadow.last_report = "; ".join(problems)
+        scene.softshadow.last_report = plain("; ".join(problems))
         if not path:
             # The popup's first line is the first report: the cause, not only the outcome.
-            self.report({"ERROR"}, "Soft Shadow: no pass was produced: %s" % (
-                problems[0] if problems else "no light casts a soft-shadow pass"))
+            self.report({"ERROR"}, plain("Soft Shadow: no pass was produced: %s" % (
+                problems[0] if problems else "no light casts a soft-shadow pass")))
             _report_problems(self, problems[1:])
             return {"CANCELLED"}
         _report_problems(self, problems)
         methods = ", ".join("%s: %s" % item for item in chosen.items())
-        self.report({"INFO"}, "Soft Shadow: wrote %s (%s)" % (bpy.path.basename(path), methods))
+        self.report({"INFO"}, plain("Soft Shadow: wrote %s (%s)" % (bpy.path.basename(path), methods)))
         return {"FINISHED"}
 
 
@@ -69,11 +70,11 @@ class SOFTSHADOW_OT_setup_compositor(bpy.types.Operator):
         view_layer = api.compositor_view_layer(scene)
         replacing = scene.softshadow.composite == "REPLACE"
         if replacing and replace.problem(scene, view_layer):
-            self.report({"ERROR"}, "Soft Shadow: " + replace.problem(scene, view_layer))
+            self.report({"ERROR"}, plain("Soft Shadow: " + replace.problem(scene, view_layer)))
             return {"CANCELLED"}
         unframed = scene_export.frame_problem(scene)
         if unframed:  # nothing to wire: the render would get no pass
-            self.report({"ERROR"}, "Soft Shadow: the compositor was not set up: " + unframed)
+            self.report({"ERROR"}, plain("Soft Shadow: the compositor was not set up: " + unframed))
             return {"CANCELLED"}
         try:
             path = api.frame_exr_path(scene, view_layer=view_layer)
@@ -92,11 +93,11 @@ class SOFTSHADOW_OT_setup_compositor(bpy.types.Operator):
                 node, more = compositor.setup(scene, path)
                 changes += more
         except Exception as exc:
-            self.report({"ERROR"}, "Soft Shadow: compositor set-up failed: %s" % exc)
+            self.report({"ERROR"}, plain("Soft Shadow: compositor set-up failed: %s" % exc))
             return {"CANCELLED"}
-        self.report({"INFO"}, "Soft Shadow: " + ("; ".join(changes) or "the compositor was already set up"))
+        self.report({"INFO"}, plain("Soft Shadow: " + ("; ".join(changes) or "the compositor was already set up")))
         if not compositor.pass_sockets(node):
-            self.report({"INFO"}, "Soft Shadow: nodes added; passes appear after the first render")
+            self.report({"INFO"}, plain("Soft Shadow: nodes added; passes appear after the first render"))
         return {"FINISHED"}
 
 
@@ -123,13 +124,13 @@ class SOFTSHADOW_OT_export_scene(bpy.types.Operator):
             problems = api.export_scene_file(context.scene, bpy.path.abspath(self.filepath),
                                              context.evaluated_depsgraph_get())
         except (native.SoftShadowError, native.LibraryUnavailable, OSError) as exc:
-            self.report({"ERROR"}, "Soft Shadow: export failed: %s" % exc)
+            self.report({"ERROR"}, plain("Soft Shadow: export failed: %s" % exc))
             return {"CANCELLED"}
         except Exception as exc:
-            self.report({"ERROR"}, "Soft Shadow internal error: %s: %s" % (type(exc).__name__, exc))
+            self.report({"ERROR"}, plain("Soft Shadow internal error: %s: %s" % (type(exc).__name__, exc)))
             return {"CANCELLED"}
         _report_problems(self, problems)
-        self.report({"INFO"}, "Soft Shadow: exported %s" % self.filepath)
+        self.report({"INFO"}, plain("Soft Shadow: exported %s" % self.filepath))
         return {"FINISHED"}
 
 

@@ -24,7 +24,7 @@ import gpu
 import numpy as np
 from gpu_extras.presets import draw_texture_2d
 
-from . import app_handlers, compat, mesh_cache, native, passes, scene_export
+from . import app_handlers, compat, mesh_cache, native, passes, plain_text, scene_export
 
 PREVIEW_OPACITY = 0.75
 COARSE_DIVISOR = 4    # the coarse image's width and height are the full one's divided by this
@@ -370,7 +370,7 @@ def _draw_status(text):
     compat.blf_size(blf, bpy.app, font, 12)
     blf.color(font, 1.0, 1.0, 1.0, 0.9)
     blf.position(font, 12, 12, 0)
-    blf.draw(font, text)
+    blf.draw(font, plain_text.plain(text))
 
 
 def note_updates(scene, updates):

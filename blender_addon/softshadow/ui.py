@@ -3,6 +3,7 @@
 import bpy
 
 from . import handlers, native
+from .plain_text import plain
 
 
 class SoftShadowPreferences(bpy.types.AddonPreferences):
@@ -131,12 +132,12 @@ class SOFTSHADOW_PT_output(_SettingsPanel, bpy.types.Panel):
         report = handlers.last_report
         if report.get("frame") is not None:
             written = bpy.path.basename(report["path"]) or "nothing written"
-            layout.label(text="Frame %d: %s" % (report["frame"], written))
+            layout.label(text=plain("Frame %d: %s" % (report["frame"], written)))
             for light, cause in list(report.get("failed", {}).items())[:5]:
-                layout.label(text="Light '%s' failed (not shadowed in the composite): %s" % (light, cause),
+                layout.label(text=plain("Light '%s' failed (not shadowed in the composite): %s" % (light, cause)),
                              icon="ERROR")
             for problem in [p for p in report["problems"] if p not in report.get("failed", {}).values()][:5]:
-                layout.label(text=problem, icon="ERROR")
+                layout.label(text=plain(problem), icon="ERROR")
 
 
 CLASSES = (SoftShadowPreferences, SOFTSHADOW_PT_light, SOFTSHADOW_PT_output)

@@ -2,7 +2,9 @@
 # pass names collide, a camera scaled to 0, a pass file that cannot be written, names that would
 # steer the file name, a farm's SIGTERM during a write?
 # SPDX-License-Identifier: GPL-3.0-or-later
+import contextlib
 import glob
+import io
 import os
 import shutil
 import signal
@@ -60,11 +62,18 @@ def test_control_and_bidi_characters_in_a_light_name_get_the_librarys_rule():
         light = sstest.add_light(name, location=(1, 1, 6))
         light.data.softshadow.method = "shadow_map"
     bpy.context.view_layer.update()
-    arrays = ss.render_passes(scene)
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        arrays = ss.render_passes(scene)
     sstest.check(list(arrays) == [("Key", "shadow_map")], "the other light keeps its pass: %s" % list(arrays))
     refused = [p for p in ss.render_passes.last_problems if "a bidirectional formatting character" in p]
     sstest.check(len(refused) == 2 and "\\u202E" in refused[0] + refused[1] and "\\u009B" in refused[0] + refused[1],
                  "both refused, shown escaped: %s" % ss.render_passes.last_problems)
+    # The console line names the light as the user typed it, its hidden characters escaped.
+    lines = [line for line in printed.getvalue().splitlines() if "gets no pass" in line]
+    sstest.check(len(lines) == 2 and not any(c in "".join(lines) for c in "\u202e\u009b")
+                 and "'evil\\u202Etxt'" in "".join(lines),
+                 "printed without the raw characters: %r" % lines)
 
 
 def test_camera_scaled_to_zero_is_refused_cleanly():
