@@ -1,7 +1,6 @@
 // Which methods exist (the contract names), which of them `auto` may try and its fallback rule.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cmath>
-#include <functional>
 
 #include "core/error.h"
 #include "methods/method.h"
@@ -9,7 +8,7 @@
 
 namespace ss {
 
-// One factory per method, defined in that method's own file. A method not built yet has none.
+// One factory per method, defined in that method's own file.
 std::unique_ptr<Method> makeShadowMapMethod();
 std::unique_ptr<Method> makeReferenceMethod();
 std::unique_ptr<Method> makeSweepMethod();
@@ -21,7 +20,7 @@ std::unique_ptr<Method> makeDbufferMethod();
 namespace {
 struct Entry {
     const char* name;
-    std::function<std::unique_ptr<Method>()> make;  // null: not available in this build
+    std::unique_ptr<Method> (*make)();
 };
 const std::vector<Entry>& entries() {
     static const std::vector<Entry> table = {
@@ -39,10 +38,7 @@ const std::vector<Entry>& entries() {
 
 std::unique_ptr<Method> createMethod(const std::string& name) {
     for (const Entry& e : entries())
-        if (name == e.name) {
-            if (!e.make) fail(SS_ERROR_UNSUPPORTED, "method '" + name + "' is not available in this build yet");
-            return e.make();
-        }
+        if (name == e.name) return e.make();
     std::string known;
     for (const Entry& e : entries()) known += std::string(known.empty() ? "" : ", ") + e.name;
     fail(SS_ERROR_INVALID_ARGUMENT, "unknown method '" + name + "' (known: " + known + ", auto)");
