@@ -1,11 +1,14 @@
 // How the dbuffer method renders: volumes into the D-buffer from the light centre, then eq. 3 per pixel.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "gl/framebuffer.h"
@@ -74,6 +77,70 @@ void draw(const GpuSoup& s) {
     g.BindVertexArray(s.vao.id());
     g.DrawArrays(GL_TRIANGLES, 0, s.count);
     g.BindVertexArray(0);
+}
+
+// The most layers the umbra pass splits the parts into; the parts left over share the last.
+constexpr size_t kMaxUmbraLayers = 12;
+
+// Parts (meshes) whose umbra volumes' footprints in the map do not overlap, drawn together.
+struct UmbraLayer {
+    std::vector<std::pair<GLint, GLsizei>> ranges;  // vertex ranges of the umbra soup
+    std::vector<glm::ivec4> rects;                  // texel rectangles (x0, y0, x1, y1), exclusive
+    glm::ivec4 bounds{0, 0, 0, 0};
+};
+
+bool overlaps(const glm::ivec4& a, const glm::ivec4& b) {
+    return a.x < b.z && b.x < a.z && a.y < b.w && b.y < a.w;
+}
+
+// The texel rectangle an umbra soup covers in the map (the whole map when a vertex lies
+// behind its origin).
+glm::ivec4 footprint(const std::vector<VolumeVertex>& soup, size_t first, size_t count, const ShadowMap& map) {
+    const glm::mat4 m = map.worldToClip();
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (size_t i = first; i < first + count; ++i) {
+        glm::vec4 c = m * glm::vec4(soup[i].position, 1.0f);
+        if (!(c.w > 0.0f)) return {0, 0, map.size, map.size};
+        glm::vec2 ndc = glm::vec2(c) / c.w;
+        lo = glm::min(lo, ndc);
+        hi = glm::max(hi, ndc);
+    }
+    auto texel = [&](float ndc) { return std::clamp((ndc * 0.5f + 0.5f) * float(map.size), 0.0f, float(map.size)); };
+    return {int(std::floor(texel(lo.x))) - 1, int(std::floor(texel(lo.y))) - 1, int(std::ceil(texel(hi.x))) + 1,
+            int(std::ceil(texel(hi.y))) + 1};
+}
+
+// Splits the parts' umbra (or penumbra) soups into layers of non-overlapping footprints
+// (greedy, in order).
+std::vector<UmbraLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& map, bool penumbra) {
+    std::vector<UmbraLayer> layers;
+    size_t first = 0;
+    const std::vector<VolumeVertex>& all = penumbra ? geo.volumes.penumbra : geo.volumes.umbra;
+    for (const DbufferGeometry::MeshPart& part : geo.parts) {
+        const size_t count = (penumbra ? part.volumes->penumbra : part.volumes->umbra).size();
+        if (count == 0) continue;
+        const glm::ivec4 rect = footprint(all, first, count, map);
+        UmbraLayer* home = nullptr;
+        for (UmbraLayer& l : layers) {
+            bool free = true;
+            for (const glm::ivec4& r : l.rects) free = free && !overlaps(r, rect);
+            if (free) {
+                home = &l;
+                break;
+            }
+        }
+        if (!home && layers.size() < kMaxUmbraLayers) {
+            layers.emplace_back();
+            layers.back().bounds = rect;
+        }
+        if (!home) home = &layers.back();
+        home->ranges.emplace_back(GLint(first), GLsizei(count));
+        home->rects.push_back(rect);
+        home->bounds = {std::min(home->bounds.x, rect.x), std::min(home->bounds.y, rect.y),
+                        std::max(home->bounds.z, rect.z), std::max(home->bounds.w, rect.w)};
+        first += count;
+    }
+    return layers;
 }
 
 class DbufferMethod final : public Method {
@@ -209,21 +276,82 @@ private:
         vol.set("uPaperFormula", paper ? 1 : 0);
         GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
         // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
-        gl::RenderState umbraState = firstExit ? kNearest : kFarthest;
-        umbraState.channels = kUmbraChannels;
-        gl::apply(umbraState);
         vol.set("uBeyondOccluder", firstExit ? 1 : 0);
         vol.set("uExitEpsilon", kExitEpsilon);
-        target.clearDepth(firstExit ? 1.0f : 0.0f);
-        draw(umbra);
-        gl::RenderState penumbraState = kFarthest;
-        penumbraState.channels = kPenumbraChannels;
-        gl::apply(penumbraState);
-        vol.set("uBeyondOccluder", 0);
-        target.clearDepth(0.0f);
-        draw(penumbra);
+        const std::vector<UmbraLayer> layers = firstExit ? partLayers(geo, map, false) : std::vector<UmbraLayer>{};
+        if (layers.size() > 1) {
+            drawLayers(frame, map, umbra, layers, target, vol, far, false);
+            target.bind();
+            vol.use();
+        } else {
+            gl::RenderState umbraState = firstExit ? kNearest : kFarthest;
+            umbraState.channels = kUmbraChannels;
+            gl::apply(umbraState);
+            target.clearDepth(firstExit ? 1.0f : 0.0f);
+            draw(umbra);
+        }
+        vol.set("uBeyondOccluder", -1);  // in front of the first caster only (volume.frag.glsl)
+        const std::vector<UmbraLayer> penumbraLayers = firstExit ? partLayers(geo, map, true) : std::vector<UmbraLayer>{};
+        if (penumbraLayers.size() > 1) {
+            drawLayers(frame, map, penumbra, penumbraLayers, target, vol, far, true);
+        } else {
+            gl::RenderState penumbraState = kFarthest;
+            penumbraState.channels = kPenumbraChannels;
+            gl::apply(penumbraState);
+            target.clearDepth(0.0f);
+            draw(penumbra);
+        }
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("drawing the D-buffer");
+    }
+
+    // Several parts (meshes). Umbra: the ray is in the umbra while it is inside any part's umbra
+    // volume, so each part's exit is its own nearest umbra surface beyond the first caster and
+    // the D-buffer keeps the farthest of those. A single nearest exit over all parts is the exit
+    // from the first part's volume (a small part near the light leaves its own umbra within
+    // centimetres) and painted the assembly's umbra as penumbra. Penumbra: each part's last entry
+    // in front of the receiver (its farthest surface there), and of those the nearest, the part
+    // that hides most of the light; the farthest over all parts is the part whose penumbra the
+    // ray entered last, just in front of the receiver, and read almost lit. Parts whose
+    // footprints overlap go to different layers: each layer is drawn with the rule within a part
+    // into its own target, then merged into the D-buffer by the rule across parts.
+    void drawLayers(Frame& frame, const ShadowMap& map, const GpuSoup& soup, const std::vector<UmbraLayer>& layers,
+                    gl::Framebuffer& target, const gl::Program& vol, float far, bool penumbra) {
+        const gl::Functions& g = frame.gl();
+        gl::Framebuffer& layerTarget =
+            gl::scratchFramebuffer("dbuffer.part_layer", map.size, map.size, {GL_RG32F}, GL_DEPTH_COMPONENT32F);
+        const gl::Program& merge = gl::program("common/fullscreen.vert.glsl", "dbuffer/merge_layer.frag.glsl");
+        gl::RenderState within = penumbra ? kFarthest : kNearest;
+        within.channels = kUmbraChannels;
+        gl::RenderState across = penumbra ? kNearest : kFarthest;
+        across.channels = penumbra ? kPenumbraChannels : kUmbraChannels;
+        target.bind();
+        gl::apply(across);
+        target.clearDepth(penumbra ? 1.0f : 0.0f);
+        for (const UmbraLayer& layer : layers) {
+            const glm::ivec4 r = glm::clamp(layer.bounds, glm::ivec4(0), glm::ivec4(map.size));
+            if (r.z <= r.x || r.w <= r.y) continue;
+            layerTarget.bind();
+            gl::apply(within);
+            g.Enable(GL_SCISSOR_TEST);
+            g.Scissor(r.x, r.y, r.z - r.x, r.w - r.y);
+            layerTarget.clearColor(0, glm::vec4(0.0f));
+            layerTarget.clearDepth(penumbra ? 0.0f : 1.0f);
+            vol.use();
+            g.BindVertexArray(soup.vao.id());
+            for (const auto& [first, count] : layer.ranges) g.DrawArrays(GL_TRIANGLES, first, count);
+            g.BindVertexArray(0);
+            target.bind();
+            gl::apply(across);
+            g.Enable(GL_SCISSOR_TEST);
+            g.Scissor(r.x, r.y, r.z - r.x, r.w - r.y);
+            merge.use();
+            merge.setTexture("uLayer", 1, layerTarget.colorId(0));
+            merge.set("uFar", far);
+            frame.drawFullscreen();
+        }
+        g.Disable(GL_SCISSOR_TEST);
+        g.check("drawing the D-buffer's part layers");
     }
 
     std::shared_ptr<const DbufferGeometry> geometry_;
