@@ -116,8 +116,8 @@ std::vector<UmbraLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& 
     std::vector<UmbraLayer> layers;
     size_t first = 0;
     const std::vector<VolumeVertex>& all = penumbra ? geo.volumes.penumbra : geo.volumes.umbra;
-    for (const DbufferGeometry::MeshPart& part : geo.parts) {
-        const size_t count = (penumbra ? part.volumes->penumbra : part.volumes->umbra).size();
+    for (const auto& [umbraCount, penumbraCount] : geo.volumes.parts) {
+        const size_t count = penumbra ? penumbraCount : umbraCount;
         if (count == 0) continue;
         const glm::ivec4 rect = footprint(all, first, count, map);
         UmbraLayer* home = nullptr;
