@@ -24,6 +24,9 @@ uniform float uFar;       // distances are divided by it for the depth test
 // the receiver) says nothing about the receiver and made it read lit.
 uniform int uBeyondOccluder;
 uniform float uExitEpsilon;
+// The texels (x0, y0, x1, y1) where this part's surfaces count, when x1 > x0: a part drawn in a
+// layer with others is kept to its own footprint (methods/dbuffer/method.cpp, partLayers).
+uniform vec4 uPartRect;
 // Eq. 2 as printed, |cx_s| = (dir(c, x)·n / dir(c, e)·n) dist(c, e), and silhouette faces
 // storing their own distance (formula=paper).
 uniform int uPaperFormula;
@@ -56,6 +59,9 @@ void main() {
     vec3 u = toX / max(dist, 1e-30);
     float cosRay = dot(u, uNormal);
     gl_FragDepth = clamp(dist / uFar, 0.0, 1.0);
+    if (uPartRect.z > uPartRect.x && (gl_FragCoord.x < uPartRect.x || gl_FragCoord.y < uPartRect.y ||
+                                      gl_FragCoord.x > uPartRect.z || gl_FragCoord.y > uPartRect.w))
+        discard;
     if (uBeyondOccluder != 0) {
         float o = texelFetch(uShadowDistance, ivec2(gl_FragCoord.xy), 0).r;
         float here = shadowDistanceOf(vWorld);

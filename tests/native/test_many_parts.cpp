@@ -39,7 +39,7 @@ TEST(ManyParts, Explore) {
         Layers ref = renderReference(scene);
         dumpPng(std::string(v.name) + "_reference", *ref.find("V"));
         const char* only = std::getenv("ONLY");
-        for (std::string method : {"dbuffer", "dbuffer:farthest", "penumbra_map", "shadow_map", "pcss", "sweep"}) {
+        for (std::string method : {"shadow_map", "dbuffer", "dbuffer:farthest", "penumbra_map", "pcss", "sweep"}) {
             if (only && method.find(only) == std::string::npos) continue;
             auto t0 = std::chrono::steady_clock::now();
             std::map<std::string, std::string> o;

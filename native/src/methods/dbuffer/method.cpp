@@ -80,7 +80,7 @@ void draw(const GpuSoup& s) {
 }
 
 // The most layers the umbra pass splits the parts into; the parts left over share the last.
-constexpr size_t kMaxUmbraLayers = 12;
+constexpr size_t kMaxUmbraLayers = 32;
 
 // Parts (meshes) whose umbra volumes' footprints in the map do not overlap, drawn together.
 struct UmbraLayer {
@@ -93,33 +93,61 @@ bool overlaps(const glm::ivec4& a, const glm::ivec4& b) {
     return a.x < b.z && b.x < a.z && a.y < b.w && b.y < a.w;
 }
 
-// The texel rectangle an umbra soup covers in the map (the whole map when a vertex lies
-// behind its origin).
-glm::ivec4 footprint(const std::vector<VolumeVertex>& soup, size_t first, size_t count, const ShadowMap& map) {
+// The texel rectangle a part's soup covers in the map (the whole map when a vertex lies behind
+// its origin). `ownImage`: only the vertices on the part itself (the near ends of its quads and
+// its silhouette faces), for the umbra: the umbra lies inside the part's hard shadow, so a ray
+// that matters enters the part's umbra volume through the part, inside the part's own image.
+// The penumbra reaches out from it by the light's angular radius, which the far ends of the
+// penumbra volume's quads and fans mark.
+glm::ivec4 footprint(const std::vector<VolumeVertex>& soup, size_t first, size_t count, const ShadowMap& map,
+                     bool ownImage) {
     const glm::mat4 m = map.worldToClip();
     glm::vec2 lo(1e30f), hi(-1e30f);
+    auto depth = [&](const glm::vec3& p) { return glm::dot(p - map.origin, map.axis); };
     for (size_t i = first; i < first + count; ++i) {
-        glm::vec4 c = m * glm::vec4(soup[i].position, 1.0f);
+        const VolumeVertex& v = soup[i];
+        glm::vec3 p = v.position;
+        if (v.kind != float(int(VolumeKind::SilhouetteFace)) && p != v.edgeA && p != v.edgeB) {
+            if (ownImage) continue;
+            // A far end: only as far as the map's far plane, where the last receiver can be.
+            const glm::vec3 near = glm::length(p - v.edgeA) < glm::length(p - v.edgeB) ? v.edgeA : v.edgeB;
+            const float dn = depth(near), dp = depth(p);
+            if (dp > map.farPlane && dp > dn) p = near + (p - near) * ((map.farPlane - dn) / (dp - dn));
+        }
+        glm::vec4 c = m * glm::vec4(p, 1.0f);
         if (!(c.w > 0.0f)) return {0, 0, map.size, map.size};
         glm::vec2 ndc = glm::vec2(c) / c.w;
         lo = glm::min(lo, ndc);
         hi = glm::max(hi, ndc);
     }
+    if (lo.x > hi.x) return {0, 0, 0, 0};
     auto texel = [&](float ndc) { return std::clamp((ndc * 0.5f + 0.5f) * float(map.size), 0.0f, float(map.size)); };
-    return {int(std::floor(texel(lo.x))) - 1, int(std::floor(texel(lo.y))) - 1, int(std::ceil(texel(hi.x))) + 1,
-            int(std::ceil(texel(hi.y))) + 1};
+    return {int(std::floor(texel(lo.x))) - 2, int(std::floor(texel(lo.y))) - 2, int(std::ceil(texel(hi.x))) + 2,
+            int(std::ceil(texel(hi.y))) + 2};
 }
 
-// Splits the parts' umbra (or penumbra) soups into layers of non-overlapping footprints
-// (greedy, in order).
+// Splits the parts' umbra (or penumbra) soups into layers of non-overlapping footprints:
+// largest first, each into the first layer it fits.
 std::vector<UmbraLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& map, bool penumbra) {
-    std::vector<UmbraLayer> layers;
+    struct Part {
+        GLint first;
+        GLsizei count;
+        glm::ivec4 rect;
+    };
+    std::vector<Part> parts;
     size_t first = 0;
     const std::vector<VolumeVertex>& all = penumbra ? geo.volumes.penumbra : geo.volumes.umbra;
     for (const auto& [umbraCount, penumbraCount] : geo.volumes.parts) {
         const size_t count = penumbra ? penumbraCount : umbraCount;
-        if (count == 0) continue;
-        const glm::ivec4 rect = footprint(all, first, count, map);
+        if (count > 0) parts.push_back({GLint(first), GLsizei(count), footprint(all, first, count, map, !penumbra)});
+        first += count;
+    }
+    auto area = [](const glm::ivec4& r) { return int64_t(r.z - r.x) * int64_t(r.w - r.y); };
+    std::stable_sort(parts.begin(), parts.end(), [&](const Part& a, const Part& b) { return area(a.rect) > area(b.rect); });
+    std::vector<UmbraLayer> layers;
+    for (const Part& part : parts) {
+        const glm::ivec4& rect = part.rect;
+        if (area(rect) <= 0) continue;
         UmbraLayer* home = nullptr;
         for (UmbraLayer& l : layers) {
             bool free = true;
@@ -134,11 +162,10 @@ std::vector<UmbraLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& 
             layers.back().bounds = rect;
         }
         if (!home) home = &layers.back();
-        home->ranges.emplace_back(GLint(first), GLsizei(count));
+        home->ranges.emplace_back(part.first, part.count);
         home->rects.push_back(rect);
         home->bounds = {std::min(home->bounds.x, rect.x), std::min(home->bounds.y, rect.y),
                         std::max(home->bounds.z, rect.z), std::max(home->bounds.w, rect.w)};
-        first += count;
     }
     return layers;
 }
@@ -274,6 +301,7 @@ private:
         float far = glm::length(map.origin - geo.disk.centre) + map.farPlane * 2.0f + 1e-6f;
         vol.set("uFar", far);
         vol.set("uPaperFormula", paper ? 1 : 0);
+        vol.set("uPartRect", glm::vec4(0.0f));
         GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
         // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
         vol.set("uBeyondOccluder", firstExit ? 1 : 0);
@@ -339,7 +367,11 @@ private:
             layerTarget.clearDepth(penumbra ? 0.0f : 1.0f);
             vol.use();
             g.BindVertexArray(soup.vao.id());
-            for (const auto& [first, count] : layer.ranges) g.DrawArrays(GL_TRIANGLES, first, count);
+            for (size_t k = 0; k < layer.ranges.size(); ++k) {
+                vol.set("uPartRect", glm::vec4(layer.rects[k]));
+                g.DrawArrays(GL_TRIANGLES, layer.ranges[k].first, layer.ranges[k].second);
+            }
+            vol.set("uPartRect", glm::vec4(0.0f));
             g.BindVertexArray(0);
             target.bind();
             gl::apply(across);
