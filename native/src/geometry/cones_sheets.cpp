@@ -109,6 +109,9 @@ ConesSheets buildConesSheets(const Mesh& mesh, const PointSilhouette& silhouette
     // (B_b - B_a).n = C_a - C_b, so n = cos(phi) d + sin(phi) e with sin(phi) = (C_a - C_b) / L.
     // Zero where one circle holds the other (no common tangent).
     std::vector<glm::vec3> touch(silhouette.edges.size(), glm::vec3(0.0f));
+    // Vertices whose base circle lies inside the other end's of one of their edges (an edge
+    // aimed nearly at the light): that cone adds nothing the bigger one does not cover.
+    std::vector<uint8_t> inside(mesh.positions.size(), 0);
     for (size_t i = 0; i < silhouette.edges.size(); ++i) {
         if (outward[i] == glm::vec3(0.0f)) continue;
         const glm::vec3 pa = mesh.positions[silhouette.edges[i].a], pb = mesh.positions[silhouette.edges[i].b];
@@ -118,7 +121,10 @@ ConesSheets buildConesSheets(const Mesh& mesh, const PointSilhouette& silhouette
         const float len = glm::length(along);
         if (!(len > 0.0f)) continue;
         const float sinPhi = (coneRadius(light, za) - coneRadius(light, zb)) / len;
-        if (!(std::abs(sinPhi) < 1.0f)) continue;
+        if (!(std::abs(sinPhi) < 1.0f)) {
+            inside[sinPhi > 0.0f ? silhouette.edges[i].b : silhouette.edges[i].a] = 1;
+            continue;
+        }
         touch[i] = std::sqrt(1.0f - sinPhi * sinPhi) * outward[i] + sinPhi * (along / len);
     }
 
@@ -144,9 +150,10 @@ ConesSheets buildConesSheets(const Mesh& mesh, const PointSilhouette& silhouette
         float from = 0.0f, span = 2.0f * float(M_PI);
         const std::vector<uint32_t>& at = silhouette.vertices[i].edges;
         if (at.size() == 2 && touch[at[0]] != glm::vec3(0.0f) && touch[at[1]] != glm::vec3(0.0f)) {
-            // The sector runs from one tangent point to the other through the outside, which
-            // holds the mean of the two edges' outward directions (with very different radii the
-            // tangent points tilt so far that this can be the longer way round).
+            // The sector runs from one tangent point to the other the way that avoids the
+            // inside, the opposite of the mean of the two edges' outward directions (with very
+            // different radii the tangent points tilt so far that this can be the longer way round;
+            // on a smooth silhouette they tilt alike and it is the few degrees between them).
             const glm::vec3 mid = outward[at[0]] + outward[at[1]];
             const float kTwoPi = 2.0f * float(M_PI);
             auto angle = [&](const glm::vec3& d) { return std::atan2(glm::dot(d, w), glm::dot(d, u)); };
@@ -156,7 +163,7 @@ ConesSheets buildConesSheets(const Mesh& mesh, const PointSilhouette& silhouette
                 const float a0 = angle(touch[at[0]]), a1 = angle(touch[at[1]]), am = angle(mid);
                 float turn = ccw(a0, a1);
                 from = a0;
-                if (ccw(a0, am) > turn) from = a1, turn = kTwoPi - turn;
+                if (ccw(a0, am + float(M_PI)) < turn) from = a1, turn = kTwoPi - turn;
                 if (turn + step < kTwoPi) {
                     from -= 0.5f * step;
                     span = turn + step;
@@ -164,12 +171,12 @@ ConesSheets buildConesSheets(const Mesh& mesh, const PointSilhouette& silhouette
             }
         }
         const bool whole = span >= 2.0f * float(M_PI);
-        const int pieces = whole ? segments : std::max(1, int(std::ceil(span / step)));
+        const int pieces = inside[silhouette.vertices[i].vertex] ? 0 : whole ? segments : std::max(1, int(std::ceil(span / step)));
         out.coneOfVertex[i] = int(out.cones());
         out.coneFirstTriangle.push_back(uint32_t(out.triangles.size()));
         const uint32_t tip = uint32_t(out.vertices.size());
         out.vertices.push_back({v, zv});
-        const int rim = whole ? segments : pieces + 1;
+        const int rim = pieces == 0 ? 0 : whole ? segments : pieces + 1;
         for (int k = 0; k < rim; ++k) {
             float a = from + span * float(k) / float(pieces);
             out.vertices.push_back({base + radius * (std::cos(a) * u + std::sin(a) * w), zv});
