@@ -23,7 +23,8 @@ TriangleSoup boxSoup(const glm::vec3& lo, const glm::vec3& hi) {
 }
 
 // A cylinder from `a` to `b`; `caps` false leaves an open tube.
-TriangleSoup cylinderSoup(const glm::vec3& a, const glm::vec3& b, float radius, int segments, bool caps = true) {
+TriangleSoup cylinderSoup(const glm::vec3& a, const glm::vec3& b, float radius, int segments,
+                          bool caps = true) {
     const glm::vec3 axis = b - a;
     TriangleSoup s = ss::makeCylinder(radius, glm::length(axis), segments);
     if (!caps) {
@@ -48,7 +49,8 @@ TriangleSoup traySoup(const glm::vec3& lo, const glm::vec3& hi) {
     TriangleSoup s = boxSoup(lo, hi);
     std::vector<glm::uvec3> kept;
     for (const glm::uvec3& t : s.triangles) {
-        glm::vec3 n = glm::cross(s.positions[t[1]] - s.positions[t[0]], s.positions[t[2]] - s.positions[t[0]]);
+        glm::vec3 n =
+            glm::cross(s.positions[t[1]] - s.positions[t[0]], s.positions[t[2]] - s.positions[t[0]]);
         if (!(n.z > 0.0f && std::abs(n.x) < 1e-6f && std::abs(n.y) < 1e-6f)) kept.push_back(t);
     }
     s.triangles = std::move(kept);
@@ -120,7 +122,8 @@ std::vector<std::pair<std::string, TriangleSoup>> parts(int fine) {
     add("shaft", cylinderSoup({-1.1f, 0.35f, 0.98f}, {1.1f, 0.35f, 0.98f}, 0.07f, 24 * fine));
     for (int i = 0; i < 5; ++i) {
         float x = -0.6f + 0.3f * float(i);
-        add("disc" + std::to_string(i), cylinderSoup({x - 0.02f, 0.35f, 0.98f}, {x + 0.02f, 0.35f, 0.98f}, 0.22f, 32 * fine));
+        add("disc" + std::to_string(i),
+            cylinderSoup({x - 0.02f, 0.35f, 0.98f}, {x + 0.02f, 0.35f, 0.98f}, 0.22f, 32 * fine));
     }
     for (float x : {-1.06f, -0.86f, 0.86f, 1.06f})
         add("nut", cylinderSoup({x - 0.02f, 0.35f, 0.98f}, {x + 0.02f, 0.35f, 0.98f}, 0.11f, 6));
@@ -187,7 +190,8 @@ size_t assemblyParts() { return parts(1).size(); }
 Scene sceneAssembly(const AssemblyParams& p) {
     Scene s;
     s.addMesh(makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
-    s.addLight(makeDiskLight({p.scene.lightShift.x, p.scene.lightShift.y, p.scene.lightHeight}, p.scene.lightDiameter));
+    s.addLight(makeDiskLight({p.scene.lightShift.x, p.scene.lightShift.y, p.scene.lightHeight},
+                             p.scene.lightDiameter));
     Camera camera = makeTopCamera(p.scene.width, p.scene.height);
     if (p.scene.cameraZoom != 1.0f)
         camera = makeLookAtCamera({0.0f, -2.5f, 8.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f},

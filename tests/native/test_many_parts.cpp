@@ -124,19 +124,23 @@ TEST(ManyParts, PenumbraMapConesAreSectorsOnAFineSilhouette) {
         const uint32_t end = *std::upper_bound(starts.begin(), starts.end(), c);
         const glm::uvec3& first = g.triangles[c];
         const float zv = g.vertices[first[0]].zv;
-        const float r = coneRadius(PenumbraLight{map.origin, axis, penumbraMapLightRadius(light), map.nearPlane, map.farPlane}, zv);
+        const float r = coneRadius(
+            PenumbraLight{map.origin, axis, penumbraMapLightRadius(light), map.nearPlane, map.farPlane}, zv);
         wholeArea += M_PI * double(r) * double(r);
         whole += end - c >= 16;
         for (uint32_t t = c; t < end; ++t) {
-            const glm::vec3 a = g.vertices[g.triangles[t][1]].position, b = g.vertices[g.triangles[t][2]].position;
+            const glm::vec3 a = g.vertices[g.triangles[t][1]].position,
+                            b = g.vertices[g.triangles[t][2]].position;
             const glm::vec3 tip = g.vertices[g.triangles[t][0]].position;
-            const glm::vec3 base = map.origin + (tip - map.origin) * (map.farPlane / glm::dot(tip - map.origin, axis));
+            const glm::vec3 base =
+                map.origin + (tip - map.origin) * (map.farPlane / glm::dot(tip - map.origin, axis));
             coneArea += 0.5 * double(glm::length(glm::cross(a - base, b - base)));
         }
     }
     const double share = coneArea / wholeArea;
-    std::printf("[many parts] penumbra_map: %zu cones (%zu whole), %zu sheets; cone area %.3f of whole cones\n",
-                g.cones(), whole, g.sheets(), share);
+    std::printf(
+        "[many parts] penumbra_map: %zu cones (%zu whole), %zu sheets; cone area %.3f of whole cones\n",
+        g.cones(), whole, g.sheets(), share);
     EXPECT_LT(share, 0.2);
 }
 
@@ -158,7 +162,8 @@ Mesh readBinaryStl(const std::string& path, const glm::mat4& placed) {
         float v[9];
         std::memcpy(v, record + 12, sizeof v);
         const uint32_t base = uint32_t(m.positions.size());
-        for (int k = 0; k < 3; ++k) m.positions.push_back(glm::vec3(placed * glm::vec4(v[3 * k], v[3 * k + 1], v[3 * k + 2], 1.0f)));
+        for (int k = 0; k < 3; ++k)
+            m.positions.push_back(glm::vec3(placed * glm::vec4(v[3 * k], v[3 * k + 1], v[3 * k + 2], 1.0f)));
         m.triangles.push_back({base, base + 1, base + 2});
     }
     std::fclose(f);
@@ -183,7 +188,8 @@ TEST(ManyParts, DbufferOnARealCadExport) {
                        glm::scale(glm::mat4(1.0f), glm::vec3(0.1f)) *
                        glm::translate(glm::mat4(1.0f), glm::vec3(5.0f, 7.0f, 0.0f));
     Mesh board = readBinaryStl(path, placed);
-    if (board.triangles.empty()) GTEST_SKIP() << path << " is missing (Debian package openscad-testing-data, `make deps`)";
+    if (board.triangles.empty())
+        GTEST_SKIP() << path << " is missing (Debian package openscad-testing-data, `make deps`)";
     ASSERT_EQ(board.triangles.size(), 900u);
     EXPECT_GT(board.report.openEdges, 0u);
     Scene scene = sceneAssembly(viewed());

@@ -52,7 +52,8 @@ std::vector<Mesh> meshParts(const Mesh& mesh, size_t maxParts) {
         if (positions.size() < mesh.positions.size()) {
             std::vector<glm::uvec3> triangles;
             triangles.reserve(mesh.triangles.size());
-            for (const glm::uvec3& t : mesh.triangles) triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+            for (const glm::uvec3& t : mesh.triangles)
+                triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
             welded = finalized(mesh, std::move(positions), std::move(triangles));
             source = &welded;
         }
@@ -79,7 +80,8 @@ std::vector<Mesh> meshParts(const Mesh& mesh, size_t maxParts) {
     }
     std::vector<std::vector<glm::uvec3>> triangles(pieceOf.size());
     std::vector<std::vector<glm::vec3>> positions(pieceOf.size());
-    std::vector<uint32_t> local(source->positions.size(), UINT32_MAX), localPiece(source->positions.size(), UINT32_MAX);
+    std::vector<uint32_t> local(source->positions.size(), UINT32_MAX),
+        localPiece(source->positions.size(), UINT32_MAX);
     // Piece by piece, so a vertex two pieces share (they touch at a point) gets one copy in each.
     std::vector<uint32_t> order(faces);
     std::iota(order.begin(), order.end(), 0u);

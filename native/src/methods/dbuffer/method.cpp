@@ -79,12 +79,13 @@ void draw(const GpuSoup& s) {
     g.BindVertexArray(0);
 }
 
-// The most layers the umbra pass splits the parts into; the parts left over share the last.
-constexpr size_t kMaxUmbraLayers = 32;
+// The most layers the volume passes split the parts into; the parts left over share the last
+// (where the rule within a part then applies among them).
+constexpr size_t kMaxPartLayers = 32;
 
-// Parts (meshes) whose umbra volumes' footprints in the map do not overlap, drawn together.
-struct UmbraLayer {
-    std::vector<std::pair<GLint, GLsizei>> ranges;  // vertex ranges of the umbra soup
+// Parts (ShadowVolumes::parts) whose volumes' footprints in the map do not overlap, drawn together.
+struct PartLayer {
+    std::vector<std::pair<GLint, GLsizei>> ranges;  // vertex ranges of the umbra or penumbra soup
     std::vector<glm::ivec4> rects;                  // texel rectangles (x0, y0, x1, y1), exclusive
     glm::ivec4 bounds{0, 0, 0, 0};
 };
@@ -128,7 +129,7 @@ glm::ivec4 footprint(const std::vector<VolumeVertex>& soup, size_t first, size_t
 
 // Splits the parts' umbra (or penumbra) soups into layers of non-overlapping footprints:
 // largest first, each into the first layer it fits.
-std::vector<UmbraLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& map, bool penumbra) {
+std::vector<PartLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& map, bool penumbra) {
     struct Part {
         GLint first;
         GLsizei count;
@@ -144,12 +145,12 @@ std::vector<UmbraLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& 
     }
     auto area = [](const glm::ivec4& r) { return int64_t(r.z - r.x) * int64_t(r.w - r.y); };
     std::stable_sort(parts.begin(), parts.end(), [&](const Part& a, const Part& b) { return area(a.rect) > area(b.rect); });
-    std::vector<UmbraLayer> layers;
+    std::vector<PartLayer> layers;
     for (const Part& part : parts) {
         const glm::ivec4& rect = part.rect;
         if (area(rect) <= 0) continue;
-        UmbraLayer* home = nullptr;
-        for (UmbraLayer& l : layers) {
+        PartLayer* home = nullptr;
+        for (PartLayer& l : layers) {
             bool free = true;
             for (const glm::ivec4& r : l.rects) free = free && !overlaps(r, rect);
             if (free) {
@@ -157,7 +158,7 @@ std::vector<UmbraLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& 
                 break;
             }
         }
-        if (!home && layers.size() < kMaxUmbraLayers) {
+        if (!home && layers.size() < kMaxPartLayers) {
             layers.emplace_back();
             layers.back().bounds = rect;
         }
@@ -306,7 +307,7 @@ private:
         // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
         vol.set("uBeyondOccluder", firstExit ? 1 : 0);
         vol.set("uExitEpsilon", kExitEpsilon);
-        const std::vector<UmbraLayer> layers = firstExit ? partLayers(geo, map, false) : std::vector<UmbraLayer>{};
+        const std::vector<PartLayer> layers = firstExit ? partLayers(geo, map, false) : std::vector<PartLayer>{};
         if (layers.size() > 1) {
             drawLayers(frame, map, umbra, layers, target, vol, far, false);
             target.bind();
@@ -319,7 +320,7 @@ private:
             draw(umbra);
         }
         vol.set("uBeyondOccluder", -1);  // in front of the first caster only (volume.frag.glsl)
-        const std::vector<UmbraLayer> penumbraLayers = firstExit ? partLayers(geo, map, true) : std::vector<UmbraLayer>{};
+        const std::vector<PartLayer> penumbraLayers = firstExit ? partLayers(geo, map, true) : std::vector<PartLayer>{};
         if (penumbraLayers.size() > 1) {
             drawLayers(frame, map, penumbra, penumbraLayers, target, vol, far, true);
         } else {
@@ -333,17 +334,18 @@ private:
         g.check("drawing the D-buffer");
     }
 
-    // Several parts (meshes). Umbra: the ray is in the umbra while it is inside any part's umbra
-    // volume, so each part's exit is its own nearest umbra surface beyond the first caster and
-    // the D-buffer keeps the farthest of those. A single nearest exit over all parts is the exit
-    // from the first part's volume (a small part near the light leaves its own umbra within
-    // centimetres) and painted the assembly's umbra as penumbra. Penumbra: each part's last entry
-    // in front of the receiver (its farthest surface there), and of those the nearest, the part
-    // that hides most of the light; the farthest over all parts is the part whose penumbra the
-    // ray entered last, just in front of the receiver, and read almost lit. Parts whose
-    // footprints overlap go to different layers: each layer is drawn with the rule within a part
-    // into its own target, then merged into the D-buffer by the rule across parts.
-    void drawLayers(Frame& frame, const ShadowMap& map, const GpuSoup& soup, const std::vector<UmbraLayer>& layers,
+    // Several parts (ShadowVolumes::parts: meshes and their separate pieces). Umbra: the ray is
+    // in the umbra while it is inside any part's umbra volume, so each part's exit is its own
+    // nearest umbra surface beyond the first caster and the D-buffer keeps the farthest of those.
+    // A single nearest exit over all parts is the exit from the first part's volume (a small part
+    // near the light leaves its own umbra within centimetres) and painted the assembly's umbra as
+    // penumbra. Penumbra: each part's last entry in front of the receiver (its farthest surface
+    // there), and of those the nearest, the part that hides most of the light; the farthest over
+    // all parts is the part whose penumbra the ray entered last, just in front of the receiver,
+    // and read almost lit. Parts whose footprints overlap go to different layers: each layer is
+    // drawn with the rule within a part into its own target, then merged into the D-buffer by the
+    // rule across parts.
+    void drawLayers(Frame& frame, const ShadowMap& map, const GpuSoup& soup, const std::vector<PartLayer>& layers,
                     gl::Framebuffer& target, const gl::Program& vol, float far, bool penumbra) {
         const gl::Functions& g = frame.gl();
         gl::Framebuffer& layerTarget =
@@ -356,7 +358,7 @@ private:
         target.bind();
         gl::apply(across);
         target.clearDepth(penumbra ? 1.0f : 0.0f);
-        for (const UmbraLayer& layer : layers) {
+        for (const PartLayer& layer : layers) {
             const glm::ivec4 r = glm::clamp(layer.bounds, glm::ivec4(0), glm::ivec4(map.size));
             if (r.z <= r.x || r.w <= r.y) continue;
             layerTarget.bind();
