@@ -16,7 +16,8 @@ DEB_PACKAGES := build-essential cmake pkg-config libopenimageio-dev openimageio-
   libopenexr-dev libglm-dev libembree-dev libegl-dev libegl1-mesa-dev libosmesa6-dev \
   libgl1-mesa-dri libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev \
   blender python3-numpy xvfb xauth zip ccache libboost-dev libpolyclipping-dev \
-  clang-14 libclang-rt-14-dev clang-format-14 time mmdebstrap nodejs flake8 python3-venv
+  clang-14 libclang-rt-14-dev clang-format-14 time mmdebstrap nodejs flake8 python3-venv \
+  openscad-testing-data
 
 .PHONY: deps build demo check lint test test-native test-asan test-tsan test-blender test-matrix test-fuzz test-farm bench addon clean
 

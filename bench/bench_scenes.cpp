@@ -2,10 +2,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "bench_scenes.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "io/primitives.h"
 #include "softshadow/softshadow.h"
 
 namespace ss::bench {
@@ -58,6 +61,65 @@ Scene sphereOverGround(int m, uint32_t sphereFlags, LightType light, int resolut
     l.lightToWorld = glm::translate(glm::mat4(1.0f), glm::vec3(1.2f, 0.8f, 4.0f));
     l.size = 1.5f;
     l.sizeY = light == LightType::Disk ? 1.5f : 1.0f;
+    s.addLight(l);
+    s.setCamera(makeLookAtCamera({0, -2.5f, 8}, {0, 0, 0}, {0, 1, 0}, glm::radians(40.0f), resolution, resolution,
+                                 0.1f, 50.0f));
+    return s;
+}
+
+namespace {
+
+Mesh partMesh(TriangleSoup soup, const glm::mat4& placed) {
+    transformSoup(soup, placed);
+    Mesh m;
+    m.name = "part";
+    m.positions = std::move(soup.positions);
+    m.triangles = std::move(soup.triangles);
+    m.flags = SS_MESH_CAST;
+    m.finalize();
+    return m;
+}
+
+Mesh boxPart(const glm::vec3& lo, const glm::vec3& hi) {
+    return partMesh(makeBox(hi - lo, 1), glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)));
+}
+
+// A cylinder along z (up) or, with `alongX`, along x, centred at c.
+Mesh cylinderPart(const glm::vec3& c, float radius, float length, int segments, bool alongX) {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), c);
+    if (alongX) m = glm::rotate(m, glm::radians(90.0f), glm::vec3(0, 1, 0));
+    return partMesh(makeCylinder(radius, length, segments), m);
+}
+
+}  // namespace
+
+Scene assembly(int tessellation, int resolution) {
+    Scene s;
+    s.addMesh(groundSquare(6.0f));
+    const int t = std::max(1, tessellation);
+    s.addMesh(boxPart({-1.0f, -0.7f, 0.60f}, {1.0f, 0.7f, 0.68f}));
+    s.addMesh(boxPart({-1.0f, -0.7f, 0.68f}, {-0.92f, 0.7f, 1.20f}));
+    s.addMesh(boxPart({0.92f, -0.7f, 0.68f}, {1.0f, 0.7f, 1.20f}));
+    s.addMesh(cylinderPart({0.0f, 0.35f, 0.98f}, 0.07f, 2.2f, 24 * t, true));
+    for (int i = 0; i < 5; ++i) s.addMesh(cylinderPart({-0.6f + 0.3f * float(i), 0.35f, 0.98f}, 0.22f, 0.04f, 32 * t, true));
+    for (int i = 0; i < 24; ++i)
+        s.addMesh(cylinderPart({-0.8f + 0.3f * float(i % 6), -0.55f + 0.25f * float(i / 6) * 0.5f, 0.8f}, 0.04f, 0.24f,
+                               24 * t, false));
+    for (int i = 0; i < 12; ++i) {
+        float x = -0.8f + 0.14f * float(i);
+        s.addMesh(boxPart({x, -0.1f, 0.68f}, {x + 0.02f, 0.1f, 0.95f}));
+    }
+    for (int i = 0; i < 8; ++i) {
+        glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -0.6f + 0.17f * float(i), 1.32f));
+        m = glm::rotate(m, glm::radians(90.0f), glm::vec3(0, 1, 0));
+        s.addMesh(partMesh(makeCylinder(0.02f, 2.0f, 12 * t), m));
+    }
+    s.addMesh(boxPart({-1.0f, 0.05f, 1.20f}, {0.3f, 0.7f, 1.25f}));
+    Light l;
+    l.type = LightType::Disk;
+    l.name = "Disk";
+    l.lightToWorld = glm::translate(glm::mat4(1.0f), glm::vec3(1.2f, 0.8f, 4.0f));
+    l.size = l.sizeY = 1.5f;
     s.addLight(l);
     s.setCamera(makeLookAtCamera({0, -2.5f, 8}, {0, 0, 0}, {0, 1, 0}, glm::radians(40.0f), resolution, resolution,
                                  0.1f, 50.0f));

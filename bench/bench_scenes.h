@@ -31,6 +31,13 @@ Mesh groundSquare(float half);
 // from above at resolution².
 Scene sphereOverGround(int m, uint32_t sphereFlags, LightType light, int resolution);
 
+// A CAD-like assembly of 54 separate parts over a ground square, under the stage benchmarks'
+// disk light, seen from above at resolution²: a base plate, two walls standing on it, a shaft
+// through both with five discs, 24 standing pins, 12 thin fins, 8 rods across the top and a
+// cover resting on a wall, the pins, rods, shaft and discs of 24, 12, 24 and 32 segments times
+// `tessellation` (a fine CAD export: long silhouettes of short edges).
+Scene assembly(int tessellation, int resolution);
+
 // One renderer for the whole benchmark binary (GL started once); joined at exit.
 Renderer& sharedRenderer();
 

@@ -18,8 +18,15 @@ uniform float uFar;       // distances are divided by it for the depth test
 // uExitEpsilon (relative) keeps the caster's own surface out (a silhouette face that is the
 // nearest caster is drawn at the same texels and distance up to rounding) and nothing else: the
 // exit of a ray that grazes the occluder lies just behind it (see methods/dbuffer/method.cpp).
+// Penumbra pass: only surfaces in front of the first caster count (uBeyondOccluder = -1). A lit
+// receiver is the first caster on its own ray, so the farthest of them is the last penumbra
+// volume the ray entered before reaching it; one behind it (another part's volume reaching past
+// the receiver) says nothing about the receiver and made it read lit.
 uniform int uBeyondOccluder;
 uniform float uExitEpsilon;
+// The texels (x0, y0, x1, y1) where this part's surfaces count, when x1 > x0: a part drawn in a
+// layer with others is kept to its own footprint (methods/dbuffer/method.cpp, partLayers).
+uniform vec4 uPartRect;
 // Eq. 2 as printed, |cx_s| = (dir(c, x)·n / dir(c, e)·n) dist(c, e), and silhouette faces
 // storing their own distance (formula=paper).
 uniform int uPaperFormula;
@@ -52,9 +59,14 @@ void main() {
     vec3 u = toX / max(dist, 1e-30);
     float cosRay = dot(u, uNormal);
     gl_FragDepth = clamp(dist / uFar, 0.0, 1.0);
+    if (uPartRect.z > uPartRect.x && (gl_FragCoord.x < uPartRect.x || gl_FragCoord.y < uPartRect.y ||
+                                      gl_FragCoord.x > uPartRect.z || gl_FragCoord.y > uPartRect.w))
+        discard;
     if (uBeyondOccluder != 0) {
         float o = texelFetch(uShadowDistance, ivec2(gl_FragCoord.xy), 0).r;
-        if (!(shadowDistanceOf(vWorld) > o * (1.0 + uExitEpsilon))) discard;
+        float here = shadowDistanceOf(vWorld);
+        if (uBeyondOccluder > 0 && !(here > o * (1.0 + uExitEpsilon))) discard;
+        if (uBeyondOccluder < 0 && here > o * (1.0 + uExitEpsilon)) discard;
     }
 
     if (vKind == KIND_SILHOUETTE_FACE && uPaperFormula != 0) {

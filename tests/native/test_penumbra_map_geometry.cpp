@@ -68,8 +68,12 @@ TEST(PenumbraMapGeometry, ConeBaseIsACircleOnTheFarPlaneAroundTheVertexRay) {
         glm::vec3 centre = l.centre + (v - l.centre) * (10.0f / zv);
         // Circumscribed about the true circle: its vertices at r / cos(pi / n).
         float radius = 0.5f * (10.0f - zv) / zv / std::cos(float(M_PI) / 12.0f);
+        // A square's corner turns by 90 degrees: its cone is the quarter between the two sheets'
+        // tangent points, widened by half a segment (30 degrees here) each side: 4 segments.
         uint32_t t0 = g.coneFirstTriangle[c];
-        for (int k = 0; k < cs.coneSegments; ++k) {
+        uint32_t t1 = size_t(c) + 1 < g.cones() ? g.coneFirstTriangle[c + 1] : g.sheetFirstTriangle[0];
+        EXPECT_EQ(t1 - t0, 4u);
+        for (uint32_t k = 0; k < t1 - t0; ++k) {
             const glm::uvec3& t = g.triangles[t0 + k];
             EXPECT_EQ(g.vertices[t[0]].position, v);
             for (int j = 1; j < 3; ++j) {

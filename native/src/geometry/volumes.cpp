@@ -19,6 +19,7 @@ void ShadowVolumes::append(const ShadowVolumes& o) {
     multiEdgeCorners += o.multiEdgeCorners;
     openCornerEnds += o.openCornerEnds;
     insideDiskEdges += o.insideDiskEdges;
+    parts.insert(parts.end(), o.parts.begin(), o.parts.end());
 }
 
 EdgeExtrusion edgeExtrusion(const glm::vec3& v1, const glm::vec3& v2, const glm::vec3& inward,
@@ -368,6 +369,7 @@ ShadowVolumes extrudeVolumes(const Mesh& mesh, const DiskSilhouette& sil, const 
         extrudePenumbra(mesh, sil, disk, length, fanStepRadians, pen);
     }
     vol.append(pen);
+    vol.parts = {{vol.umbra.size(), vol.penumbra.size()}};
     return vol;
 }
 

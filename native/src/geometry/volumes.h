@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -39,6 +40,9 @@ struct ShadowVolumes {
     size_t multiEdgeCorners = 0; // corners (umbra and penumbra) at vertices with 3+ silhouette edges
     size_t openCornerEnds = 0;   // quad ends no partner could be found for (odd counts: open meshes)
     size_t insideDiskEdges = 0;  // edges whose line crosses the disk (open meshes only): see .cpp
+    // Per separate part, in soup order: how many umbra and penumbra vertices it has (one entry
+    // per extrudeVolumes call; append() keeps the parts apart).
+    std::vector<std::pair<size_t, size_t>> parts;
     void append(const ShadowVolumes& other);
 };
 

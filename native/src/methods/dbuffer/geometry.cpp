@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "methods/dbuffer/geometry.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstring>
@@ -10,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "geometry/mesh_parts.h"
 #include "methods/dbuffer/light.h"
 
 namespace ss {
@@ -57,12 +59,21 @@ std::shared_ptr<const DbufferGeometry> build(const Scene& scene, int lightIndex,
         if (part.volumes) {
             ++g->meshesReused;
         } else {
+            // Each separate part of the mesh (welded, then its connected pieces) has volumes of
+            // its own: the D-buffer pass keeps each part's exit apart (methods/dbuffer/method.cpp).
             auto t0 = Clock::now();
-            DiskSilhouette sil = diskSilhouette(mesh, disk);
-            g->silhouetteMs += msSince(t0);
-            auto t1 = Clock::now();
-            auto volumes = std::make_shared<ShadowVolumes>(extrudeVolumes(mesh, sil, disk, g->extrusionLength));
-            g->extrusionMs += msSince(t1);
+            const std::vector<Mesh> pieces = meshParts(mesh);
+            auto volumes = std::make_shared<ShadowVolumes>();
+            double extrusionMs = 0.0;
+            for (size_t k = 0; k < std::max<size_t>(1, pieces.size()); ++k) {
+                const Mesh& piece = pieces.empty() ? mesh : pieces[k];
+                DiskSilhouette sil = diskSilhouette(piece, disk);
+                auto t1 = Clock::now();
+                volumes->append(extrudeVolumes(piece, sil, disk, g->extrusionLength));
+                extrusionMs += msSince(t1);
+            }
+            g->silhouetteMs += msSince(t0) - extrusionMs;  // with the welding and splitting
+            g->extrusionMs += extrusionMs;
             part.volumes = std::move(volumes);
             ++g->meshesBuilt;
         }

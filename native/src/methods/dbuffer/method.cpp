@@ -1,11 +1,14 @@
 // How the dbuffer method renders: volumes into the D-buffer from the light centre, then eq. 3 per pixel.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "gl/framebuffer.h"
@@ -74,6 +77,98 @@ void draw(const GpuSoup& s) {
     g.BindVertexArray(s.vao.id());
     g.DrawArrays(GL_TRIANGLES, 0, s.count);
     g.BindVertexArray(0);
+}
+
+// The most layers the volume passes split the parts into; the parts left over share the last
+// (where the rule within a part then applies among them).
+constexpr size_t kMaxPartLayers = 32;
+
+// Parts (ShadowVolumes::parts) whose volumes' footprints in the map do not overlap, drawn together.
+struct PartLayer {
+    std::vector<std::pair<GLint, GLsizei>> ranges;  // vertex ranges of the umbra or penumbra soup
+    std::vector<glm::ivec4> rects;                  // texel rectangles (x0, y0, x1, y1), exclusive
+    glm::ivec4 bounds{0, 0, 0, 0};
+};
+
+bool overlaps(const glm::ivec4& a, const glm::ivec4& b) {
+    return a.x < b.z && b.x < a.z && a.y < b.w && b.y < a.w;
+}
+
+// The texel rectangle a part's soup covers in the map (the whole map when a vertex lies behind
+// its origin). `ownImage`: only the vertices on the part itself (the near ends of its quads and
+// its silhouette faces), for the umbra: the umbra lies inside the part's hard shadow, so a ray
+// that matters enters the part's umbra volume through the part, inside the part's own image.
+// The penumbra reaches out from it by the light's angular radius, which the far ends of the
+// penumbra volume's quads and fans mark.
+glm::ivec4 footprint(const std::vector<VolumeVertex>& soup, size_t first, size_t count, const ShadowMap& map,
+                     bool ownImage) {
+    const glm::mat4 m = map.worldToClip();
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    auto depth = [&](const glm::vec3& p) { return glm::dot(p - map.origin, map.axis); };
+    for (size_t i = first; i < first + count; ++i) {
+        const VolumeVertex& v = soup[i];
+        glm::vec3 p = v.position;
+        if (v.kind != float(int(VolumeKind::SilhouetteFace)) && p != v.edgeA && p != v.edgeB) {
+            if (ownImage) continue;
+            // A far end: only as far as the map's far plane, where the last receiver can be.
+            const glm::vec3 near = glm::length(p - v.edgeA) < glm::length(p - v.edgeB) ? v.edgeA : v.edgeB;
+            const float dn = depth(near), dp = depth(p);
+            if (dp > map.farPlane && dp > dn) p = near + (p - near) * ((map.farPlane - dn) / (dp - dn));
+        }
+        glm::vec4 c = m * glm::vec4(p, 1.0f);
+        if (!(c.w > 0.0f)) return {0, 0, map.size, map.size};
+        glm::vec2 ndc = glm::vec2(c) / c.w;
+        lo = glm::min(lo, ndc);
+        hi = glm::max(hi, ndc);
+    }
+    if (lo.x > hi.x) return {0, 0, 0, 0};
+    auto texel = [&](float ndc) { return std::clamp((ndc * 0.5f + 0.5f) * float(map.size), 0.0f, float(map.size)); };
+    return {int(std::floor(texel(lo.x))) - 2, int(std::floor(texel(lo.y))) - 2, int(std::ceil(texel(hi.x))) + 2,
+            int(std::ceil(texel(hi.y))) + 2};
+}
+
+// Splits the parts' umbra (or penumbra) soups into layers of non-overlapping footprints:
+// largest first, each into the first layer it fits.
+std::vector<PartLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& map, bool penumbra) {
+    struct Part {
+        GLint first;
+        GLsizei count;
+        glm::ivec4 rect;
+    };
+    std::vector<Part> parts;
+    size_t first = 0;
+    const std::vector<VolumeVertex>& all = penumbra ? geo.volumes.penumbra : geo.volumes.umbra;
+    for (const auto& [umbraCount, penumbraCount] : geo.volumes.parts) {
+        const size_t count = penumbra ? penumbraCount : umbraCount;
+        if (count > 0) parts.push_back({GLint(first), GLsizei(count), footprint(all, first, count, map, !penumbra)});
+        first += count;
+    }
+    auto area = [](const glm::ivec4& r) { return int64_t(r.z - r.x) * int64_t(r.w - r.y); };
+    std::stable_sort(parts.begin(), parts.end(), [&](const Part& a, const Part& b) { return area(a.rect) > area(b.rect); });
+    std::vector<PartLayer> layers;
+    for (const Part& part : parts) {
+        const glm::ivec4& rect = part.rect;
+        if (area(rect) <= 0) continue;
+        PartLayer* home = nullptr;
+        for (PartLayer& l : layers) {
+            bool free = true;
+            for (const glm::ivec4& r : l.rects) free = free && !overlaps(r, rect);
+            if (free) {
+                home = &l;
+                break;
+            }
+        }
+        if (!home && layers.size() < kMaxPartLayers) {
+            layers.emplace_back();
+            layers.back().bounds = rect;
+        }
+        if (!home) home = &layers.back();
+        home->ranges.emplace_back(part.first, part.count);
+        home->rects.push_back(rect);
+        home->bounds = {std::min(home->bounds.x, rect.x), std::min(home->bounds.y, rect.y),
+                        std::max(home->bounds.z, rect.z), std::max(home->bounds.w, rect.w)};
+    }
+    return layers;
 }
 
 class DbufferMethod final : public Method {
@@ -207,23 +302,90 @@ private:
         float far = glm::length(map.origin - geo.disk.centre) + map.farPlane * 2.0f + 1e-6f;
         vol.set("uFar", far);
         vol.set("uPaperFormula", paper ? 1 : 0);
+        vol.set("uPartRect", glm::vec4(0.0f));
         GpuSoup umbra = upload(geo.volumes.umbra), penumbra = upload(geo.volumes.penumbra);
         // Umbra volume into R, G; then penumbra volume into B, A, each with its own depth test.
-        gl::RenderState umbraState = firstExit ? kNearest : kFarthest;
-        umbraState.channels = kUmbraChannels;
-        gl::apply(umbraState);
         vol.set("uBeyondOccluder", firstExit ? 1 : 0);
         vol.set("uExitEpsilon", kExitEpsilon);
-        target.clearDepth(firstExit ? 1.0f : 0.0f);
-        draw(umbra);
-        gl::RenderState penumbraState = kFarthest;
-        penumbraState.channels = kPenumbraChannels;
-        gl::apply(penumbraState);
-        vol.set("uBeyondOccluder", 0);
-        target.clearDepth(0.0f);
-        draw(penumbra);
+        const std::vector<PartLayer> layers = firstExit ? partLayers(geo, map, false) : std::vector<PartLayer>{};
+        if (layers.size() > 1) {
+            drawLayers(frame, map, umbra, layers, target, vol, far, false);
+            target.bind();
+            vol.use();
+        } else {
+            gl::RenderState umbraState = firstExit ? kNearest : kFarthest;
+            umbraState.channels = kUmbraChannels;
+            gl::apply(umbraState);
+            target.clearDepth(firstExit ? 1.0f : 0.0f);
+            draw(umbra);
+        }
+        vol.set("uBeyondOccluder", -1);  // in front of the first caster only (volume.frag.glsl)
+        const std::vector<PartLayer> penumbraLayers = firstExit ? partLayers(geo, map, true) : std::vector<PartLayer>{};
+        if (penumbraLayers.size() > 1) {
+            drawLayers(frame, map, penumbra, penumbraLayers, target, vol, far, true);
+        } else {
+            gl::RenderState penumbraState = kFarthest;
+            penumbraState.channels = kPenumbraChannels;
+            gl::apply(penumbraState);
+            target.clearDepth(0.0f);
+            draw(penumbra);
+        }
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("drawing the D-buffer");
+    }
+
+    // Several parts (ShadowVolumes::parts: meshes and their separate pieces). Umbra: the ray is
+    // in the umbra while it is inside any part's umbra volume, so each part's exit is its own
+    // nearest umbra surface beyond the first caster and the D-buffer keeps the farthest of those.
+    // A single nearest exit over all parts is the exit from the first part's volume (a small part
+    // near the light leaves its own umbra within centimetres) and painted the assembly's umbra as
+    // penumbra. Penumbra: each part's last entry in front of the receiver (its farthest surface
+    // there), and of those the nearest, the part that hides most of the light; the farthest over
+    // all parts is the part whose penumbra the ray entered last, just in front of the receiver,
+    // and read almost lit. Parts whose footprints overlap go to different layers: each layer is
+    // drawn with the rule within a part into its own target, then merged into the D-buffer by the
+    // rule across parts.
+    void drawLayers(Frame& frame, const ShadowMap& map, const GpuSoup& soup, const std::vector<PartLayer>& layers,
+                    gl::Framebuffer& target, const gl::Program& vol, float far, bool penumbra) {
+        const gl::Functions& g = frame.gl();
+        gl::Framebuffer& layerTarget =
+            gl::scratchFramebuffer("dbuffer.part_layer", map.size, map.size, {GL_RG32F}, GL_DEPTH_COMPONENT32F);
+        const gl::Program& merge = gl::program("common/fullscreen.vert.glsl", "dbuffer/merge_layer.frag.glsl");
+        gl::RenderState within = penumbra ? kFarthest : kNearest;
+        within.channels = kUmbraChannels;
+        gl::RenderState across = penumbra ? kNearest : kFarthest;
+        across.channels = penumbra ? kPenumbraChannels : kUmbraChannels;
+        target.bind();
+        gl::apply(across);
+        target.clearDepth(penumbra ? 1.0f : 0.0f);
+        for (const PartLayer& layer : layers) {
+            const glm::ivec4 r = glm::clamp(layer.bounds, glm::ivec4(0), glm::ivec4(map.size));
+            if (r.z <= r.x || r.w <= r.y) continue;
+            layerTarget.bind();
+            gl::apply(within);
+            g.Enable(GL_SCISSOR_TEST);
+            g.Scissor(r.x, r.y, r.z - r.x, r.w - r.y);
+            layerTarget.clearColor(0, glm::vec4(0.0f));
+            layerTarget.clearDepth(penumbra ? 0.0f : 1.0f);
+            vol.use();
+            g.BindVertexArray(soup.vao.id());
+            for (size_t k = 0; k < layer.ranges.size(); ++k) {
+                vol.set("uPartRect", glm::vec4(layer.rects[k]));
+                g.DrawArrays(GL_TRIANGLES, layer.ranges[k].first, layer.ranges[k].second);
+            }
+            vol.set("uPartRect", glm::vec4(0.0f));
+            g.BindVertexArray(0);
+            target.bind();
+            gl::apply(across);
+            g.Enable(GL_SCISSOR_TEST);
+            g.Scissor(r.x, r.y, r.z - r.x, r.w - r.y);
+            merge.use();
+            merge.setTexture("uLayer", 1, layerTarget.colorId(0));
+            merge.set("uFar", far);
+            frame.drawFullscreen();
+        }
+        g.Disable(GL_SCISSOR_TEST);
+        g.check("drawing the D-buffer's part layers");
     }
 
     std::shared_ptr<const DbufferGeometry> geometry_;
