@@ -167,7 +167,7 @@ def preview_request(scenes, camera):
         passes_ms.append(native.cache_stats()["camera_pass_ms"])
 
     preview.progressive_job(scenes, {"coarse": [], "full": []}, [], camera, lambda: False, deliver,
-                            stages=("coarse", "full"))
+                            stages=("coarse", "full"), choices=choices)
     return (images[0] - t0, images[1] - t0, (passes_ms[1] - passes_ms[0]) / 1e3,
             (passes_ms[2] - passes_ms[1]) / 1e3)
 
@@ -183,7 +183,8 @@ def preview_frame(scene, mover, scenes, camera):
     before = native.cache_stats()
     images = []
     preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False,
-                            lambda rgba, _stage, _round: images.append(time.perf_counter()), stages=("coarse", "full"))
+                            lambda rgba, _stage, _round: images.append(time.perf_counter()), stages=("coarse", "full"),
+                            choices=choices)
     t2 = time.perf_counter()
     after = stats_delta(before, native.cache_stats())
     shared = (after["upload_ms"] + after["camera_pass_ms"] + after["shadow_map_ms"]) / 1e3
@@ -205,7 +206,8 @@ def preview_converged(scene, mover, scenes, camera):
     def deliver(rgba, stage, round_):
         images.setdefault(preview.stage_label(stage, round_), time.perf_counter() - t0)
 
-    preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False, deliver)
+    preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False, deliver,
+                            choices=choices)
     return images["full"], images["refined 1"], images["refined"]
 
 
@@ -278,6 +280,7 @@ for tori in torus_counts:
 
     preview_rows = []
     for method in PREVIEW_METHODS if "preview" in parts else ():
+        choices = preview.AutoChoices()  # auto's measured choice, as the preview's worker keeps it
         light.data.softshadow.method = method
         bpy.context.view_layer.update()
         depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -296,11 +299,11 @@ for tori in torus_counts:
         scene.camera.matrix_world = home
         bpy.context.view_layer.update()
         label = method
-        if method == "auto":  # name what the preview's auto ran, as the preview asks for it
+        if method == "auto":  # name what the preview's auto ran: by the light's shape after a move, then measured
             full = scenes["full"]
             result = full.scene.render(full.light_indices()[full.lights[0]["name"]], "auto", settings="check_pixels=0")
             try:
-                label = "auto (%s)" % result.method
+                label = "auto (%s, measured %s)" % (result.method, "/".join(sorted(set(choices.methods.values()))))
             finally:
                 result.close()
         for live in scenes.values():

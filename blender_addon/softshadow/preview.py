@@ -52,6 +52,27 @@ def fast_methods():
     return tuple(m for m in native.method_names() if m != "reference")
 
 
+class AutoChoices:
+    """`auto`'s measured choice per light: the method its sparse check picked (the same choice a
+    render makes) in the refined stage, which the coarse, full and refined images of later
+    requests render by name while no edit touches the light or any object but lights (an orbit
+    or another light's edit keeps it; a move of any mesh, its casters among them, measures
+    again). Until a light has one its coarse and full images take auto's rule by the light's
+    shape. Worker only; `measured` counts the measurements."""
+
+    def __init__(self):
+        self.methods = {}
+        self.measured = 0
+
+    def forget(self, edits):
+        for edit in edits:
+            lights = {light["name"] for light in edit[1].lights} if edit[0] == "objects" else set()
+            if edit[0] == "full" or not set(edit[2]) <= lights:
+                self.methods.clear()
+            for name in lights:
+                self.methods.pop(name, None)
+
+
 class _State:
     def __init__(self):
         self.lock = threading.Lock()
@@ -75,6 +96,7 @@ class _State:
         self.fresh = False          # a result arrived: redraw the viewports
         self.error = ""
         self.status = ""            # what the worker does now, for the viewport's corner
+        self.choices = AutoChoices()  # auto's measured choices, the worker's
 
 
 _state = _State()
@@ -97,13 +119,14 @@ def _render_job(live, edits, camera, cancelled, coarse=False):
 
 
 def _render_lights(live, edits, camera, cancelled, coarse=False, refine=False, progress=None, shown=None,
-                   landed=None):
+                   landed=None, choices=None):
     """{light name: V} of every previewed light. Runs on the worker.
     coarse: the methods' coarse settings (COARSE_SETTINGS); refine: each light's GL pass refined
     with rays in REFINE_ROUNDS rounds, and after each round but a light's last, landed({light
     name: V}) hears the lights as they are then: those refined so far, the light in its rounds, the
     others as in `shown` (the full image's V). progress(fraction) hears how far the lights are (with
-    refine, by the rounds landed)."""
+    refine, by the rounds landed). choices (AutoChoices): an auto light renders its kept choice, and
+    the refined stage measures and keeps one where it has none."""
     apply_edits(live, edits)
     with live.lock:
         if live.scene is None:
@@ -116,7 +139,10 @@ def _render_lights(live, edits, camera, cancelled, coarse=False, refine=False, p
         for done, light in enumerate(lights):
             method = light.get("options", {}).get("method", "auto")
             method = method if method in fast_methods() else "auto"
-            settings = _stage_settings(method, coarse, refine)
+            measure = method == "auto" and refine and choices is not None
+            if method == "auto" and choices is not None and light["name"] in choices.methods:
+                method, measure = choices.methods[light["name"]], False
+            settings = _stage_settings(method, coarse, refine, measure)
 
             def heard(fraction, _stage, done=done):
                 if progress is not None and not refine:
@@ -139,6 +165,9 @@ def _render_lights(live, edits, camera, cancelled, coarse=False, refine=False, p
                                   rounds=round_landed if refine else None)
             try:
                 v = result.layers().get("V")
+                if measure:
+                    choices.methods[light["name"]] = result.method
+                    choices.measured += 1
             finally:
                 result.close()
             if v is not None:
@@ -157,11 +186,12 @@ def overlay(vs, camera):
     return np.ascontiguousarray(np.flipud(rgba))  # textures start at the bottom row
 
 
-def _stage_settings(method, coarse, refine):
-    """The settings string of one light's render in a stage. The viewport cannot wait for auto to
-    render every candidate: it takes auto's rule by the light's shape (docs/methods/README.md)."""
+def _stage_settings(method, coarse, refine, measure=False):
+    """The settings string of one light's render in a stage. The coarse and full images cannot
+    wait for auto to render every candidate: without a measured choice (measure, the refined
+    stage's) auto takes its rule by the light's shape (docs/methods/README.md)."""
     if method == "auto":
-        parts = ["check_pixels=0"]
+        parts = [] if measure else ["check_pixels=0"]
     else:
         parts = [COARSE_SETTINGS[method]] if coarse and method in COARSE_SETTINGS else []
     if refine:
@@ -180,16 +210,19 @@ def _record(entries, entry):
     del entries[:-RECORD_LENGTH]
 
 
-def progressive_job(scenes, backlog, edits, camera, cancelled, deliver, stages=STAGES, status=None):
+def progressive_job(scenes, backlog, edits, camera, cancelled, deliver, stages=STAGES, status=None, choices=None):
     """Renders the coarse image, hands it to deliver(rgba, stage, round), then the full one, then
     the refined one in rounds (round 1 .. REFINE_ROUNDS of each light, the last one's image
     delivered as round 0), unless cancelled() turns true first. scenes and backlog are keyed
     "coarse" and "full" (the refined image is the full scene's, refined); backlog holds the edits
     a scene has not yet applied (a cancelled request leaves the scenes it did not reach behind).
-    status(text) hears the stage and its progress. Returns the (width, height) of the render a
+    status(text) hears the stage and its progress. choices: the AutoChoices kept across requests
+    (None: auto by the light's shape in every stage). Returns the (width, height) of the render a
     cancellation stopped, else None."""
     for scene_key in ("coarse", "full"):
         backlog[scene_key].extend(edits)
+    if choices is not None:
+        choices.forget(edits)
     full_vs = {}
     for stage in stages:
         scene_key = "coarse" if stage == "coarse" else "full"
@@ -211,7 +244,8 @@ def progressive_job(scenes, backlog, edits, camera, cancelled, deliver, stages=S
         heard(0.0)
         try:
             vs = _render_lights(scenes[scene_key], pending, view, cancelled, coarse=stage == "coarse",
-                                refine=stage == "refined", progress=heard, shown=full_vs, landed=landed)
+                                refine=stage == "refined", progress=heard, shown=full_vs, landed=landed,
+                                choices=choices)
         except native.SoftShadowError as exc:
             if exc.cancelled:
                 return size
@@ -247,6 +281,7 @@ def _worker():
     state = _state
     scenes = {"coarse": state.coarse, "full": state.live}
     backlog = {"coarse": [], "full": []}
+    choices = state.choices
     while True:
         with state.lock:
             while state.request is None and not state.stop:
@@ -274,7 +309,8 @@ def _worker():
                 state.fresh = True
 
         try:
-            stopped = progressive_job(scenes, backlog, edits, camera, cancelled, deliver, status=status)
+            stopped = progressive_job(scenes, backlog, edits, camera, cancelled, deliver, status=status,
+                                      choices=choices)
             if stopped is not None:
                 with state.lock:
                     _record(state.cancelled, (generation, stopped))

@@ -229,6 +229,65 @@ def test_an_edit_cancels_the_rounds_at_once():
         ss.preview.register()
 
 
+def test_auto_keeps_its_measured_choice_through_an_orbit():
+    preview = ss.preview
+    scene = sstest.standard_scene(64, 48)
+    scene.objects["Key"].data.softshadow.method = "auto"
+    bpy.context.view_layer.update()
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    cameras = [ss.scene_export.scene_camera(scene, depsgraph, 160, 120)]
+    from mathutils import Matrix
+    for _ in range(2):  # an orbit: the camera turned about the vertical axis, nothing edited
+        scene.camera.matrix_world = Matrix.Rotation(0.05, 4, "Z") @ scene.camera.matrix_world
+        bpy.context.view_layer.update()
+        cameras.append(ss.scene_export.scene_camera(scene, bpy.context.evaluated_depsgraph_get(), 160, 120))
+    preview._state.full = True
+    first = preview.export_edit(bpy.context.evaluated_depsgraph_get(), scene)
+    scenes = {"coarse": ss.passes.LiveScene(), "full": ss.passes.LiveScene()}
+    backlog = {"coarse": [], "full": []}
+    choices = preview.AutoChoices()
+    measured = []
+
+    def request(edits, camera):
+        images = {}
+        preview.progressive_job(scenes, backlog, edits, camera, lambda: False,
+                                lambda rgba, stage, round_: images.__setitem__(
+                                    preview.stage_label(stage, round_), rgba),
+                                choices=choices)
+        measured.append(choices.measured)
+        return images
+
+    try:
+        request([first], cameras[0])
+        live = scenes["full"]
+        index = live.light_indices()["Key"]
+        result = live.scene.render(index, "auto")
+        try:
+            rendered = result.method
+        finally:
+            result.close()
+        sstest.check(choices.methods == {"Key": rendered}, "the preview keeps the choice a render makes: %s, "
+                     "a render %s" % (choices.methods, rendered))
+        for camera in cameras[1:]:
+            images = request([], camera)
+            result = live.scene.render(index, rendered)
+            try:
+                expected = preview.overlay({"Key": result.layers()["V"]}, camera)
+            finally:
+                result.close()
+            sstest.check(np.array_equal(images["full"], expected), "the orbit's full image is the kept choice's")
+        sstest.check(measured == [1, 1, 1], "an orbit measures once: %s" % measured)
+        _edit(preview, scene)  # a move of a caster measures again
+        with preview._state.lock:
+            moved, preview._state.edits = preview._state.edits, []
+        request(moved, cameras[-1])
+        sstest.check(measured[-1] == 2, "a moved caster measures again: %s" % measured)
+        print("   auto kept %s through %d views; measurements %s" % (rendered, len(cameras), measured))
+    finally:
+        for live in scenes.values():
+            live.close()
+
+
 def _screenshot(path):
     """Brightness of a snapshot, row 0 = bottom (as window coordinates)."""
     return np.flipud(xvfb_screen.read(path)).mean(axis=2)
