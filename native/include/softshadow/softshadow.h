@@ -107,7 +107,7 @@ typedef struct ss_result ss_result;   /* the layers of one (light, method) rende
  * uncertain pixels are traced in N shares of equal size, the largest expected correction first,
  * and after each round but the last this is called on the thread that called ss_render with the
  * result so far (`round` of `rounds`, 1-based): every ss_result_* function reads it (its
- * warnings come with the final result), valid until the call returns. Pixels traced in a round
+ * warnings and methods rendered come with the final result), valid until the call returns. Pixels traced in a round
  * keep their value in later rounds (up to the guard band's further rounds), so its error does not
  * rise; the last round's result, which ss_render returns, is the one-round result to the bit.
  * Return non-zero to cancel (ss_render then returns SS_ERROR_CANCELLED). The same calls are
