@@ -14,10 +14,11 @@ refined: the same GL pass with `refine=on`, whose rays re-trace the pixels the p
 in REFINE_ROUNDS rounds, each drawn as it lands (deterministic sampling, the largest corrections
 first, so the image only gets closer to the truth; the last round is the final render's
 refine=on). A newer request cancels the running render, coarse, full or refined, through the
-progress and round callbacks (within 50 ms: the library polls them while it traces). A viewport always draws
-the last image it received until a newer one lands (an edit, a new view or a failed render never
-blanks it), and says in its corner what the preview is doing. Images are drawn with the `gpu`
+progress and round callbacks (within 50 ms: the library polls them while it traces). A viewport
+always draws the last image it received until a newer one lands (an edit, a new view or a failed
+render never blanks it), and says in its corner what the preview is doing. Images are drawn with the `gpu`
 module only (no bgl), as black with alpha 1 - V."""
+import itertools
 import threading
 
 import blf
@@ -212,8 +213,8 @@ def _record(entries, entry):
 
 def progressive_job(scenes, backlog, edits, camera, cancelled, deliver, stages=STAGES, status=None, choices=None):
     """Renders the coarse image, hands it to deliver(rgba, stage, round), then the full one, then
-    the refined one in rounds (round 1 .. REFINE_ROUNDS of each light, the last one's image
-    delivered as round 0), unless cancelled() turns true first. scenes and backlog are keyed
+    the refined one in rounds (round 1, 2, ... as each light's rounds but its last land; the
+    finished image as round 0), unless cancelled() turns true first. scenes and backlog are keyed
     "coarse" and "full" (the refined image is the full scene's, refined); backlog holds the edits
     a scene has not yet applied (a cancelled request leaves the scenes it did not reach behind).
     status(text) hears the stage and its progress. choices: the AutoChoices kept across requests
@@ -231,15 +232,14 @@ def progressive_job(scenes, backlog, edits, camera, cancelled, deliver, stages=S
         if cancelled():
             return size
         pending, backlog[scene_key] = backlog[scene_key], []
-        landed_rounds = []
+        numbers = itertools.count(1)
 
         def heard(fraction, stage=stage):
             if status is not None:
                 status(stage_status(stage, fraction))
 
-        def landed(vs, view=view, landed_rounds=landed_rounds):
-            landed_rounds.append(None)
-            deliver(overlay(vs, view), "refined", len(landed_rounds))
+        def landed(vs, view=view, numbers=numbers):
+            deliver(overlay(vs, view), "refined", next(numbers))
 
         heard(0.0)
         try:
