@@ -24,7 +24,9 @@
 #     of 2 x FRAMES moves, median and 95th percentile, with its stages; and the floor of each image:
 #     a request with no edit (a new view of the same scene costs at least this); then a camera
 #     orbit: 2 x FRAMES views, each the last turned 2 degrees about the scene's vertical axis
-#     (nothing moved: the camera pass is redrawn whole, the shadow maps kept).
+#     (nothing moved: the camera pass is redrawn whole, the shadow maps kept); and the converging
+#     preview over FRAMES moves: seconds from the move to the refined image's first round and to
+#     its last (the final render's error target), and the shadow rays per second it traces.
 #   - a final render's frame (auto with refine=on, what F12 and `blender -b -a` give) at SIZE² after
 #     a move: its seconds, the mesh BVHs it built (the ray tracer's scene keeps each mesh's BVH
 #     under a new instance), and the same render on an unchanged scene.
@@ -160,12 +162,12 @@ def preview_request(scenes, camera):
     t0 = time.perf_counter()
     images, passes_ms = [], [native.cache_stats()["camera_pass_ms"]]
 
-    def deliver(rgba, _stage):
+    def deliver(rgba, _stage, _round):
         images.append(time.perf_counter())
         passes_ms.append(native.cache_stats()["camera_pass_ms"])
 
     preview.progressive_job(scenes, {"coarse": [], "full": []}, [], camera, lambda: False, deliver,
-                            stages=("coarse", "full"))
+                            stages=("coarse", "full"), choices=choices)
     return (images[0] - t0, images[1] - t0, (passes_ms[1] - passes_ms[0]) / 1e3,
             (passes_ms[2] - passes_ms[1]) / 1e3)
 
@@ -181,7 +183,8 @@ def preview_frame(scene, mover, scenes, camera):
     before = native.cache_stats()
     images = []
     preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False,
-                            lambda rgba, _stage: images.append(time.perf_counter()), stages=("coarse", "full"))
+                            lambda rgba, _stage, _round: images.append(time.perf_counter()), stages=("coarse", "full"),
+                            choices=choices)
     t2 = time.perf_counter()
     after = stats_delta(before, native.cache_stats())
     shared = (after["upload_ms"] + after["camera_pass_ms"] + after["shadow_map_ms"]) / 1e3
@@ -192,15 +195,33 @@ def preview_frame(scene, mover, scenes, camera):
 
 
 def preview_converged(scene, mover, scenes, camera):
-    """Seconds from a move to each of the preview's images, the refined one last (the GL pass
-    refined with rays while nothing changes: what the viewport converges to)."""
+    """Seconds from a move to the full image, to the refined image's first round and to its last
+    (the GL pass refined with rays in rounds while nothing changes: the final render's error
+    target, what the viewport converges to)."""
     move(mover)
     t0 = time.perf_counter()
     edit = preview.export_edit(bpy.context.evaluated_depsgraph_get(), scene)
     images = {}
-    preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False,
-                            lambda rgba, stage: images.__setitem__(stage, time.perf_counter() - t0))
-    return images["refined"]
+
+    def deliver(rgba, stage, round_):
+        images.setdefault(preview.stage_label(stage, round_), time.perf_counter() - t0)
+
+    preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False, deliver,
+                            choices=choices)
+    return images["full"], images["refined 1"], images["refined"]
+
+
+def refine_rays(scenes):
+    """Shadow rays the refined image traces for the preview's light (its "rays" layer, summed)."""
+    full = scenes["full"]
+    light = full.lights[0]
+    method = light.get("options", {}).get("method", "auto")
+    result = full.scene.render(full.light_indices()[light["name"]], method, extra_layers=True,
+                               settings=preview._stage_settings(method, False, True))
+    try:
+        return float(result.layers()["rays"].sum())
+    finally:
+        result.close()
 
 
 def final_frame(scene, mover, live, moved=True):
@@ -259,6 +280,7 @@ for tori in torus_counts:
 
     preview_rows = []
     for method in PREVIEW_METHODS if "preview" in parts else ():
+        choices = preview.AutoChoices()  # auto's measured choice, as the preview's worker keeps it
         light.data.softshadow.method = method
         bpy.context.view_layer.update()
         depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -266,9 +288,10 @@ for tori in torus_counts:
         preview._state.full = True
         scenes = {"coarse": passes.LiveScene(), "full": passes.LiveScene()}
         preview.progressive_job(scenes, {"coarse": [], "full": []}, [preview.export_edit(depsgraph, scene)],
-                                camera, lambda: False, lambda rgba, _stage: None, stages=("coarse", "full"))
+                                camera, lambda: False, lambda rgba, _stage, _round: None, stages=("coarse", "full"))
         runs = [preview_frame(scene, mover, scenes, camera) for _ in range(2 * frames)]
         refined = [preview_converged(scene, mover, scenes, camera) for _ in range(frames)]
+        rays = refine_rays(scenes)
         floors = [preview_request(scenes, camera) for _ in range(frames)]
         stages_floor = (statistics.median(f[0] for f in floors), statistics.median(f[1] for f in floors))
         home = scene.camera.matrix_world.copy()
@@ -276,11 +299,11 @@ for tori in torus_counts:
         scene.camera.matrix_world = home
         bpy.context.view_layer.update()
         label = method
-        if method == "auto":  # name what the preview's auto ran, as the preview asks for it
+        if method == "auto":  # name what the preview's auto ran: by the light's shape after a move, then measured
             full = scenes["full"]
             result = full.scene.render(full.light_indices()[full.lights[0]["name"]], "auto", settings="check_pixels=0")
             try:
-                label = "auto (%s)" % result.method
+                label = "auto (%s, measured %s)" % (result.method, "/".join(sorted(set(choices.methods.values()))))
             finally:
                 result.close()
         for live in scenes.values():
@@ -292,7 +315,8 @@ for tori in torus_counts:
                              p95(latencies), stages, stages_floor,
                              tuple(f([o[k] for o in orbit]) for k in (0, 1) for f in (statistics.median, p95))
                              + tuple(statistics.median(o[k] for o in orbit) for k in (2, 3)),
-                             (statistics.median(refined), p95(refined))))
+                             tuple(f([r[k] for r in refined]) for k in (1, 2) for f in (statistics.median, p95))
+                             + (rays, rays / statistics.median(r[2] - r[0] for r in refined))))
         print("BENCH preview %d tris %s: coarse median %.3f s p95 %.3f s, full median %.3f s p95 %.3f s, "
               "full render alone %.3f s, floor coarse %.3f s full %.3f s" % (triangles, label, *preview_rows[-1][1:5],
                                                                              stages["full render"], *stages_floor),
@@ -390,11 +414,15 @@ with open(out_path, "w") as f:
             f.write("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f |\n"
                     % (row[0], coarse_median, coarse_high, coarse_pass, floor[0] + coarse_pass, full_median,
                        full_high, full_pass, floor[1] + coarse_pass + full_pass))
-        f.write("\nThe converging preview: seconds from a move to the refined image (the full GL image "
-                "refined with rays, `refine=on` with the final render's error target), median and p95 over "
-                "%d moves. Target: ≤ 2 s on 110k triangles, ≤ 5 s on 1M.\n\n| method | refined median | "
-                "refined p95 |\n|---|---|---|\n" % frames)
+        f.write("\nThe converging preview: seconds from a move to the refined image's first round and to its "
+                "last (the full GL image refined with rays in %d rounds, each a further share of the uncertain "
+                "pixels, the largest corrections first; the last is `refine=on` at the final render's error "
+                "target), median and p95 over %d moves; the shadow rays the refinement traces (its `rays` "
+                "layer) and their rate over the seconds from the full image to the last round. Target for the "
+                "last round: ≤ 2 s on 110k triangles, ≤ 5 s on 1M.\n\n| method | first round median | first "
+                "round p95 | error target median | error target p95 | rays | rays/s |\n|---|---|---|---|---|---|"
+                "---|\n" % (preview.REFINE_ROUNDS, frames))
         for row in preview_rows:
-            f.write("| %s | %.3f | %.3f |\n" % (row[0], *row[8]))
+            f.write("| %s | %.3f | %.3f | %.3f | %.3f | %.0f | %.3g |\n" % (row[0], *row[8]))
         f.write("\n")
 print("BENCH-WARM-OK")

@@ -87,6 +87,7 @@ class _CameraDesc(ctypes.Structure):
 
 
 _PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_float, ctypes.c_char_p)
+_ROUND_FN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int32, ctypes.c_int32)
 
 
 class _RenderOptions(ctypes.Structure):
@@ -97,6 +98,8 @@ class _RenderOptions(ctypes.Structure):
         ("progress", _PROGRESS_FN),
         ("progress_user", ctypes.c_void_p),
         ("settings", ctypes.c_char_p),
+        ("round", _ROUND_FN),
+        ("round_user", ctypes.c_void_p),
     ]
 
 
@@ -549,10 +552,13 @@ class Scene(_Owned):
         return lib().ss_scene_mesh_count(self.handle)
 
     def render(self, light_index, method="auto", samples=0, seed=1, extra_layers=False,
-               settings=None, progress=None):
+               settings=None, progress=None, rounds=None):
         """Renders one light with one method on the shared context. Returns a Result.
 
         progress(fraction, stage) -> True to cancel; it is called from the library's thread.
+        rounds(partial, round, count) -> True to cancel: with "refine=on;refine_rounds=N" it hears
+        each refinement round but the last (the returned Result) on this thread; `partial` reads
+        like a Result until the call returns.
         """
         library = lib()
         ctx = context()
@@ -570,12 +576,24 @@ class Scene(_Owned):
                     return 0
             callback = _PROGRESS_FN(_call)
             options.progress = callback
+        round_callback = None
+        if rounds is not None:
+            def _round(_user, partial, number, count):
+                view = _PartialResult(ctypes.c_void_p(partial))
+                try:
+                    return 1 if rounds(view, int(number), int(count)) else 0
+                except Exception:
+                    return 0
+                finally:
+                    view.close()
+            round_callback = _ROUND_FN(_round)
+            options.round = round_callback
         settings_bytes = _text(settings) if settings else None
         options.settings = settings_bytes
         out = ctypes.c_void_p()
         _check(library.ss_render(ctx, self.handle, int(light_index), _text(method),
                                  ctypes.byref(options), ctypes.byref(out)))
-        del callback  # kept alive until ss_render returned
+        del callback, round_callback  # kept alive until ss_render returned
         return Result(out)
 
 
@@ -621,6 +639,13 @@ class Result(_Owned):
             flat = np.ctypeslib.as_array(pixels, shape=(count,)) if count else np.zeros(0, np.float32)
             out[name.value.decode()] = flat.reshape(height.value, width.value).copy()
         return out
+
+
+class _PartialResult(Result):
+    """A refinement round's result, the library's until its callback returns: read, never destroyed."""
+
+    def close(self):
+        self._handle = None
 
 
 def write_exr(path, view_layer, results):

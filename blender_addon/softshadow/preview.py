@@ -11,11 +11,14 @@ the viewport draws scaled up at once, then the full one that replaces it. The tw
 native scenes fed the same edits, so each keeps its own camera pass and neither is redrawn whole
 for the other's resolution. While the scene and the view stay as they are, the full image is then
 refined: the same GL pass with `refine=on`, whose rays re-trace the pixels the pass is unsure of
-(deterministic sampling, so the image only gets closer to the truth). A newer request cancels the
-running render, coarse, full or refined, through the progress callback. A viewport always draws
-the last image it received until a newer one lands (an edit, a new view or a failed render never
-blanks it), and says in its corner what the preview is doing. Images are drawn with the `gpu`
+in REFINE_ROUNDS rounds, each drawn as it lands (deterministic sampling, the largest corrections
+first, so the image only gets closer to the truth; the last round is the final render's
+refine=on). A newer request cancels the running render, coarse, full or refined, through the
+progress and round callbacks (within 50 ms: the library polls them while it traces). A viewport
+always draws the last image it received until a newer one lands (an edit, a new view or a failed
+render never blanks it), and says in its corner what the preview is doing. Images are drawn with the `gpu`
 module only (no bgl), as black with alpha 1 - V."""
+import itertools
 import threading
 
 import blf
@@ -39,12 +42,36 @@ COARSE_SETTINGS = {"occlusion_textures": "resolution=%d" % (512 // COARSE_DIVISO
 RECORD_LENGTH = 64    # entries kept in _State.delivered and _State.cancelled
 # The stages of one request, in the order they are delivered: each image is closer to the truth.
 STAGES = ("coarse", "full", "refined")
-REFINE_SETTINGS = "refine=on"
+# The refined image comes in rounds, each a further share of the uncertain pixels traced (the
+# largest corrections first), drawn as it lands; the last is the final render's refine=on.
+REFINE_ROUNDS = 4
+REFINE_SETTINGS = "refine=on;refine_rounds=%d"
 
 
 def fast_methods():
     """The library's methods fast enough to preview: all but the ray-traced reference."""
     return tuple(m for m in native.method_names() if m != "reference")
+
+
+class AutoChoices:
+    """`auto`'s measured choice per light: the method its sparse check picked (the same choice a
+    render makes) in the refined stage, which the coarse, full and refined images of later
+    requests render by name while no edit touches the light or any object but lights (an orbit
+    or another light's edit keeps it; a move of any mesh, its casters among them, measures
+    again). Until a light has one its coarse and full images take auto's rule by the light's
+    shape. Worker only; `measured` counts the measurements."""
+
+    def __init__(self):
+        self.methods = {}
+        self.measured = 0
+
+    def forget(self, edits):
+        for edit in edits:
+            lights = {light["name"] for light in edit[1].lights} if edit[0] == "objects" else set()
+            if edit[0] == "full" or not set(edit[2]) <= lights:
+                self.methods.clear()
+            for name in lights:
+                self.methods.pop(name, None)
 
 
 class _State:
@@ -53,23 +80,24 @@ class _State:
         self.wake = threading.Condition(self.lock)
         self.generation = 0         # bumped by every new request; older work is stale
         self.request = None         # (generation, key, camera)
-        self.done = {}              # key -> (generation, stage index, rgba float32 (h, w, 4))
+        self.done = {}              # key -> (generation, delivery_order, rgba float32 (h, w, 4))
         self.edits = []             # exports not yet handed to the worker, oldest first (under lock)
         self.live = passes.LiveScene()    # the worker's scene for the full image
         self.coarse = passes.LiveScene()  # the worker's scene for the coarse image
-        self.delivered = []         # (generation, (width, height), stage) of each image handed over, oldest first
+        self.delivered = []         # (generation, (width, height), stage_label) of each image handed over, oldest first
         self.cancelled = []         # (generation, (width, height)) of each render a newer request stopped
         self.full = True            # the next edit is a full export (object set changed, start)
         self.changed = set()        # objects an update touched since the last export
         self.geometry = set()       # of those, the ones whose mesh data changed
         self.object_names = frozenset()
         self.keys = {}              # region pointer -> key last asked for
-        self.textures = {}          # region pointer -> ((generation, stage), GPUTexture): the last image drawn
+        self.textures = {}          # region pointer -> ((generation, order), GPUTexture): the last image drawn
         self.thread = None
         self.stop = False
         self.fresh = False          # a result arrived: redraw the viewports
         self.error = ""
         self.status = ""            # what the worker does now, for the viewport's corner
+        self.choices = AutoChoices()  # auto's measured choices, the worker's
 
 
 _state = _State()
@@ -86,50 +114,89 @@ def apply_edits(live, edits):
             live.apply(edit[1], edit[2])
 
 
-def _render_job(live, edits, camera, cancelled, coarse=False, refine=False, progress=None):
-    """Product of every previewed light's V, as an RGBA overlay. Runs on the worker.
+def _render_job(live, edits, camera, cancelled, coarse=False):
+    """Product of every previewed light's V, as an RGBA overlay (_render_lights)."""
+    return overlay(_render_lights(live, edits, camera, cancelled, coarse=coarse), camera)
+
+
+def _render_lights(live, edits, camera, cancelled, coarse=False, refine=False, progress=None, shown=None,
+                   landed=None, choices=None):
+    """{light name: V} of every previewed light. Runs on the worker.
     coarse: the methods' coarse settings (COARSE_SETTINGS); refine: each light's GL pass refined
-    with rays (REFINE_SETTINGS). progress(fraction) hears how far the lights are."""
+    with rays in REFINE_ROUNDS rounds, and after each round but a light's last, landed({light
+    name: V}) hears the lights as they are then: those refined so far, the light in its rounds, the
+    others as in `shown` (the full image's V). progress(fraction) hears how far the lights are (with
+    refine, by the rounds landed). choices (AutoChoices): an auto light renders its kept choice, and
+    the refined stage measures and keeps one where it has none."""
     apply_edits(live, edits)
     with live.lock:
         if live.scene is None:
             raise RuntimeError("the preview scene could not be built")
         live.set_camera(camera)
         scene, indices = live.scene, live.light_indices()
-        shade = np.ones((camera["height"], camera["width"]), np.float32)
-        shown = [light for light in live.lights if light["name"] in indices
-                 and light.get("options", {}).get("enabled", True) and light["cast_shadows"]]
-        for done, light in enumerate(shown):
+        lights = [light for light in live.lights if light["name"] in indices
+                  and light.get("options", {}).get("enabled", True) and light["cast_shadows"]]
+        vs = dict(shown or {})
+        for done, light in enumerate(lights):
             method = light.get("options", {}).get("method", "auto")
             method = method if method in fast_methods() else "auto"
-            settings = _stage_settings(method, coarse, refine)
+            measure = method == "auto" and refine and choices is not None
+            if method == "auto" and choices is not None and light["name"] in choices.methods:
+                method, measure = choices.methods[light["name"]], False
+            settings = _stage_settings(method, coarse, refine, measure)
 
             def heard(fraction, _stage, done=done):
-                if progress is not None:
-                    progress((done + min(max(fraction, 0.0), 1.0)) / len(shown))
+                if progress is not None and not refine:
+                    progress((done + min(max(fraction, 0.0), 1.0)) / len(lights))
                 return cancelled()
 
-            result = scene.render(indices[light["name"]], method, settings=settings, progress=heard)
+            def round_landed(partial, number, count, done=done, name=light["name"]):
+                if cancelled():
+                    return True
+                vs[name] = partial.layers()["V"]
+                if landed is not None:
+                    landed(dict(vs))
+                if progress is not None:
+                    progress((done + number / count) / len(lights))
+                return cancelled()
+
+            if refine and progress is not None:
+                progress(done / len(lights))
+            result = scene.render(indices[light["name"]], method, settings=settings, progress=heard,
+                                  rounds=round_landed if refine else None)
             try:
                 v = result.layers().get("V")
+                if measure:
+                    choices.methods[light["name"]] = result.method
+                    choices.measured += 1
             finally:
                 result.close()
-            if v is not None and v.shape == shade.shape:
-                shade *= np.clip(v, 0.0, 1.0)
+            if v is not None:
+                vs[light["name"]] = v
+        return {light["name"]: vs[light["name"]] for light in lights if light["name"] in vs}
+
+
+def overlay(vs, camera):
+    """The RGBA overlay of the lights' V (their product), bottom row first for a texture."""
+    shade = np.ones((camera["height"], camera["width"]), np.float32)
+    for v in vs.values():
+        if v.shape == shade.shape:
+            shade *= np.clip(v, 0.0, 1.0)
     rgba = np.zeros(shade.shape + (4,), np.float32)
     rgba[..., 3] = PREVIEW_OPACITY * (1.0 - shade)
     return np.ascontiguousarray(np.flipud(rgba))  # textures start at the bottom row
 
 
-def _stage_settings(method, coarse, refine):
-    """The settings string of one light's render in a stage. The viewport cannot wait for auto to
-    render every candidate: it takes auto's rule by the light's shape (docs/methods/README.md)."""
+def _stage_settings(method, coarse, refine, measure=False):
+    """The settings string of one light's render in a stage. The coarse and full images cannot
+    wait for auto to render every candidate: without a measured choice (measure, the refined
+    stage's) auto takes its rule by the light's shape (docs/methods/README.md)."""
     if method == "auto":
-        parts = ["check_pixels=0"]
+        parts = [] if measure else ["check_pixels=0"]
     else:
         parts = [COARSE_SETTINGS[method]] if coarse and method in COARSE_SETTINGS else []
     if refine:
-        parts.append(REFINE_SETTINGS)
+        parts.append(REFINE_SETTINGS % REFINE_ROUNDS)
     return ";".join(parts) or None
 
 
@@ -144,15 +211,20 @@ def _record(entries, entry):
     del entries[:-RECORD_LENGTH]
 
 
-def progressive_job(scenes, backlog, edits, camera, cancelled, deliver, stages=STAGES, status=None):
-    """Renders the coarse image, hands it to deliver(rgba, stage), then the full one, then the
-    refined one, unless cancelled() turns true first. scenes and backlog are keyed "coarse" and
-    "full" (the refined image is the full scene's, refined); backlog holds the edits a scene has
-    not yet applied (a cancelled request leaves the scenes it did not reach behind).
-    status(text) hears the stage and its progress. Returns the (width, height) of the render a
+def progressive_job(scenes, backlog, edits, camera, cancelled, deliver, stages=STAGES, status=None, choices=None):
+    """Renders the coarse image, hands it to deliver(rgba, stage, round), then the full one, then
+    the refined one in rounds (round 1, 2, ... as each light's rounds but its last land; the
+    finished image as round 0), unless cancelled() turns true first. scenes and backlog are keyed
+    "coarse" and "full" (the refined image is the full scene's, refined); backlog holds the edits
+    a scene has not yet applied (a cancelled request leaves the scenes it did not reach behind).
+    status(text) hears the stage and its progress. choices: the AutoChoices kept across requests
+    (None: auto by the light's shape in every stage). Returns the (width, height) of the render a
     cancellation stopped, else None."""
     for scene_key in ("coarse", "full"):
         backlog[scene_key].extend(edits)
+    if choices is not None:
+        choices.forget(edits)
+    full_vs = {}
     for stage in stages:
         scene_key = "coarse" if stage == "coarse" else "full"
         view = coarse_camera(camera) if stage == "coarse" else camera
@@ -160,23 +232,40 @@ def progressive_job(scenes, backlog, edits, camera, cancelled, deliver, stages=S
         if cancelled():
             return size
         pending, backlog[scene_key] = backlog[scene_key], []
+        numbers = itertools.count(1)
 
         def heard(fraction, stage=stage):
             if status is not None:
                 status(stage_status(stage, fraction))
 
+        def landed(vs, view=view, numbers=numbers):
+            deliver(overlay(vs, view), "refined", next(numbers))
+
         heard(0.0)
         try:
-            rgba = _render_job(scenes[scene_key], pending, view, cancelled, coarse=stage == "coarse",
-                               refine=stage == "refined", progress=heard)
+            vs = _render_lights(scenes[scene_key], pending, view, cancelled, coarse=stage == "coarse",
+                                refine=stage == "refined", progress=heard, shown=full_vs, landed=landed,
+                                choices=choices)
         except native.SoftShadowError as exc:
             if exc.cancelled:
                 return size
             raise
-        deliver(rgba, stage)
+        if stage == "full":
+            full_vs = vs
+        deliver(overlay(vs, view), stage, 0)
     if status is not None:
         status(stage_status("done", 1.0))
     return None
+
+
+def stage_label(stage, round_):
+    """How a delivery is recorded: the stage, with its round for the refined image's rounds."""
+    return "%s %d" % (stage, round_) if round_ else stage
+
+
+def delivery_order(stage, round_):
+    """Sorts one request's deliveries: by stage, the refined rounds in order, the last (0) last."""
+    return (STAGES.index(stage), round_ if round_ else 1 << 30)
 
 
 def stage_status(stage, fraction):
@@ -192,6 +281,7 @@ def _worker():
     state = _state
     scenes = {"coarse": state.coarse, "full": state.live}
     backlog = {"coarse": [], "full": []}
+    choices = state.choices
     while True:
         with state.lock:
             while state.request is None and not state.stop:
@@ -205,11 +295,11 @@ def _worker():
         def cancelled(generation=generation):
             return state.stop or state.generation != generation
 
-        def deliver(rgba, stage, generation=generation, key=key):
+        def deliver(rgba, stage, round_, generation=generation, key=key):
             with state.lock:
                 if state.generation == generation:
-                    state.done[key] = (generation, STAGES.index(stage), rgba)
-                    _record(state.delivered, (generation, (rgba.shape[1], rgba.shape[0]), stage))
+                    state.done[key] = (generation, delivery_order(stage, round_), rgba)
+                    _record(state.delivered, (generation, (rgba.shape[1], rgba.shape[0]), stage_label(stage, round_)))
                     state.error = ""
                     state.fresh = True
 
@@ -219,7 +309,8 @@ def _worker():
                 state.fresh = True
 
         try:
-            stopped = progressive_job(scenes, backlog, edits, camera, cancelled, deliver, status=status)
+            stopped = progressive_job(scenes, backlog, edits, camera, cancelled, deliver, status=status,
+                                      choices=choices)
             if stopped is not None:
                 with state.lock:
                     _record(state.cancelled, (generation, stopped))
@@ -340,12 +431,12 @@ def _draw():
 def shown_image(textures, region_key, done, make_texture):
     """The image a viewport draws: the newest one delivered for its request, else the last one it
     drew (an edit, a new view or a failed render keeps it until a newer image lands). textures:
-    region -> ((generation, stage), texture); done: (generation, stage, rgba) or None."""
+    region -> ((generation, order), texture); done: (generation, order, rgba) or None."""
     cached = textures.get(region_key)
     if done is not None:
-        generation, stage, rgba = done
-        if cached is None or cached[0] != (generation, stage):
-            cached = ((generation, stage), make_texture(rgba))
+        generation, order, rgba = done
+        if cached is None or cached[0] != (generation, order):
+            cached = ((generation, order), make_texture(rgba))
             textures[region_key] = cached
     return cached
 

@@ -116,7 +116,7 @@ def test_the_coarse_image_uses_the_coarse_sizes_and_still_matches_the_full_one()
         images = []
         try:
             preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False,
-                                    lambda rgba, _stage: images.append(rgba), stages=("coarse", "full"))
+                                    lambda rgba, _stage, _round: images.append(rgba), stages=("coarse", "full"))
             live = scenes["coarse"]
             index = live.light_indices()["Key"]
             small, default = (live.scene.render(index, method, settings=text) for text in (settings, None))
@@ -147,6 +147,145 @@ def test_the_coarse_image_uses_the_coarse_sizes_and_still_matches_the_full_one()
         sstest.check(difference <= COARSE_MATCH, "%s: coarse vs full %.4f" % (method, difference))
         sstest.check(difference <= COARSE_LOSS, "%s: the smaller sizes lose little: %.4f (defaults %.4f)"
                      % (method, difference, baseline))
+
+
+def _rmse(rgba, truth, mask):
+    """RMSE of the V an overlay shows against the truth, over the truth's mask."""
+    v = 1.0 - np.flipud(rgba[..., 3]) / ss.preview.PREVIEW_OPACITY
+    return float(np.sqrt(np.mean((v - truth)[mask != 0] ** 2)))
+
+
+def test_the_refined_image_comes_in_rounds_whose_error_falls_to_the_final_render():
+    preview = ss.preview
+    scene = sstest.standard_scene(64, 48)
+    scene.objects["Key"].data.softshadow.method = "pcss"
+    bpy.context.view_layer.update()
+    camera = ss.scene_export.scene_camera(scene, bpy.context.evaluated_depsgraph_get(), 240, 180)
+    preview._state.full = True
+    edit = preview.export_edit(bpy.context.evaluated_depsgraph_get(), scene)
+    scenes = {"coarse": ss.passes.LiveScene(), "full": ss.passes.LiveScene()}
+    images, statuses = [], []
+    try:
+        preview.progressive_job(scenes, {"coarse": [], "full": []}, [edit], camera, lambda: False,
+                                lambda rgba, stage, round_: images.append((preview.stage_label(stage, round_), rgba)),
+                                status=statuses.append)
+        live = scenes["full"]
+        index = live.light_indices()["Key"]
+        results = [live.scene.render(index, "reference", samples=4096, extra_layers=True),
+                   live.scene.render(index, "pcss", settings="refine=on")]
+        try:
+            reference = results[0].layers()
+            truth, mask, once = reference["V"], reference["mask"], results[1].layers()["V"]
+        finally:
+            for r in results:
+                r.close()
+    finally:
+        for live in scenes.values():
+            live.close()
+    labels = [label for label, _rgba in images]
+    rounds = ["refined %d" % k for k in range(1, preview.REFINE_ROUNDS)]
+    sstest.check(labels == ["coarse", "full"] + rounds + ["refined"], "the rounds land in order: %s" % labels)
+    errors = [_rmse(rgba, truth, mask) for _label, rgba in images[1:]]
+    print("   error vs the reference: %s" % ", ".join("%s %.4f" % (label, e) for label, e in zip(labels[1:], errors)))
+    for before, after, label in zip(errors, errors[1:], labels[2:]):
+        sstest.check(after <= before, "%s did not raise the error (%.4f after %.4f)" % (label, after, before))
+    sstest.check(errors[1] < 0.75 * errors[0], "the first round corrects the most: %s" % errors)
+    sstest.check(errors[-1] <= 0.01, "the last round meets the final render's error target: %.4f" % errors[-1])
+    expected = preview.overlay({"Key": once}, camera)
+    sstest.check(np.array_equal(images[-1][1], expected), "the last round is the final render's refine=on")
+    refining = [text for text in statuses if "refining" in text]
+    percents = [int(text.split()[-2]) for text in refining]
+    sstest.check(percents == sorted(percents) and set(percents) >= {25, 50, 75},
+                 "the corner counts the rounds: %s" % refining)
+    sstest.check(statuses[-1] == "soft shadows: refined", "the corner ends refined: %s" % statuses[-1])
+
+
+def test_an_edit_cancels_the_rounds_at_once():
+    preview = ss.preview
+    scene = sstest.standard_scene(64, 48)
+    scene.objects["Key"].data.softshadow.method = "pcss"
+    bpy.context.view_layer.update()
+    full = (960, 540)
+    camera = ss.scene_export.scene_camera(scene, bpy.context.evaluated_depsgraph_get(), *full)
+    state = preview._state
+    state.full = True
+    state.edits.append(preview.export_edit(bpy.context.evaluated_depsgraph_get(), scene))
+    try:
+        first = preview.request_render("first", camera)
+        _wait(lambda: (first, full, "refined 1") in state.delivered or state.error, "the first round")
+        _edit(preview, scene)
+        second = preview.request_render("second", camera)
+        _wait(lambda: (second, full, "refined") in state.delivered or state.error, "the second refined image")
+        sstest.check(state.error == "", "the worker rendered: %s" % state.error)
+        mine = [stage for g, _size, stage in state.delivered if g == first]
+        sstest.check("refined" not in mine, "the edit stopped the first request's rounds: %s" % mine)
+        sstest.check((first, full) in state.cancelled, "the rounds' render was cancelled: %s" % state.cancelled)
+        theirs = [stage for g, _size, stage in state.delivered if g == second]
+        rounds = ["refined %d" % k for k in range(1, preview.REFINE_ROUNDS)]
+        sstest.check(theirs == ["coarse", "full"] + rounds + ["refined"], "the edit's request refined: %s" % theirs)
+        print("   first request: %s; cancelled %s" % (mine, state.cancelled))
+    finally:
+        ss.preview.unregister()
+        ss.preview.register()
+
+
+def test_auto_keeps_its_measured_choice_through_an_orbit():
+    preview = ss.preview
+    scene = sstest.standard_scene(64, 48)
+    scene.objects["Key"].data.softshadow.method = "auto"
+    bpy.context.view_layer.update()
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    cameras = [ss.scene_export.scene_camera(scene, depsgraph, 160, 120)]
+    from mathutils import Matrix
+    for _ in range(2):  # an orbit: the camera turned about the vertical axis, nothing edited
+        scene.camera.matrix_world = Matrix.Rotation(0.05, 4, "Z") @ scene.camera.matrix_world
+        bpy.context.view_layer.update()
+        cameras.append(ss.scene_export.scene_camera(scene, bpy.context.evaluated_depsgraph_get(), 160, 120))
+    preview._state.full = True
+    first = preview.export_edit(bpy.context.evaluated_depsgraph_get(), scene)
+    scenes = {"coarse": ss.passes.LiveScene(), "full": ss.passes.LiveScene()}
+    backlog = {"coarse": [], "full": []}
+    choices = preview.AutoChoices()
+    measured = []
+
+    def request(edits, camera):
+        images = {}
+        preview.progressive_job(scenes, backlog, edits, camera, lambda: False,
+                                lambda rgba, stage, round_: images.__setitem__(
+                                    preview.stage_label(stage, round_), rgba),
+                                choices=choices)
+        measured.append(choices.measured)
+        return images
+
+    try:
+        request([first], cameras[0])
+        live = scenes["full"]
+        index = live.light_indices()["Key"]
+        result = live.scene.render(index, "auto")
+        try:
+            rendered = result.method
+        finally:
+            result.close()
+        sstest.check(choices.methods == {"Key": rendered}, "the preview keeps the choice a render makes: %s, "
+                     "a render %s" % (choices.methods, rendered))
+        for camera in cameras[1:]:
+            images = request([], camera)
+            result = live.scene.render(index, rendered)
+            try:
+                expected = preview.overlay({"Key": result.layers()["V"]}, camera)
+            finally:
+                result.close()
+            sstest.check(np.array_equal(images["full"], expected), "the orbit's full image is the kept choice's")
+        sstest.check(measured == [1, 1, 1], "an orbit measures once: %s" % measured)
+        _edit(preview, scene)  # a move of a caster measures again
+        with preview._state.lock:
+            moved, preview._state.edits = preview._state.edits, []
+        request(moved, cameras[-1])
+        sstest.check(measured[-1] == 2, "a moved caster measures again: %s" % measured)
+        print("   auto kept %s through %d views; measurements %s" % (rendered, len(cameras), measured))
+    finally:
+        for live in scenes.values():
+            live.close()
 
 
 def _screenshot(path):

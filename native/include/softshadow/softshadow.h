@@ -99,6 +99,21 @@ typedef struct ss_camera_desc {
  * waiting on the render that is calling back. */
 typedef int (*ss_progress_fn)(void* user, float fraction, const char* stage);
 
+typedef struct ss_context ss_context; /* a GL context on a render thread owned by the library */
+typedef struct ss_scene ss_scene;
+typedef struct ss_result ss_result;   /* the layers of one (light, method) render */
+
+/* Refinement in rounds: with the settings "refine=on;refine_rounds=N" (N > 1) a GL method's
+ * uncertain pixels are traced in N shares of equal size, the largest expected correction first,
+ * and after each round but the last this is called on the thread that called ss_render with the
+ * result so far (`round` of `rounds`, 1-based): every ss_result_* function reads it (its
+ * warnings and methods rendered come with the final result), valid until the call returns. Pixels traced in a round
+ * keep their value in later rounds (up to the guard band's further rounds), so its error does not
+ * rise; the last round's result, which ss_render returns, is the one-round result to the bit.
+ * Return non-zero to cancel (ss_render then returns SS_ERROR_CANCELLED). The same calls are
+ * refused from inside it as from a progress callback. */
+typedef int (*ss_round_fn)(void* user, const ss_result* partial, int32_t round, int32_t rounds);
+
 typedef struct ss_render_options {
     int32_t samples;         /* light samples (reference, sweep, pcss...); 0 = method default */
     uint32_t seed;           /* deterministic sampling */
@@ -106,11 +121,9 @@ typedef struct ss_render_options {
     ss_progress_fn progress; /* may be NULL */
     void* progress_user;
     const char* settings;    /* optional "key=value;key=value" method settings, may be NULL */
+    ss_round_fn round;       /* may be NULL: refinement rounds are not handed out */
+    void* round_user;
 } ss_render_options;
-
-typedef struct ss_context ss_context; /* a GL context on a render thread owned by the library */
-typedef struct ss_scene ss_scene;
-typedef struct ss_result ss_result;   /* the layers of one (light, method) render */
 
 SS_API const char* ss_version(void);
 SS_API const char* ss_last_error(void);

@@ -71,6 +71,8 @@ SS_API void ss_render_options_default(ss_render_options* options) {
     options->progress = nullptr;
     options->progress_user = nullptr;
     options->settings = nullptr;
+    options->round = nullptr;
+    options->round_user = nullptr;
 }
 
 }  // extern "C"

@@ -53,8 +53,21 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         result->requested = method;
         ss::Renderer::AutoTrials trials;
         std::vector<std::string> warnings;
+        const ss_render_options& given = options ? *options : defaults;
+        ss::Renderer::RoundFn rounds;
+        if (given.round)
+            rounds = [&](ss::Renderer::RoundResult& r) {
+                ss_result partial;
+                partial.layers = std::move(r.layers);
+                partial.method = r.method;
+                partial.requested = method;
+                partial.light = light.name;
+                partial.estimatedRmse = r.estimatedRmse;
+                ProgressCallbackScope inside;
+                return given.round(given.round_user, &partial, r.round, r.rounds) == 0;
+            };
         result->layers = context->renderer.render(scene->scene, light_index, method, settings, &result->method,
-                                                      &result->estimatedRmse, &trials, &warnings);
+                                                  &result->estimatedRmse, &trials, &warnings, rounds);
         for (const std::string& w : warnings) result->warnings += w + "\n";
         if (!trials.rendered.empty()) result->methodsRendered = int32_t(trials.rendered.size());
         if (result->method.empty()) result->method = method;

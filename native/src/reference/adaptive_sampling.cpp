@@ -118,7 +118,7 @@ AdaptiveSampling adaptiveSampling(const RenderSettings& settings, int maxSamples
 
 void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
                    const AdaptiveSampling& sampling, const RenderSettings& settings,
-                   const AdaptivePixels& pixels, const AdaptiveOutputs& out) {
+                   const AdaptivePixels& pixels, const AdaptiveOutputs& out, const AdaptiveShares& shares) {
     const Camera& camera = scene.camera();
     const int width = camera.width, height = camera.height;
     const Light& light = scene.light(lightIndex);
@@ -186,13 +186,22 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
     const float pixelTarget = pixelErrorTarget(sampling, maskPixels, wave.size());
     const int agreeingRays = raysToTrustAgreement(pixelTarget);
 
-    for (int round = 0; !wave.empty(); ++round) {
-        std::sort(wave.begin(), wave.end());
-        const int chunks = int((wave.size() + kWaveChunk - 1) / kWaveChunk);
-        const char* stage = round == 0 ? "tracing shadow rays (adaptive rounds)" : "tracing shadow rays (following the penumbra)";
-        forEachRow(settings, chunks, stage, round == 0 ? 0.3f : 0.95f, 0.95f, [&](int c) {
-            for (size_t k = size_t(c) * kWaveChunk; k < std::min(wave.size(), size_t(c + 1) * kWaveChunk); ++k) {
-                const size_t i = wave[k];
+    // One pixel's outputs, once it is decided or finished.
+    auto write = [&](size_t i) {
+        const int x = int(i % size_t(width)), y = int(i / size_t(width));
+        if (out.traced) out.traced->at(x, y) = 1.0f;
+        if (out.rays) out.rays->at(x, y) = float(sums[i].rays);
+        if (!(sums[i].weight > 0.0)) return;
+        out.visibility->at(x, y) = float(sums[i].visible / sums[i].weight);
+        if (out.mask) out.mask->at(x, y) = 1.0f;
+    };
+    // The further rounds of wave[begin, end), in chunks over the cores.
+    auto traceWave = [&](const std::vector<size_t>& of, size_t begin, size_t end, const char* stage, float from,
+                         float to) {
+        const int chunks = int((end - begin + kWaveChunk - 1) / kWaveChunk);
+        forEachRow(settings, chunks, stage, from, to, [&](int c) {
+            for (size_t k = begin + size_t(c) * kWaveChunk; k < std::min(end, begin + size_t(c + 1) * kWaveChunk); ++k) {
+                const size_t i = of[k];
                 const int x = int(i % size_t(width)), y = int(i / size_t(width));
                 SurfaceHit hit;
                 // A reachable pixel has no first round yet; any other has its hit recomputed (the
@@ -202,11 +211,44 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
                 } else {
                     t.surface(x, y, &hit);
                 }
-                continueRounds([&](uint32_t begin, uint32_t end, SampleSums* into) { t.add(hit, x, y, begin, end, into); },
+                continueRounds([&](uint32_t b, uint32_t e, SampleSums* into) { t.add(hit, x, y, b, e, into); },
                                sampling, pixelTarget, agreeingRays, &sums[i]);
                 state[i] = PixelState::Finished;
             }
         });
+    };
+    const int shareCount = std::max(1, shares.count);
+
+    for (int round = 0; !wave.empty(); ++round) {
+        std::sort(wave.begin(), wave.end());
+        if (round == 0 && shareCount > 1) {
+            // The largest expected change first; within a share, in image order (the rays of
+            // neighbours share the BVH's nodes).
+            std::vector<float> change(count, 0.0f);
+            for (size_t i : wave)
+                if (state[i] != PixelState::Promoted && sums[i].weight > 0.0)
+                    change[i] = std::abs(float(sums[i].visibility()) -
+                                         out.visibility->at(int(i % size_t(width)), int(i / size_t(width))));
+            std::stable_sort(wave.begin(), wave.end(), [&](size_t a, size_t b) { return change[a] > change[b]; });
+            for (int s = 0; s < shareCount; ++s) {
+                const size_t begin = wave.size() * size_t(s) / size_t(shareCount);
+                const size_t end = wave.size() * size_t(s + 1) / size_t(shareCount);
+                std::sort(wave.begin() + long(begin), wave.begin() + long(end));
+                traceWave(wave, begin, end, "tracing shadow rays (adaptive rounds)",
+                          0.3f + 0.65f * float(s) / float(shareCount), 0.3f + 0.65f * float(s + 1) / float(shareCount));
+                if (s + 1 == shareCount || !shares.landed) continue;
+                if (s == 0)
+                    for (size_t i = 0; i < count; ++i)
+                        if (state[i] == PixelState::Decided) write(i);
+                for (size_t k = begin; k < end; ++k)
+                    if (state[wave[k]] == PixelState::Finished) write(wave[k]);
+                shares.landed(s + 1);
+            }
+        } else {
+            traceWave(wave, 0, wave.size(),
+                      round == 0 ? "tracing shadow rays (adaptive rounds)" : "tracing shadow rays (following the penumbra)",
+                      round == 0 ? 0.3f : 0.95f, 0.95f);
+        }
         disagreeing.clear();
         for (size_t i : wave)
             if (state[i] == PixelState::Finished && !sums[i].agree()) disagreeing.push_back(i);
@@ -214,16 +256,9 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
         spread(disagreeing, &wave);
     }
 
-    for (size_t i = 0; i < count; ++i) {
-        if (state[i] == PixelState::Outside || state[i] == PixelState::Reachable || state[i] == PixelState::NoSurface)
-            continue;
-        const int x = int(i % size_t(width)), y = int(i / size_t(width));
-        if (out.traced) out.traced->at(x, y) = 1.0f;
-        if (out.rays) out.rays->at(x, y) = float(sums[i].rays);
-        if (!(sums[i].weight > 0.0)) continue;
-        out.visibility->at(x, y) = float(sums[i].visible / sums[i].weight);
-        if (out.mask) out.mask->at(x, y) = 1.0f;
-    }
+    for (size_t i = 0; i < count; ++i)
+        if (state[i] != PixelState::Outside && state[i] != PixelState::Reachable && state[i] != PixelState::NoSurface)
+            write(i);
     settings.report(1.0f, "tracing shadow rays");
 }
 

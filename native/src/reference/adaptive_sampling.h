@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -87,12 +88,23 @@ struct AdaptiveOutputs {
     Image* traced = nullptr;
 };
 
+// The first wave of further rounds (the pixels the first round left undecided and their guard
+// band) traced in `count` shares of equal size, the largest expected change first: the first
+// round's V against what *visibility held (the guard band's pixels without a first round last).
+// After each share but the last, the outputs hold every pixel decided or finished so far (the
+// others as they were) and `landed(share)` runs (1-based), on the caller's thread. Every pixel
+// ends as in one go: the last share's outputs are those of count = 1.
+struct AdaptiveShares {
+    int count = 1;
+    std::function<void(int share)> landed;
+};
+
 // Traces `pixels` of the scene's camera for light `lightIndex` in adaptive rounds. The guard band
 // follows the penumbra: a pixel the band promoted that disagrees after its further rounds
 // promotes its own neighbours within the band, wave after wave until no pixel is promoted.
-// Deterministic for settings.seed and independent of the thread count.
+// Deterministic for settings.seed and independent of the thread count and of shares.count.
 void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
                    const AdaptiveSampling& sampling, const RenderSettings& settings,
-                   const AdaptivePixels& pixels, const AdaptiveOutputs& out);
+                   const AdaptivePixels& pixels, const AdaptiveOutputs& out, const AdaptiveShares& shares = {});
 
 }  // namespace ss

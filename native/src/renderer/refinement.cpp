@@ -12,7 +12,7 @@
 namespace ss {
 
 std::vector<std::string> refinementKeys() {
-    std::vector<std::string> keys{"refine", "refine_margin", "refine_samples", "refine_verify"};
+    std::vector<std::string> keys{"refine", "refine_margin", "refine_samples", "refine_verify", "refine_rounds"};
     for (const std::string& k : adaptiveSamplingKeys()) keys.push_back(k);
     return keys;
 }
@@ -85,10 +85,12 @@ Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSetti
 }
 
 Refinement refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
-                                 TraceSceneCache& cache, Layers& layers) {
+                                 TraceSceneCache& cache, Layers& layers, const RefinementRoundFn& landed) {
     const int margin = settings.integer("refine_margin", 3, 0, 32);
     const int samples = settings.integer("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16);
     const int verify = settings.integer("refine_verify", kRefineDefaultVerifyRays, 0, 1024);
+    AdaptiveShares shares;
+    shares.count = settings.integer("refine_rounds", 1, 1, 64);
     AdaptiveSampling sampling = adaptiveSampling(settings, samples);
     Image *visibility = nullptr, *mask = nullptr;
     for (auto& [name, image] : layers.items) {
@@ -118,14 +120,21 @@ Refinement refineUncertainPixels(const Scene& scene, int lightIndex, const Rende
 
     // A traced pixel the light reaches joins the mask: its V is the ray tracer's now.
     Image tracedRays(width, height, 0.0f), refined(width, height, 0.0f);
+    auto withTraceLayers = [&](Layers& into, Image checked) {
+        for (size_t i = 0; i < checked.pixels.size(); ++i) checked.pixels[i] += tracedRays.pixels[i];
+        into.add("rays", std::move(checked));
+        into.add("refined", refined);
+    };
+    if (landed)
+        shares.landed = [&](int share) {
+            RefinementRound round{layers, refined, sampling.errorTarget, share, shares.count};
+            if (settings.extraLayers) withTraceLayers(round.layers, rays);
+            landed(round);
+        };
     traceAdaptive(scene, lightIndex, *trace, sampling, settings, {&select, verify > 0 ? &everywhere : mask},
-                  {visibility, mask, &tracedRays, &refined});
-    for (size_t i = 0; i < rays.pixels.size(); ++i) rays.pixels[i] += tracedRays.pixels[i];
+                  {visibility, mask, &tracedRays, &refined}, shares);
     Refinement out{refined, sampling.errorTarget};
-    if (settings.extraLayers) {
-        layers.add("rays", std::move(rays));
-        layers.add("refined", std::move(refined));
-    }
+    if (settings.extraLayers) withTraceLayers(layers, std::move(rays));
     return out;
 }
 

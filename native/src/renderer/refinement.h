@@ -1,6 +1,7 @@
 // Which pixels of a GL method's result are re-traced with the adaptive reference ("refine=on").
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,8 +16,10 @@ namespace ss {
 // The keys every method accepts for refinement: "refine" (on/off, default off),
 // "refine_margin" (pixels around the uncertain ones, 0..32, default 3), "refine_samples" (the
 // cap of samples per traced pixel, default 1024), "refine_verify" (rays that check each pixel
-// the pass called certain, 0..1024, 0 = no check, default kRefineDefaultVerifyRays) and the
-// adaptive sampling's keys (reference/adaptive_sampling.h).
+// the pass called certain, 0..1024, 0 = no check, default kRefineDefaultVerifyRays),
+// "refine_rounds" (the shares the uncertain pixels are traced in, 1..64, default 1: each share but
+// the last is handed out as it lands, RefinementRound) and the adaptive sampling's keys
+// (reference/adaptive_sampling.h).
 constexpr int kRefineDefaultVerifyRays = 8;
 std::vector<std::string> refinementKeys();
 bool refinementRequested(const RenderSettings& settings);
@@ -50,7 +53,19 @@ struct Refinement {
     Image traced;
     float errorTarget = 0.0f;
 };
+// With "refine_rounds" = n > 1 the pixels to trace are traced in n shares (AdaptiveShares: the
+// largest expected change first); after each share but the last, `landed` hears the result so far:
+// the layers as refined up to then (with extraLayers their "rays" and "refined" so far), the
+// pixels traced so far and the error target, round of rounds (1-based). The final layers are
+// those of one round.
+struct RefinementRound {
+    Layers layers;
+    Image traced;
+    float errorTarget = 0.0f;
+    int round = 0, rounds = 0;
+};
+using RefinementRoundFn = std::function<void(RefinementRound&)>;
 Refinement refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
-                                 TraceSceneCache& cache, Layers& layers);
+                                 TraceSceneCache& cache, Layers& layers, const RefinementRoundFn& landed = {});
 
 }  // namespace ss

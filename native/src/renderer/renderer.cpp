@@ -122,6 +122,38 @@ struct Renderer::Impl {
         destroyOnGlThread(oldest);
     }
 
+    // The scene's method object of that name, made once, after its setting keys (its own and
+    // the refinement's) and the refine flag are checked: a bad one fails before any work.
+    Method& method(const Scene& scene, const std::string& name, const RenderSettings& settings) {
+        auto& cached = cacheFor(scene);
+        auto it = cached.methods.find(name);
+        if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
+        std::vector<std::string> keys = it->second->settingKeys();
+        for (const std::string& k : refinementKeys())
+            if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+        settings.requireKnownKeys(name, keys);
+        (void)refinementRequested(settings);
+        return *it->second;
+    }
+
+    // refine=on of `layers`, method `name`'s result; each round but the last goes to `rounds`
+    // (when set) with its class layers and, where `check` is given, its estimate.
+    Refinement refine(const Scene& scene, int lightIndex, const std::string& name, const RenderSettings& settings,
+                      Layers& layers, const SparseCheck* check, const RoundFn& rounds) {
+        RefinementRoundFn landed;
+        if (rounds)
+            landed = [&](RefinementRound& r) {
+                RoundResult partial{name, std::move(r.layers), std::numeric_limits<double>::quiet_NaN(), r.round,
+                                    r.rounds};
+                if (check) partial.estimatedRmse = estimatedRmse(*check, partial.layers, &r.traced, r.errorTarget);
+                if (settings.extraLayers) addClassLayers(partial.layers);
+                if (!rounds(partial))
+                    fail(SS_ERROR_CANCELLED, "cancelled after refinement round " + std::to_string(r.round) + " of " +
+                                                 std::to_string(r.rounds));
+            };
+        return refineUncertainPixels(scene, lightIndex, settings, cacheFor(scene).frame->traceScenes(), layers, landed);
+    }
+
     Cached& cacheFor(const Scene& scene) {
         for (size_t i = 0; i < caches.size(); ++i) {
             if (caches[i]->sceneId != scene.id()) continue;
@@ -244,17 +276,9 @@ bool clearlyBetter(double a, double b) { return a < b * 0.97 - 0.0005; }
 }  // namespace
 
 Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::string& name,
-                              const RenderSettings& settings, Refinement* refined) {
-    auto& cached = impl_->cacheFor(scene);
-    auto it = cached.methods.find(name);
-    if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
-    Method& m = *it->second;
-    Frame& frame = *cached.frame;
-    std::vector<std::string> keys = m.settingKeys();
-    for (const std::string& k : refinementKeys())
-        if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
-    settings.requireKnownKeys(name, keys);
-    const bool refine = refinementRequested(settings);  // a bad value fails before any work
+                              const RenderSettings& settings) {
+    Method& m = impl_->method(scene, name, settings);
+    Frame& frame = *impl_->cacheFor(scene).frame;
     if (impl_->cacheTakenHook) impl_->cacheTakenHook();
 
     Layers layers;
@@ -273,12 +297,6 @@ Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::str
         });
     }
     checkLayers(layers, scene.camera(), name);
-    // Refinement traces on the caller's thread (progress may call Python); the reference is
-    // exact already, so it has nothing to refine.
-    if (refine && m.needsGl()) {
-        Refinement r = refineUncertainPixels(scene, lightIndex, settings, frame.traceScenes(), layers);
-        if (refined) *refined = std::move(r);
-    }
     return layers;
 }
 
@@ -297,7 +315,7 @@ bool Renderer::sparseCheck(const Scene& scene, int lightIndex, int pixels, int s
 
 Layers Renderer::render(const Scene& given, int lightIndex, const std::string& method,
                         const RenderSettings& givenSettings, std::string* methodUsed, double* estimateOut,
-                        AutoTrials* trialsOut, std::vector<std::string>* warnings) {
+                        AutoTrials* trialsOut, std::vector<std::string>* warnings, const RoundFn& rounds) {
     std::lock_guard lock(impl_->m);
     (void)given.camera();  // throws when the scene has no camera
     (void)given.light(lightIndex);  // throws for an index out of range, before any work
@@ -380,25 +398,31 @@ Layers Renderer::render(const Scene& given, int lightIndex, const std::string& m
             if (name.empty()) fail(SS_ERROR_UNSUPPORTED, "auto: no method can render light '" +
                                                              scene.light(lightIndex).name + "' in this scene");
         }
+        // Refinement traces on the caller's thread (progress and rounds may call Python); the
+        // reference is exact already, so it has nothing to refine.
         if (refine && impl_->cacheFor(scene).methods.at(name)->needsGl()) {
-            const Refinement r =
-                refineUncertainPixels(scene, lightIndex, settings, impl_->cacheFor(scene).frame->traceScenes(), layers);
-            if (std::isfinite(estimate)) estimate = estimatedRmse(check, layers, &r.traced, r.errorTarget);
+            const bool checked = std::isfinite(estimate);
+            const Refinement r = impl_->refine(scene, lightIndex, name, settings, layers, checked ? &check : nullptr, rounds);
+            if (checked) estimate = estimatedRmse(check, layers, &r.traced, r.errorTarget);
         }
         if (trialsOut) *trialsOut = std::move(trials);
     } else {
         RenderSettings own = settings;
         const bool wantEstimate = own.flag(kEstimateKey, false);
         own.options.erase(kEstimateKey);
-        Refinement refined;
-        layers = renderMethod(scene, lightIndex, name, own, &refined);
+        const bool gl = impl_->method(scene, name, own).needsGl();
         SparseCheck check;
-        if (wantEstimate && impl_->cacheFor(scene).methods.at(name)->needsGl() &&
-            sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(camera.width, camera.height), 0, settings.seed,
-                        &check))
-            estimate = refined.traced.pixels.empty()
-                           ? estimatedRmse(check, layers)
-                           : estimatedRmse(check, layers, &refined.traced, refined.errorTarget);
+        // Made before the rounds, whose results carry the estimate too.
+        const bool checked = wantEstimate && gl &&
+                             sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(camera.width, camera.height), 0,
+                                         settings.seed, &check);
+        layers = renderMethod(scene, lightIndex, name, own);
+        if (refinementRequested(own) && gl) {
+            const Refinement r = impl_->refine(scene, lightIndex, name, own, layers, checked ? &check : nullptr, rounds);
+            if (checked) estimate = estimatedRmse(check, layers, &r.traced, r.errorTarget);
+        } else if (checked) {
+            estimate = estimatedRmse(check, layers);
+        }
     }
     if (settings.extraLayers) addClassLayers(layers);
     if (methodUsed) *methodUsed = name;

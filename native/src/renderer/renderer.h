@@ -46,10 +46,20 @@ public:
     // Meshes beyond the scene range (core/scene_range.h) are left out, one message each in
     // *warnings (may be null); a light or camera beyond it, or a render past the memory budget
     // (renderer/render_memory.h), fails before any work.
+    // With "refine=on" and "refine_rounds" = n > 1 (renderer/refinement.h), `rounds` (may be
+    // empty) hears each round but the last, on the caller's thread, while the render holds the
+    // renderer; it returns false to cancel (SS_ERROR_CANCELLED).
+    struct RoundResult {
+        std::string method;  // the method that ran ("auto" resolved)
+        Layers layers;       // as refined so far; with extraLayers the class layers too
+        double estimatedRmse = 0.0;  // as the result's, NaN where the render makes none
+        int round = 0, rounds = 0;   // 1-based
+    };
+    using RoundFn = std::function<bool(RoundResult& partial)>;
     Layers render(const Scene& scene, int lightIndex, const std::string& method,
                   const RenderSettings& settings, std::string* methodUsed,
                   double* estimatedRmse = nullptr, AutoTrials* trials = nullptr,
-                  std::vector<std::string>* warnings = nullptr);
+                  std::vector<std::string>* warnings = nullptr, const RoundFn& rounds = {});
 
     // How many frames were made (one per scene id) and how often their shared passes were
     // drawn (meshUploads: meshes uploaded; traceSceneBuilds: Embree scenes built for the
@@ -79,10 +89,9 @@ public:
     void setShadowMapBudget(size_t bytes);
 
 private:
-    // One method as it is (settings keys checked), with the shared frame and GL thread; with
-    // "refine=on", what the refinement traced into *refined (when not null).
+    // One method as it is (settings keys checked), with the shared frame and GL thread; not refined.
     Layers renderMethod(const Scene& scene, int lightIndex, const std::string& name,
-                        const RenderSettings& settings, Refinement* refined = nullptr);
+                        const RenderSettings& settings);
     // The sparse exact check of the light; false where it cannot be made (no pixel, no ray
     // tracer, no checked pixel the light reaches).
     bool sparseCheck(const Scene& scene, int lightIndex, int pixels, int samples, uint32_t seed,
