@@ -27,6 +27,40 @@ Mesh boxA() { return test::makeBox({-0.9f, -0.5f, 0.6f}, {-0.2f, 0.2f, 1.0f}, kB
 Mesh boxB() { return test::makeBox({0.3f, -0.2f, 0.4f}, {0.8f, 0.5f, 0.9f}, kBoth); }
 Mesh boxBEdited() { return test::makeBox({0.2f, -0.4f, 0.5f}, {0.9f, 0.3f, 1.1f}, kBoth); }
 
+// Mesh `m` through the C API, placed by `objectToWorld` (nullptr: the identity).
+ss_status addMeshThroughCApi(ss_scene* scene, const Mesh& m, const float* objectToWorld, const char* name = nullptr) {
+    std::vector<float> xyz;
+    for (const glm::vec3& p : m.objectPositions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    return ss_scene_add_mesh(scene, name ? name : m.name.c_str(), xyz.data(), uint32_t(m.objectPositions.size()),
+                             &m.triangles[0][0], uint32_t(m.triangles.size()), objectToWorld, kBoth, nullptr);
+}
+
+// Light "A" of threeMeshTwoLights() as the C API takes it.
+ss_light_desc lightADesc() {
+    ss_light_desc light{};
+    light.name = "A";
+    light.type = SS_LIGHT_DISK;
+    const glm::mat4 at = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 4.0f));
+    for (int i = 0; i < 16; ++i) light.light_to_world[i] = (&at[0][0])[i];
+    light.size = light.size_y = 1.0f;
+    light.cast_shadows = 1;
+    return light;
+}
+
+// test::makeTopCamera(64, 48) as the C API takes it.
+ss_camera_desc topCameraDesc() {
+    const Camera cam = test::makeTopCamera(64, 48);
+    ss_camera_desc camera{};
+    for (int i = 0; i < 16; ++i) {
+        camera.world_to_camera[i] = (&cam.worldToCamera[0][0])[i];
+        camera.projection[i] = (&cam.projection[0][0])[i];
+    }
+    camera.width = cam.width;
+    camera.height = cam.height;
+    camera.pixel_aspect = 1.0f;
+    return camera;
+}
+
 Scene threeMeshTwoLights() {
     Scene s;
     s.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
@@ -372,30 +406,11 @@ TEST(SceneUpdates, OneBvhServesReferenceRefineAndTheCheckUntilAMeshEdit) {
 TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
     ss_scene* scene = nullptr;
     ASSERT_EQ(ss_scene_create(&scene), SS_OK);
-    for (const Mesh& m : {test::makeGround(4.0f, 0.0f, kBoth), boxA(), boxB()}) {
-        std::vector<float> xyz;
-        for (const glm::vec3& p : m.objectPositions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
-        ASSERT_EQ(ss_scene_add_mesh(scene, m.name.c_str(), xyz.data(), uint32_t(m.objectPositions.size()),
-                                    &m.triangles[0][0], uint32_t(m.triangles.size()), nullptr, kBoth, nullptr),
-                  SS_OK);
-    }
-    ss_light_desc light{};
-    light.name = "A";
-    light.type = SS_LIGHT_DISK;
-    glm::mat4 at = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 4.0f));
-    for (int i = 0; i < 16; ++i) light.light_to_world[i] = (&at[0][0])[i];
-    light.size = light.size_y = 1.0f;
-    light.cast_shadows = 1;
+    for (const Mesh& m : {test::makeGround(4.0f, 0.0f, kBoth), boxA(), boxB()})
+        ASSERT_EQ(addMeshThroughCApi(scene, m, nullptr), SS_OK);
+    const ss_light_desc light = lightADesc();
     ASSERT_EQ(ss_scene_add_light(scene, &light, nullptr), SS_OK);
-    Camera cam = test::makeTopCamera(64, 48);
-    ss_camera_desc camera{};
-    for (int i = 0; i < 16; ++i) {
-        camera.world_to_camera[i] = (&cam.worldToCamera[0][0])[i];
-        camera.projection[i] = (&cam.projection[0][0])[i];
-    }
-    camera.width = cam.width;
-    camera.height = cam.height;
-    camera.pixel_aspect = 1.0f;
+    const ss_camera_desc camera = topCameraDesc();
     ASSERT_EQ(ss_scene_set_camera(scene, &camera), SS_OK);
 
     ss_context* context = nullptr;
@@ -465,34 +480,14 @@ TEST(SceneUpdates, AMeshAddedWithItsMatrixIsTheMovedMeshAndItsSavedFile) {
     auto build = [&](bool matrixFirst) {
         ss_scene* scene = nullptr;
         EXPECT_EQ(ss_scene_create(&scene), SS_OK);
-        int index = 0;
-        for (const Mesh& m : {test::makeGround(4.0f, 0.0f, kBoth), boxA()}) {
-            std::vector<float> xyz;
-            for (const glm::vec3& p : m.objectPositions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
-            const bool placed = index++ == 1;
-            EXPECT_EQ(ss_scene_add_mesh(scene, m.name.c_str(), xyz.data(), uint32_t(m.objectPositions.size()),
-                                        &m.triangles[0][0], uint32_t(m.triangles.size()),
-                                        placed && matrixFirst ? &place[0][0] : nullptr, kBoth, nullptr),
-                      SS_OK);
-            if (placed && !matrixFirst) EXPECT_EQ(ss_scene_set_mesh_transform(scene, 1, &place[0][0]), SS_OK);
+        EXPECT_EQ(addMeshThroughCApi(scene, test::makeGround(4.0f, 0.0f, kBoth), nullptr), SS_OK);
+        EXPECT_EQ(addMeshThroughCApi(scene, boxA(), matrixFirst ? &place[0][0] : nullptr), SS_OK);
+        if (!matrixFirst) {
+            EXPECT_EQ(ss_scene_set_mesh_transform(scene, 1, &place[0][0]), SS_OK);
         }
-        ss_light_desc light{};
-        light.name = "A";
-        light.type = SS_LIGHT_DISK;
-        const glm::mat4 at = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 4.0f));
-        for (int i = 0; i < 16; ++i) light.light_to_world[i] = (&at[0][0])[i];
-        light.size = light.size_y = 1.0f;
-        light.cast_shadows = 1;
+        const ss_light_desc light = lightADesc();
         EXPECT_EQ(ss_scene_add_light(scene, &light, nullptr), SS_OK);
-        const Camera cam = test::makeTopCamera(64, 48);
-        ss_camera_desc camera{};
-        for (int i = 0; i < 16; ++i) {
-            camera.world_to_camera[i] = (&cam.worldToCamera[0][0])[i];
-            camera.projection[i] = (&cam.projection[0][0])[i];
-        }
-        camera.width = cam.width;
-        camera.height = cam.height;
-        camera.pixel_aspect = 1.0f;
+        const ss_camera_desc camera = topCameraDesc();
         EXPECT_EQ(ss_scene_set_camera(scene, &camera), SS_OK);
         return scene;
     };
@@ -533,12 +528,7 @@ TEST(SceneUpdates, AMeshAddedWithItsMatrixIsTheMovedMeshAndItsSavedFile) {
     glm::mat4 notFinite = place;
     notFinite[3][1] = std::numeric_limits<float>::quiet_NaN();
     for (const glm::mat4& bad : {projective, notFinite}) {
-        const Mesh box = boxB();
-        std::vector<float> xyz;
-        for (const glm::vec3& p : box.objectPositions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
-        EXPECT_EQ(ss_scene_add_mesh(given, "Refused", xyz.data(), uint32_t(box.objectPositions.size()),
-                                    &box.triangles[0][0], uint32_t(box.triangles.size()), &bad[0][0], kBoth, nullptr),
-                  SS_ERROR_INVALID_ARGUMENT);
+        EXPECT_EQ(addMeshThroughCApi(given, boxB(), &bad[0][0], "Refused"), SS_ERROR_INVALID_ARGUMENT);
         EXPECT_NE(std::string(ss_last_error()).find("mesh 'Refused'"), std::string::npos) << ss_last_error();
         EXPECT_EQ(ss_scene_mesh_count(given), 2);
         EXPECT_EQ(ss_scene_set_mesh_transform(given, 1, &bad[0][0]), SS_ERROR_INVALID_ARGUMENT);

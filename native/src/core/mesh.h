@@ -47,7 +47,7 @@ struct MeshReport {
 struct Mesh {
     std::string name;
     // The mesh as given: its vertices in object space, its triangles and where it is placed.
-    // finalize() derives everything below from these; place() moves the mesh.
+    // finalize() derives the shape's and the placement's data below from them; place() moves it.
     std::vector<glm::vec3> objectPositions;
     std::vector<glm::uvec3> triangles;
     glm::mat4 objectToWorld{1.0f};  // affine (last row 0 0 0 1)
