@@ -34,7 +34,7 @@ Mesh torus(int nu, int nv, float major, float minor, glm::vec3 c) {
         for (int j = 0; j < nv; ++j) {
             float u = 2.0f * float(M_PI) * float(i) / float(nu), v = 2.0f * float(M_PI) * float(j) / float(nv);
             float r = major + minor * std::cos(v);
-            m.positions.push_back(c + glm::vec3(r * std::cos(u), r * std::sin(u), minor * std::sin(v)));
+            m.objectPositions.push_back(c + glm::vec3(r * std::cos(u), r * std::sin(u), minor * std::sin(v)));
         }
     auto at = [&](int i, int j) { return uint32_t((i % nu) * nv + (j % nv)); };
     for (int i = 0; i < nu; ++i)

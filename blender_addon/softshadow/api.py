@@ -244,9 +244,14 @@ def export_scene_file(scene, path, depsgraph=None):
     """Writes the scene file the CLI reads (`softshadow render FILE`). Returns problems."""
     graph = _evaluated_depsgraph(scene, depsgraph)
     exported = scene_export.export(graph, scene, mode="RENDER")
-    native_scene, _ = passes.build_native_scene(exported)
+    live = passes.LiveScene()  # the scene a render builds, so the CLI renders the same pixels
     try:
-        native_scene.save(path)
+        live.rebuild(exported)
+        try:
+            live.set_camera(exported.camera)
+        except native.SoftShadowError as exc:
+            live.problems.append("camera: %s" % exc)
+        live.scene.save(path)
     finally:
-        native_scene.close()
-    return exported.problems
+        live.close()
+    return exported.problems + live.problems

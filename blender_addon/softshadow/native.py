@@ -129,8 +129,8 @@ _SIGNATURES = {
     "ss_scene_load": (_st, [ctypes.c_char_p, ctypes.POINTER(_vp)]),
     "ss_scene_save": (_st, [_vp, ctypes.c_char_p]),
     "ss_scene_add_mesh": (_st, [_vp, ctypes.c_char_p, ctypes.POINTER(ctypes.c_float), ctypes.c_uint32,
-                                ctypes.POINTER(ctypes.c_uint32), ctypes.c_uint32, ctypes.c_uint32,
-                                ctypes.POINTER(ctypes.c_int32)]),
+                                ctypes.POINTER(ctypes.c_uint32), ctypes.c_uint32, ctypes.POINTER(ctypes.c_float),
+                                ctypes.c_uint32, ctypes.POINTER(ctypes.c_int32)]),
     "ss_scene_add_light": (_st, [_vp, ctypes.POINTER(_LightDesc), ctypes.POINTER(ctypes.c_int32)]),
     "ss_scene_update_mesh": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_float), ctypes.c_uint32,
                                    ctypes.POINTER(ctypes.c_uint32), ctypes.c_uint32, ctypes.c_uint32]),
@@ -424,7 +424,7 @@ class _Owned:
 
 
 class Scene(_Owned):
-    """An ss_scene: meshes, lights and a camera in world space."""
+    """An ss_scene: meshes (object-space vertices placed by a matrix), lights and a camera."""
 
     _destroy = "ss_scene_destroy"
     _what = "scene"
@@ -442,14 +442,16 @@ class Scene(_Owned):
         _check(lib().ss_scene_load(_text(os.fspath(path)), ctypes.byref(handle)))
         return cls(handle)
 
-    def add_mesh(self, name, vertices, triangles, flags):
-        """vertices: (N, 3) world-space float; triangles: (M, 3) indices. Returns the index."""
+    def add_mesh(self, name, vertices, triangles, flags, object_to_world=None):
+        """vertices: (N, 3) object-space float; triangles: (M, 3) indices; object_to_world: 16
+        column-major floats placing them (None: the identity). Returns the index."""
         xyz = np.ascontiguousarray(vertices, dtype=np.float32).reshape(-1, 3)
         tris = np.ascontiguousarray(triangles, dtype=np.uint32).reshape(-1, 3)
+        matrix = None if object_to_world is None else _matrix16(object_to_world)
         index = ctypes.c_int32(-1)
         _check(lib().ss_scene_add_mesh(
             self.handle, _text(name), xyz.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), len(xyz),
-            tris.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32)), len(tris), int(flags),
+            tris.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32)), len(tris), matrix, int(flags),
             ctypes.byref(index)))
         return index.value
 
@@ -486,7 +488,7 @@ class Scene(_Owned):
             material.ctypes.data_as(ctypes.POINTER(ctypes.c_int32)), descs, len(descs)))
 
     def set_mesh_transform(self, index, object_to_world):
-        """object_to_world: 16 column-major floats applied to the mesh's coordinates as given."""
+        """object_to_world: 16 column-major floats applied to the mesh's object-space vertices."""
         _check(lib().ss_scene_set_mesh_transform(self.handle, int(index), _matrix16(object_to_world)))
 
     def remove_mesh(self, index):

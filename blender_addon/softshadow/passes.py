@@ -26,40 +26,6 @@ class FrameResult:
         self.results = []
 
 
-def build_native_scene(exported):
-    """ExportedScene -> (native.Scene, {light name: index}); failures go to exported.problems."""
-    scene = native.Scene()
-    scene.set_view_layer(exported.view_layer)
-    sent = []  # the mesh dicts the library took, in its index order
-    for mesh in exported.meshes:
-        try:
-            index = scene.add_mesh(mesh["name"], scene_export.world_vertices(mesh), mesh["triangles"], mesh["flags"])
-            sent.append(mesh)
-            if mesh.get("alpha") is not None:
-                scene.set_mesh_materials(index, mesh["alpha"])
-        except native.SoftShadowError as exc:
-            exported.problems.append("object '%s' skipped: %s" % (mesh["name"], exc))
-    indices = {}
-    for light in exported.lights:
-        problem = scene_export.light_problem(light)
-        if problem:
-            exported.problems.append(problem)
-            continue
-        try:
-            indices[light["name"]] = scene.add_light(light)
-        except native.SoftShadowError as exc:
-            exported.problems.append("light '%s' gets no pass: %s" % (light["name"], exc))
-    by_name = {light["name"]: light for light in exported.lights}
-    send_light_links(scene, {index: by_name[name] for name, index in indices.items()}, sent)
-    if exported.camera is not None:
-        try:
-            scene.set_camera(exported.camera)
-        except native.SoftShadowError as exc:
-            exported.problems.append("camera: %s" % exc)
-            exported.camera = None
-    return scene, indices
-
-
 def send_light_links(scene, lights, meshes):
     """Sends the light and shadow linking (Blender 4.0+) of `lights` ({library index: light
     dict}) as mesh indices of `meshes` (the dicts in the library's order); every light is sent,
@@ -74,11 +40,13 @@ def send_light_links(scene, lights, meshes):
 
 
 class LiveScene:
-    """One native scene kept alive across renders and fed only what changed, so that the
-    library's caches (per mesh shape: GPU buffers; per light: shadow maps) survive from call to
-    call. Meshes are sent in object space with their matrix, so a move sends 16 floats and the
-    library draws the mesh it has with the new matrix; a scene built afresh from the same export
-    renders the same numbers. A failed edit drops the scene: the next sync rebuilds it."""
+    """The add-on's one builder of native scenes (renders, the preview, exported scene files),
+    kept alive across renders and fed only what changed, so that the library's caches (per mesh
+    shape: GPU buffers; per light: shadow maps) survive from call to call. Meshes are sent in
+    object space with their matrix, so a move sends 16 floats and the library draws the mesh it
+    has with the new matrix; a scene built afresh from the same export renders the same numbers,
+    and so does its scene file in the CLI. A failed edit drops the scene: the next sync rebuilds
+    it."""
 
     def __init__(self):
         self.lock = threading.Lock()
@@ -97,14 +65,13 @@ class LiveScene:
         return {light["name"]: i for i, light in enumerate(self.lights)}
 
     def _add_mesh(self, mesh):
-        index = self.scene.add_mesh(mesh["name"], mesh["local"], mesh["triangles"], mesh["flags"])
-        try:
-            self.scene.set_mesh_transform(index, mesh["matrix"])
-            if mesh.get("alpha") is not None:
+        index = self.scene.add_mesh(mesh["name"], mesh["local"], mesh["triangles"], mesh["flags"], mesh["matrix"])
+        if mesh.get("alpha") is not None:
+            try:
                 self.scene.set_mesh_materials(index, mesh["alpha"])
-        except native.SoftShadowError:
-            self.scene.remove_mesh(index)  # keeps the native indices equal to self.meshes'
-            raise
+            except native.SoftShadowError:
+                self.scene.remove_mesh(index)  # keeps the native indices equal to self.meshes'
+                raise
         self.meshes.append(mesh)
 
     def _add_light(self, light):

@@ -55,19 +55,6 @@ def camera_matrix_problem(name, matrix):
     return ""
 
 
-def transform_points(matrix, points):
-    """(N, 3) local points -> world through a 4x4 row-indexed matrix (affine)."""
-    m = np.asarray([list(r) for r in matrix], dtype=np.float64).reshape(4, 4)
-    p = np.asarray(points, dtype=np.float64).reshape(-1, 3)
-    return (p @ m[:3, :3].T + m[:3, 3]).astype(np.float32)
-
-
-def world_vertices(mesh):
-    """An exported mesh's vertices in world space, (N, 3) float32."""
-    rows = np.asarray(mesh["matrix"], dtype=np.float64).reshape(4, 4).T
-    return transform_points(rows, mesh["local"])
-
-
 def render_size(resolution_x, resolution_y, percentage):
     """Blender's final pixel size: integer arithmetic as in BKE_render_resolution."""
     return (int(resolution_x) * int(percentage)) // 100, (int(resolution_y) * int(percentage)) // 100
@@ -363,7 +350,7 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
     (the viewport preview passes its own view).
 
     Each mesh carries its object-space "local" vertices, "triangles" and column-major "matrix"
-    (world_vertices() places it). only: names of the objects to export (the preview's changed
+    (the library places the vertices by it). only: names of the objects to export (the preview's changed
     objects; no instances); of those, the ones not in `geometry` are exported without reading
     their mesh ("local" and "triangles" None: a moved object costs its matrix). reuse: a
     mesh_cache.MeshCache: an object's mesh comes from it while the depsgraph reports no change

@@ -221,6 +221,15 @@ def pixel_of(scene, point):
     return int((1.0 - ndc.y) * h), int(ndc.x * w)
 
 
+def world_vertices(mesh):
+    """An exported mesh's vertices placed by its column-major matrix, (N, 3) float32 (to check
+    where the export puts things; the library places them itself)."""
+    import numpy as np
+    m = np.asarray(mesh["matrix"], dtype=np.float64).reshape(4, 4).T
+    p = np.asarray(mesh["local"], dtype=np.float64).reshape(-1, 3)
+    return (p @ m[:3, :3].T + m[:3, 3]).astype(np.float32)
+
+
 def build_dir():
     return os.environ.get("SOFTSHADOW_BUILD_DIR") or os.path.dirname(os.environ.get("SOFTSHADOW_LIB", ""))
 

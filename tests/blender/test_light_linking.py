@@ -64,16 +64,17 @@ def _native_links(scene):
     """{light name: (blockers, receivers) as mesh names} of the scene the add-on sends."""
     graph = bpy.context.evaluated_depsgraph_get()
     exported = ss.scene_export.export(graph, scene, mode="RENDER")
-    native_scene, indices = ss.passes.build_native_scene(exported)
+    live = ss.passes.LiveScene()
     try:
-        names = [m["name"] for m in exported.meshes]
+        live.rebuild(exported)
+        names = [m["name"] for m in live.meshes]
         out = {}
-        for light, index in indices.items():
-            blockers, receivers = native_scene.light_links(index)
+        for light, index in live.light_indices().items():
+            blockers, receivers = live.scene.light_links(index)
             out[light] = tuple(None if s is None else sorted(names[i] for i in s) for s in (blockers, receivers))
         return out
     finally:
-        native_scene.close()
+        live.close()
 
 
 def test_without_collections_nothing_is_linked():

@@ -33,9 +33,9 @@ def test_world_space_and_modifiers():
     mesh = _mesh(exported, "Twisted")
     # One subdivision level of a cube: 6 faces x 4 quads x 2 triangles.
     sstest.check(mesh["triangles"].shape == (48, 3), "modifier applied: %s" % (mesh["triangles"].shape,))
-    centre = se.world_vertices(mesh).mean(axis=0)
+    centre = sstest.world_vertices(mesh).mean(axis=0)
     sstest.check(np.allclose(centre, (2, 3, 1), atol=1e-5), "world space: centre %s" % centre)
-    sstest.check(se.world_vertices(mesh).dtype == np.float32 and mesh["local"].dtype == np.float32
+    sstest.check(sstest.world_vertices(mesh).dtype == np.float32 and mesh["local"].dtype == np.float32
                  and mesh["triangles"].dtype == np.uint32, "dtypes")
 
 
@@ -104,12 +104,12 @@ def test_collection_and_geometry_nodes_instances():
     names = [m["name"] for m in exported.meshes]
     sets = [n for n in names if n.startswith("Set")]
     sstest.check(len(sets) == 2, "two collection instances: %s" % names)
-    xs = sorted(float(se.world_vertices(m)[:, 0].mean()) for m in exported.meshes if m["name"] in sets)
+    xs = sorted(float(sstest.world_vertices(m)[:, 0].mean()) for m in exported.meshes if m["name"] in sets)
     sstest.check(np.allclose(xs, [-3, 3], atol=1e-5), "instances placed by their empties: %s" % xs)
     gn = [m for m in exported.meshes if m["name"].startswith("Scatterer")
           and len(m["triangles"]) == 12]
     sstest.check(len(gn) == 3, "three geometry-nodes cube instances: %s" % names)
-    gx = sorted(float(se.world_vertices(m)[:, 0].mean()) for m in gn)
+    gx = sorted(float(sstest.world_vertices(m)[:, 0].mean()) for m in gn)
     sstest.check(np.allclose(gx, [0, 1, 2], atol=1e-5), "instances along the line: %s" % gx)
 
 

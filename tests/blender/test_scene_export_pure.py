@@ -19,12 +19,6 @@ def test_column_major_layout():
     sstest.check(flat.dtype == np.float32, "float32")
 
 
-def test_transform_points_affine():
-    m = [[0, -1, 0, 1], [1, 0, 0, 2], [0, 0, 2, 3], [0, 0, 0, 1]]  # rotate 90 about z, scale z 2
-    out = se.transform_points(m, [[1, 0, 0], [0, 0, 1]])
-    sstest.check(np.allclose(out, [[1, 3, 3], [1, 2, 5]]), "affine transform: %s" % out)
-
-
 def test_normalized_rigid_removes_scale_keeps_translation():
     m = [[2, 0, 0, 5], [0, 3, 0, 6], [0, 0, 4, 7], [0, 0, 0, 1]]
     n = se.normalized_rigid(m)

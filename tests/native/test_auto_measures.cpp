@@ -221,7 +221,7 @@ TEST(AutoMeasures, GivesDbufferAnOpenCasterThatSeesTheLightFromOneSide) {
     // The same ground folded over itself (faces seeing the light from both sides) is not.
     Scene folded = s;
     Mesh bent = s.meshes()[0];
-    for (glm::vec3& v : bent.positions) v.z = 2.0f * std::sin(1.5f * v.x);
+    for (glm::vec3& v : bent.objectPositions) v.z = 2.0f * std::sin(1.5f * v.x);
     folded.updateMesh(0, bent);
     candidates = autoCandidates(folded, 0);
     EXPECT_EQ(std::count(candidates.begin(), candidates.end(), "dbuffer"), 0);
@@ -398,8 +398,8 @@ TEST(AutoMeasures, OpenCurvedCasterEveryMethodRendersAndAutoStaysClose) {
     Mesh shell = test::makeUvSphere({0.0f, 0.0f, 1.2f}, 0.7f, 12, 24, SS_MESH_CAST | SS_MESH_RECEIVE);
     std::vector<glm::uvec3> kept;  // the lower half's faces go: an open bowl, rim up
     for (const glm::uvec3& t : shell.triangles)
-        if (!(shell.positions[t.x].z < 1.2f && shell.positions[t.y].z < 1.2f && shell.positions[t.z].z < 1.2f) &&
-            (shell.positions[t.x].z + shell.positions[t.y].z + shell.positions[t.z].z) / 3.0f > 1.25f)
+        if (!(shell.objectPositions[t.x].z < 1.2f && shell.objectPositions[t.y].z < 1.2f && shell.objectPositions[t.z].z < 1.2f) &&
+            (shell.objectPositions[t.x].z + shell.objectPositions[t.y].z + shell.objectPositions[t.z].z) / 3.0f > 1.25f)
             kept.push_back(t);
     shell.triangles = kept;
     Scene scene;

@@ -61,10 +61,10 @@ TEST(CameraHidden, TheFlagGoesThroughTheCApiAndTheSceneFile) {
     ASSERT_EQ(ss_scene_create(&scene), SS_OK);
     const float xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const uint32_t tri[] = {0, 1, 2};
-    EXPECT_EQ(ss_scene_add_mesh(scene, "hidden", xyz, 3, tri, 1, SS_MESH_CAST | SS_MESH_CAMERA_HIDDEN, nullptr),
+    EXPECT_EQ(ss_scene_add_mesh(scene, "hidden", xyz, 3, tri, 1, nullptr, SS_MESH_CAST | SS_MESH_CAMERA_HIDDEN, nullptr),
               SS_OK)
         << ss_last_error();
-    EXPECT_NE(ss_scene_add_mesh(scene, "odd", xyz, 3, tri, 1, 16u, nullptr), SS_OK);
+    EXPECT_NE(ss_scene_add_mesh(scene, "odd", xyz, 3, tri, 1, nullptr, 16u, nullptr), SS_OK);
     ss_scene_destroy(scene);
 
     Scene original = plateScene(SS_MESH_CAST | SS_MESH_CAMERA_HIDDEN);

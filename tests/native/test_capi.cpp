@@ -65,7 +65,7 @@ ss_scene* smallScene(int w, int h) {
     EXPECT_EQ(ss_scene_create(&s), SS_OK);
     const float ground[12] = {-4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0};
     const uint32_t groundFaces[6] = {0, 1, 2, 0, 2, 3};
-    EXPECT_EQ(ss_scene_add_mesh(s, "Ground", ground, 4, groundFaces, 2, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
+    EXPECT_EQ(ss_scene_add_mesh(s, "Ground", ground, 4, groundFaces, 2, nullptr, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
     float box[8 * 3];
     for (int i = 0; i < 8; ++i) {
         box[3 * i] = (i & 1) ? 0.5f : -0.5f;
@@ -74,7 +74,7 @@ ss_scene* smallScene(int w, int h) {
     }
     const uint32_t boxFaces[36] = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
                                    2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
-    EXPECT_EQ(ss_scene_add_mesh(s, "Box", box, 8, boxFaces, 12, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
+    EXPECT_EQ(ss_scene_add_mesh(s, "Box", box, 8, boxFaces, 12, nullptr, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
     ss_light_desc light = diskLight("Key.001", 1.0f);
     EXPECT_EQ(ss_scene_add_light(s, &light, nullptr), SS_OK);
     ss_camera_desc cam{};
@@ -95,7 +95,7 @@ TEST(CApi, NullPointersAreNamed) {
     ss_scene* s = nullptr;
     ASSERT_EQ(ss_scene_create(&s), SS_OK);
     EXPECT_STREQ(ss_last_error(), "");
-    EXPECT_EQ(ss_scene_add_mesh(s, "m", nullptr, 3, kTetFaces, 1, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(ss_scene_add_mesh(s, "m", nullptr, 3, kTetFaces, 1, nullptr, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_ARGUMENT);
     EXPECT_TRUE(errorHas("xyz is null"));
     EXPECT_EQ(ss_scene_add_light(s, nullptr, nullptr), SS_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(ss_scene_load(nullptr, &s), SS_ERROR_INVALID_ARGUMENT);
@@ -115,7 +115,7 @@ TEST(CApi, NaNVertexIsRejected) {
     float xyz[12];
     std::copy(kTet, kTet + 12, xyz);
     xyz[4] = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_EQ(ss_scene_add_mesh(s, "Bad", xyz, 4, kTetFaces, 4, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_SCENE);
+    EXPECT_EQ(ss_scene_add_mesh(s, "Bad", xyz, 4, kTetFaces, 4, nullptr, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_SCENE);
     EXPECT_TRUE(errorHas("mesh 'Bad'") && errorHas("vertex 1 is not finite")) << ss_last_error();
     EXPECT_EQ(ss_scene_mesh_count(s), 0);
     ss_scene_destroy(s);
@@ -127,7 +127,7 @@ TEST(CApi, IndexOutOfRangeIsRejected) {
     uint32_t faces[12];
     std::copy(kTetFaces, kTetFaces + 12, faces);
     faces[7] = 4;
-    EXPECT_EQ(ss_scene_add_mesh(s, "Tet", kTet, 4, faces, 4, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_SCENE);
+    EXPECT_EQ(ss_scene_add_mesh(s, "Tet", kTet, 4, faces, 4, nullptr, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_SCENE);
     EXPECT_TRUE(errorHas("triangle 2 uses vertex index 4") && errorHas("4 vertices")) << ss_last_error();
     ss_scene_destroy(s);
 }

@@ -16,7 +16,7 @@ namespace {
 Mesh tetrahedron() {
     Mesh m;
     m.name = "tet";
-    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    m.objectPositions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
     m.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
     return m;
@@ -55,7 +55,7 @@ TEST(MeshAdjacency, OpenMeshReportsItsBoundary) {
 TEST(MeshAdjacency, ThreeFacesOnOneEdgeIsNonManifold) {
     Mesh m;
     m.name = "fin";
-    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+    m.objectPositions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
     m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
     m.finalize();
     EXPECT_EQ(m.report.nonManifoldEdges, 1u);
@@ -72,9 +72,9 @@ TEST(MeshAdjacency, FlippedFaceIsInconsistent) {
 
 TEST(MeshAdjacency, DegenerateFacesAreCountedNotFatal) {
     Mesh m = tetrahedron();
-    m.positions.push_back({2, 2, 2});
+    m.objectPositions.push_back({2, 2, 2});
     m.triangles.push_back({4, 4, 0});         // repeated index
-    m.positions.push_back({3, 3, 3});
+    m.objectPositions.push_back({3, 3, 3});
     m.triangles.push_back({0, 4, 5});         // collinear: zero area
     m.finalize();
     EXPECT_EQ(m.report.degenerateFaces, 2u);
@@ -83,7 +83,7 @@ TEST(MeshAdjacency, DegenerateFacesAreCountedNotFatal) {
 
 TEST(MeshValidation, NanVertexIsRejectedWithItsIndex) {
     Mesh m = tetrahedron();
-    m.positions[2].y = std::numeric_limits<float>::quiet_NaN();
+    m.objectPositions[2].y = std::numeric_limits<float>::quiet_NaN();
     try {
         m.finalize();
         FAIL() << "NaN vertex accepted";

@@ -134,7 +134,7 @@ TEST(DbufferQuality, Figure1SameCentreSilhouetteDifferentShadows) {
     // Same point silhouette: the top square (same 4 edges, same coordinates).
     auto topSquare = [&](const Mesh& m) {
         std::vector<std::pair<glm::vec3, glm::vec3>> e;
-        for (const SilhouetteEdge& s : pointSilhouette(m, c).edges) e.emplace_back(m.positions[s.a], m.positions[s.b]);
+        for (const SilhouetteEdge& s : pointSilhouette(m, c).edges) e.emplace_back(m.objectPositions[s.a], m.objectPositions[s.b]);
         std::sort(e.begin(), e.end(), [](auto& x, auto& y) { return x.first.x + 3 * x.first.y < y.first.x + 3 * y.first.y; });
         return e;
     };
@@ -144,9 +144,9 @@ TEST(DbufferQuality, Figure1SameCentreSilhouetteDifferentShadows) {
     DiskSilhouette sp = diskSilhouette(mp, d), st = diskSilhouette(mt, d);
     EXPECT_FALSE(st.silhouetteFacesCentreBack.empty());
     int bottomEdges = 0;
-    for (const SilhouetteEdge& e : st.umbraEdges) bottomEdges += mt.positions[e.a].z == 0.5f && mt.positions[e.b].z == 0.5f;
+    for (const SilhouetteEdge& e : st.umbraEdges) bottomEdges += mt.objectPositions[e.a].z == 0.5f && mt.objectPositions[e.b].z == 0.5f;
     EXPECT_GE(bottomEdges, 1);
-    for (const SilhouetteEdge& e : sp.umbraEdges) EXPECT_NE(mp.positions[e.a].z, 0.5f);
+    for (const SilhouetteEdge& e : sp.umbraEdges) EXPECT_NE(mp.objectPositions[e.a].z, 0.5f);
 
     Renderer renderer(SS_BACKEND_AUTO);
     Layers dbP = run(renderer, plate, "dbuffer", 0, {{"raw_layers", "true"}});

@@ -132,13 +132,13 @@ TEST(DbufferMeshes, OpenAndNonManifoldOccludersStaySane) {
     EXPECT_GT(mp.litIoU, 0.97) << mp.toString();
     // A box with a fin on its top edge: that edge has three faces.
     Mesh box = test::makeBox({-0.6f, -0.6f, 0.8f}, {0.6f, 0.6f, 1.2f}, SS_MESH_CAST);
-    uint32_t base = uint32_t(box.positions.size());
-    box.positions.push_back({0.0f, 0.6f, 1.8f});
+    uint32_t base = uint32_t(box.objectPositions.size());
+    box.objectPositions.push_back({0.0f, 0.6f, 1.8f});
     // The top face's +y edge runs between the vertices with y = 0.6 and z = 1.2.
     uint32_t a = 0, b = 0;
     bool found = false;
     for (uint32_t i = 0; i < base; ++i)
-        if (box.positions[i].y == 0.6f && box.positions[i].z == 1.2f) (found ? b : a) = i, found = true;
+        if (box.objectPositions[i].y == 0.6f && box.objectPositions[i].z == 1.2f) (found ? b : a) = i, found = true;
     box.triangles.push_back({a, b, base});
     box.finalize();
     EXPECT_EQ(box.report.nonManifoldEdges, 1u);

@@ -85,10 +85,10 @@ size_t maxEdges(const std::vector<SilhouetteVertex>& vs) {
 // `split` b's bottom is a vertex of its own at the same place: two 2-edge silhouette vertices.
 Mesh twoOctahedra(bool split = false) {
     Mesh a = octahedron(0.5f, 0.5f, 0.5f, 1.0f), b = octahedron(0.5f, 0.5f, 0.5f, 2.0f);
-    std::vector<glm::vec3> p = a.positions;
+    std::vector<glm::vec3> p = a.objectPositions;
     std::vector<glm::uvec3> t = a.triangles;
-    for (int k = 0; k < 5; ++k) p.push_back(b.positions[k]);
-    if (split) p.push_back(a.positions[4]);
+    for (int k = 0; k < 5; ++k) p.push_back(b.objectPositions[k]);
+    if (split) p.push_back(a.objectPositions[4]);
     for (glm::uvec3 tri : b.triangles) {
         glm::uvec3 m;
         for (int k = 0; k < 3; ++k) m[k] = tri[k] == 5 ? (split ? 11 : 4) : tri[k] + 6;
@@ -106,7 +106,7 @@ Key key(const glm::vec3& p) { return {p.x, p.y, p.z}; }
 // once (a crack) or three times and more.
 size_t badLateralEdges(const Mesh& m, const std::vector<VolumeVertex>& soup) {
     std::map<Key, int> onMesh;
-    for (const glm::vec3& p : m.positions) onMesh[key(p)] = 1;
+    for (const glm::vec3& p : m.objectPositions) onMesh[key(p)] = 1;
     std::map<std::pair<Key, Key>, int> uses;
     for (size_t t = 0; t + 2 < soup.size(); t += 3)
         for (int k = 0; k < 3; ++k) {

@@ -35,7 +35,7 @@ Key key(const glm::vec3& p) { return {p.x, p.y, p.z}; }
 // whose side surface is a closed tube uses each exactly twice.
 void expectLaterallyClosed(const Mesh& m, const std::vector<VolumeVertex>& soup, const char* what) {
     std::map<Key, int> onMesh;
-    for (const glm::vec3& p : m.positions) onMesh[key(p)] = 1;
+    for (const glm::vec3& p : m.objectPositions) onMesh[key(p)] = 1;
     std::map<std::pair<Key, Key>, int> uses;
     for (size_t t = 0; t + 2 < soup.size(); t += 3)
         for (int k = 0; k < 3; ++k) {

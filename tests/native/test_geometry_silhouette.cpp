@@ -88,7 +88,7 @@ TEST(PointSilhouette, CubeFromAboveIsTheTopSquareAndDiagonalsNeverCount) {
     expectOrientedLoops(s.edges);
     // Oriented counter-clockwise seen from above (+z), as the top face walks them.
     glm::vec3 turn(0.0f);
-    for (const SilhouetteEdge& e : s.edges) turn += glm::cross(m.positions[e.a], m.positions[e.b]);
+    for (const SilhouetteEdge& e : s.edges) turn += glm::cross(m.objectPositions[e.a], m.objectPositions[e.b]);
     EXPECT_GT(turn.z, 0.0f);
 }
 
@@ -114,7 +114,7 @@ TEST(PointSilhouette, OpenQuadEdgesCountFromBothSides) {
     // Turned towards the point: counter-clockwise seen from the point in both cases.
     auto turnZ = [&](const PointSilhouette& s) {
         float z = 0;
-        for (const SilhouetteEdge& e : s.edges) z += glm::cross(m.positions[e.a] - glm::vec3(0.5f, 0.5f, 0), m.positions[e.b] - glm::vec3(0.5f, 0.5f, 0)).z;
+        for (const SilhouetteEdge& e : s.edges) z += glm::cross(m.objectPositions[e.a] - glm::vec3(0.5f, 0.5f, 0), m.objectPositions[e.b] - glm::vec3(0.5f, 0.5f, 0)).z;
         return z;
     };
     EXPECT_GT(turnZ(above), 0.0f);
@@ -224,7 +224,7 @@ TEST(DiskSilhouette, TetrahedronAtThreeDiskSizes) {
 
 // The signed distance over a disk is extreme on its rim: dense rim sampling is the brute force.
 DiskFacing bruteForce(const Mesh& m, uint32_t f, const Disk& d, float* margin) {
-    glm::vec3 n = m.faceNormals[f], v0 = m.positions[m.triangles[f][0]];
+    glm::vec3 n = m.faceNormals[f], v0 = m.objectPositions[m.triangles[f][0]];
     glm::vec3 u = glm::normalize(glm::cross(d.normal, std::abs(d.normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
     glm::vec3 w = glm::cross(d.normal, u);
     float lo = 1e30f, hi = -1e30f;
@@ -271,10 +271,10 @@ TEST(DiskSilhouette, SphereUnderAxisDiskHasLatitudeLoops) {
     expectOrientedLoops(s.umbraEdges);
     expectOrientedLoops(s.penumbraEdges);
     auto ringZ = [&](const std::vector<SilhouetteEdge>& es) {
-        float z = m.positions[es[0].a].z;
+        float z = m.objectPositions[es[0].a].z;
         for (const SilhouetteEdge& e : es) {
-            EXPECT_FLOAT_EQ(m.positions[e.a].z, z);
-            EXPECT_FLOAT_EQ(m.positions[e.b].z, z);
+            EXPECT_FLOAT_EQ(m.objectPositions[e.a].z, z);
+            EXPECT_FLOAT_EQ(m.objectPositions[e.b].z, z);
         }
         return z;
     };
@@ -287,7 +287,7 @@ TEST(DiskSilhouette, SphereUnderAxisDiskHasLatitudeLoops) {
     // horizon z = 1/4, centre-back below it).
     for (uint32_t f : s.silhouetteFacesCentreFront) {
         float z = 0;
-        for (int k = 0; k < 3; ++k) z += m.positions[m.triangles[f][k]].z / 3;
+        for (int k = 0; k < 3; ++k) z += m.objectPositions[m.triangles[f][k]].z / 3;
         EXPECT_LT(z, zp + 1e-5f);
         EXPECT_GT(z, zu - 1e-5f);
     }

@@ -8,6 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "io/primitives.h"
@@ -105,7 +106,7 @@ TEST(IoSceneFile, ClosedPrimitivesAreOutwardManifolds) {
     for (Case& c : cases) {
         Mesh m;
         m.name = c.name;
-        m.positions = c.soup.positions;
+        m.objectPositions = c.soup.positions;
         m.triangles = c.soup.triangles;
         m.finalize();
         EXPECT_TRUE(m.report.closedManifold()) << c.name << ": open " << m.report.openEdges << " non-manifold "
@@ -119,7 +120,7 @@ TEST(IoSceneFile, ClosedPrimitivesAreOutwardManifolds) {
 TEST(IoSceneFile, OpenPrimitivesFacePlusZ) {
     for (TriangleSoup soup : {makePlane(2, 3, 4), makeDisk(1, 16)}) {
         Mesh m;
-        m.positions = soup.positions;
+        m.objectPositions = soup.positions;
         m.triangles = soup.triangles;
         m.finalize();
         EXPECT_EQ(m.report.inconsistentEdges, 0u);
@@ -128,10 +129,62 @@ TEST(IoSceneFile, OpenPrimitivesFacePlusZ) {
     }
 }
 
-TEST(IoSceneFile, MirroringTransformKeepsOutward) {
+// A placed mesh keeps its object-space vertices and its matrix, as the C API's meshes do: the
+// triangles stay as given (a mirroring matrix included) and the world vertices are derived.
+TEST(IoSceneFile, TransformIsTheMeshsMatrix) {
+    std::string text = R"({"format":"softshadow-scene","version":1,"meshes":[
+        {"name":"B","primitive":{"type":"box","size":1},"translate":[1,2,3],"rotate_deg":[10,20,30],"scale":[-1,2,0.5]}]})";
+    const Scene scene = parseSceneText(text, ".", "t.json");
+    const Mesh& m = scene.meshes()[0];
     TriangleSoup box = makeBox({1, 1, 1}, 1);
-    transformSoup(box, glm::scale(glm::mat4(1.0f), glm::vec3(-1, 2, 1)));
-    EXPECT_NEAR(signedVolume(box), 2.0, 1e-5);
+    EXPECT_EQ(m.objectPositions, box.positions);
+    EXPECT_EQ(m.triangles, box.triangles);
+    glm::mat4 expected = glm::translate(glm::mat4(1.0f), glm::vec3(1, 2, 3));
+    expected = glm::rotate(expected, glm::radians(30.0f), glm::vec3(0, 0, 1));
+    expected = glm::rotate(expected, glm::radians(20.0f), glm::vec3(0, 1, 0));
+    expected = glm::rotate(expected, glm::radians(10.0f), glm::vec3(1, 0, 0));
+    expected = glm::scale(expected, glm::vec3(-1, 2, 0.5f));
+    EXPECT_EQ(m.objectToWorld, expected);
+    for (size_t i = 0; i < m.positions.size(); ++i)
+        EXPECT_EQ(m.positions[i], glm::vec3(expected * glm::vec4(box.positions[i], 1.0f))) << i;
+}
+
+TEST(IoSceneFile, TransformMustBeAffine) {
+    std::string text = R"({"format":"softshadow-scene","version":1,"meshes":[
+        {"name":"B","primitive":{"type":"box"},"transform":[1,0,0,0, 0,1,0,0, 0,0,1,0.5, 0,0,0,1]}]})";
+    try {
+        parseSceneText(text, ".", "t.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.status(), SS_ERROR_IO);
+        EXPECT_NE(std::string(e.what()).find("meshes[0].transform: is not affine"), std::string::npos) << e.what();
+    }
+}
+
+// Saving writes the object-space vertices and the matrix ("transform"), the identity not at all,
+// so a saved scene loads as the very meshes it was, and a file without transforms stays one.
+TEST(IoSceneFile, SaveKeepsTheTransform) {
+    fs::path dir = tempDir("transform");
+    std::string text = R"({"format":"softshadow-scene","version":1,"meshes":[
+        {"name":"Moved","primitive":{"type":"uv_sphere","segments":7,"rings":5},"rotate_deg":[33,-71,12.5],"scale":0.3,
+         "translate":[0.1,0.7,-2.9]},
+        {"name":"Still","positions":[0,0,0, 1,0,0, 0,1,0],"triangles":[0,1,2]}]})";
+    Scene a = parseSceneText(text, ".", "t.json");
+    saveSceneFile(a, (dir / "s.json").string());
+    nlohmann::json saved = nlohmann::json::parse(std::ifstream(dir / "s.json"));
+    EXPECT_EQ(saved["meshes"][0]["transform"].size(), 16u);
+    EXPECT_FALSE(saved["meshes"][1].contains("transform"));
+    EXPECT_EQ(saved["meshes"][0]["positions"].size(), 3 * a.meshes()[0].objectPositions.size());
+    Scene b = loadSceneFile((dir / "s.json").string());
+    for (size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(b.meshes()[i].objectPositions, a.meshes()[i].objectPositions);
+        EXPECT_EQ(b.meshes()[i].objectToWorld, a.meshes()[i].objectToWorld);
+        EXPECT_EQ(b.meshes()[i].positions, a.meshes()[i].positions);
+        EXPECT_EQ(b.meshes()[i].faceNormals, a.meshes()[i].faceNormals);
+    }
+    EXPECT_TRUE(a.meshes()[0].transformed());
+    EXPECT_FALSE(b.meshes()[1].transformed());
+    fs::remove_all(dir);
 }
 
 TEST(IoSceneFile, PrimitiveTransformInFile) {
@@ -149,7 +202,9 @@ void expectSameScene(const Scene& a, const Scene& b) {
     for (size_t i = 0; i < a.meshes().size(); ++i) {
         EXPECT_EQ(a.meshes()[i].name, b.meshes()[i].name);
         EXPECT_EQ(a.meshes()[i].flags, b.meshes()[i].flags);
-        EXPECT_EQ(a.meshes()[i].positions, b.meshes()[i].positions);  // bit-exact floats
+        EXPECT_EQ(a.meshes()[i].objectPositions, b.meshes()[i].objectPositions);  // bit-exact floats
+        EXPECT_EQ(a.meshes()[i].objectToWorld, b.meshes()[i].objectToWorld);
+        EXPECT_EQ(a.meshes()[i].positions, b.meshes()[i].positions);
         EXPECT_EQ(a.meshes()[i].triangles, b.meshes()[i].triangles);
     }
     ASSERT_EQ(a.lights().size(), b.lights().size());

@@ -49,8 +49,8 @@ ss_scene* plateOverGround(int w, int h) {
     const float ground[12] = {-4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0};
     const float plate[12] = {-1, -1, 1, 1, -1, 1, 1, 1, 1, -1, 1, 1};
     const uint32_t faces[6] = {0, 1, 2, 0, 2, 3};
-    EXPECT_EQ(ss_scene_add_mesh(s, "Ground", ground, 4, faces, 2, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
-    EXPECT_EQ(ss_scene_add_mesh(s, "Plate", plate, 4, faces, 2, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
+    EXPECT_EQ(ss_scene_add_mesh(s, "Ground", ground, 4, faces, 2, nullptr, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
+    EXPECT_EQ(ss_scene_add_mesh(s, "Plate", plate, 4, faces, 2, nullptr, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
     ss_light_desc key = disk("Key", 0.0f);
     EXPECT_EQ(ss_scene_add_light(s, &key, nullptr), SS_OK);
     ss_camera_desc cam = camera(w, h);
@@ -101,7 +101,7 @@ TEST(LibraryNamesFilesLimits, ControlAndBidiCharactersInNamesAreRefused) {
     }
     const float tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const uint32_t face[3] = {0, 1, 2};
-    EXPECT_EQ(ss_scene_add_mesh(s, "m\xE2\x80\xAE", tri, 3, face, 1, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_SCENE);
+    EXPECT_EQ(ss_scene_add_mesh(s, "m\xE2\x80\xAE", tri, 3, face, 1, nullptr, SS_MESH_CAST, nullptr), SS_ERROR_INVALID_SCENE);
     EXPECT_EQ(ss_scene_set_view_layer(s, "V\xC2\x9B"), SS_ERROR_INVALID_ARGUMENT);
     ss_scene_destroy(s);
 }

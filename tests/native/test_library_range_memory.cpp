@@ -43,7 +43,7 @@ struct Scene {
         EXPECT_EQ(ss_scene_create(&s), SS_OK);
         const float ground[12] = {-4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0};
         const uint32_t groundFaces[6] = {0, 1, 2, 0, 2, 3};
-        EXPECT_EQ(ss_scene_add_mesh(s, "Ground", ground, 4, groundFaces, 2, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr),
+        EXPECT_EQ(ss_scene_add_mesh(s, "Ground", ground, 4, groundFaces, 2, nullptr, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr),
                   SS_OK);
         std::vector<float> box;
         for (int i = 0; i < 8; ++i) {
@@ -57,7 +57,7 @@ struct Scene {
             box.insert(box.end(), {extraBoxVertex->x, extraBoxVertex->y, extraBoxVertex->z});
         }
         EXPECT_EQ(ss_scene_add_mesh(s, "Box", box.data(), uint32_t(box.size() / 3), faces.data(),
-                                    uint32_t(faces.size() / 3), SS_MESH_CAST | SS_MESH_RECEIVE, nullptr),
+                                    uint32_t(faces.size() / 3), nullptr, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr),
                   SS_OK);
         ss_light_desc light = diskLight("Key", {3.0f, 0.0f, 4.0f});
         EXPECT_EQ(ss_scene_add_light(s, &light, nullptr), SS_OK);
@@ -76,7 +76,7 @@ struct Scene {
     void addTet(const char* name, float farCoordinate) {
         const float tet[12] = {-3, 3, 0.2f, -2.5f, 3, 0.2f, -3, 3.5f, 0.2f, farCoordinate, 3, 0.7f};
         const uint32_t faces[12] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
-        ASSERT_EQ(ss_scene_add_mesh(s, name, tet, 4, faces, 4, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
+        ASSERT_EQ(ss_scene_add_mesh(s, name, tet, 4, faces, 4, nullptr, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
     }
 };
 

@@ -179,7 +179,7 @@ TEST(LightLinks, CApiSetsAndReadsThem) {
     const float xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const uint32_t tri[] = {0, 1, 2};
     for (const char* name : {"a", "b", "c"})
-        ASSERT_EQ(ss_scene_add_mesh(scene, name, xyz, 3, tri, 1, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
+        ASSERT_EQ(ss_scene_add_mesh(scene, name, xyz, 3, tri, 1, nullptr, SS_MESH_CAST | SS_MESH_RECEIVE, nullptr), SS_OK);
     ss_light_desc light{};
     light.name = "Key";
     light.type = SS_LIGHT_DISK;

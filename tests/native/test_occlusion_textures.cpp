@@ -48,11 +48,11 @@ Mesh foliage(int leaves, uint32_t seed, uint32_t flags) {
         float s = size(rng);
         glm::mat4 r = glm::rotate(glm::mat4(1.0f), angle(rng), glm::normalize(glm::vec3(u(rng), u(rng), 0.3f + std::abs(u(rng)))));
         glm::vec3 ax = glm::vec3(r * glm::vec4(s, 0, 0, 0)), ay = glm::vec3(r * glm::vec4(0, s, 0, 0));
-        uint32_t base = uint32_t(m.positions.size());
-        m.positions.push_back(c - ax - ay);
-        m.positions.push_back(c + ax - ay);
-        m.positions.push_back(c + ax + ay);
-        m.positions.push_back(c - ax + ay);
+        uint32_t base = uint32_t(m.objectPositions.size());
+        m.objectPositions.push_back(c - ax - ay);
+        m.objectPositions.push_back(c + ax - ay);
+        m.objectPositions.push_back(c + ax + ay);
+        m.objectPositions.push_back(c - ax + ay);
         m.triangles.push_back({base, base + 1, base + 2});
         m.triangles.push_back({base, base + 2, base + 3});
     }
@@ -181,7 +181,7 @@ TEST(OcclusionTextures, NoJumpWhereAReceiverCrossesSlicePlanes) {
     Mesh ramp;
     ramp.name = "ramp";
     ramp.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
-    ramp.positions = {{-3, -3, 0.0f}, {3, -3, 1.5f}, {3, 3, 1.5f}, {-3, 3, 0.0f}};
+    ramp.objectPositions = {{-3, -3, 0.0f}, {3, -3, 1.5f}, {3, 3, 1.5f}, {-3, 3, 0.0f}};
     ramp.triangles = {{0, 1, 2}, {0, 2, 3}};
     ramp.finalize();
     s.addMesh(std::move(ramp));
@@ -224,7 +224,7 @@ TEST(OcclusionTextures, ThinOccluderLeakFix) {
         wall.name = "thin";
         wall.flags = flags;
         // Tilted 70 degrees from the ground, spanning heights 0.8 .. 2.6.
-        wall.positions = {{-1.2f, -0.35f, 0.8f}, {1.2f, -0.35f, 0.8f}, {1.2f, 0.3f, 2.6f}, {-1.2f, 0.3f, 2.6f}};
+        wall.objectPositions = {{-1.2f, -0.35f, 0.8f}, {1.2f, -0.35f, 0.8f}, {1.2f, 0.3f, 2.6f}, {-1.2f, 0.3f, 2.6f}};
         wall.triangles = {{0, 1, 2}, {0, 2, 3}};
         wall.finalize();
         s.addMesh(std::move(wall));

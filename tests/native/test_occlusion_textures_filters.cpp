@@ -103,12 +103,12 @@ TEST(OcclusionTexturesSlicing, FrustumHoldsTheSceneAndKernelsFollowEquationFour)
     Mesh ground;
     ground.name = "ground";
     ground.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
-    ground.positions = {{-8, -8, 0}, {8, -8, 0}, {8, 8, 0}, {-8, 8, 0}};
+    ground.objectPositions = {{-8, -8, 0}, {8, -8, 0}, {8, 8, 0}, {-8, 8, 0}};
     ground.triangles = {{0, 1, 2}, {0, 2, 3}};
     scene.addMesh(ground);
     Mesh plate = ground;  // a caster at height 2 so the slices span depths 2 .. 4
     plate.name = "plate";
-    plate.positions = {{-1, -1, 2}, {1, -1, 2}, {1, 1, 2}, {-1, 1, 2}};
+    plate.objectPositions = {{-1, -1, 2}, {1, -1, 2}, {1, 1, 2}, {-1, 1, 2}};
     scene.addMesh(plate);
     Light light;
     light.name = "Area";

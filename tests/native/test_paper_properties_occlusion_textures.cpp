@@ -104,7 +104,7 @@ Scene tiltedThinPlate() {
     Scene s;
     s.addMesh(makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
     Mesh plate = makeBox({-1.2f, -0.6f, -0.01f}, {1.2f, 0.6f, 0.01f}, SS_MESH_CAST);
-    for (glm::vec3& p : plate.positions) p.z += 1.5f + 0.5f * p.x;  // 0.9 .. 2.1 above the ground
+    for (glm::vec3& p : plate.objectPositions) p.z += 1.5f + 0.5f * p.x;  // 0.9 .. 2.1 above the ground
     plate.finalize();
     s.addMesh(plate);
     Light light = makeDiskLight({0.3f, 0.2f, 4.0f}, 0.5f);

@@ -75,7 +75,7 @@ Scene steepPlate() {
     Scene s;
     s.addMesh(makeGround(8.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
     Mesh plate = makeBox({-1.0f, -0.5f, -0.05f}, {1.5f, 0.5f, 0.05f}, SS_MESH_CAST);
-    for (glm::vec3& p : plate.positions) p.z += 1.5f + 1.2f * p.x;
+    for (glm::vec3& p : plate.objectPositions) p.z += 1.5f + 1.2f * p.x;
     plate.finalize();
     s.addMesh(plate);
     s.addLight(makeDiskLight({0.0f, 0.0f, 4.0f}, 3.0f));

@@ -22,7 +22,7 @@ Mesh box(glm::vec3 lo, glm::vec3 hi) {
     Mesh m;
     m.name = "box";
     for (int i = 0; i < 8; ++i)
-        m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+        m.objectPositions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
     m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
                    {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
     m.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
@@ -62,7 +62,7 @@ TEST(PenumbraMapGeometry, ConeBaseIsACircleOnTheFarPlaneAroundTheVertexRay) {
     for (size_t i = 0; i < sil.vertices.size(); ++i) {
         int c = g.coneOfVertex[i];
         ASSERT_GE(c, 0);
-        glm::vec3 v = m.positions[sil.vertices[i].vertex];
+        glm::vec3 v = m.objectPositions[sil.vertices[i].vertex];
         float zv = 2.0f - v.z;
         // Base centre: the vertex ray scaled to depth 10; radius by hand.
         glm::vec3 centre = l.centre + (v - l.centre) * (10.0f / zv);
@@ -125,7 +125,7 @@ float sheetTwist(const ConesSheets& g, const glm::uvec3& t1, const glm::uvec3& t
 
 Mesh shearedBox() {
     Mesh m = box({-1, -1, -0.5f}, {1, 1, 0});
-    for (glm::vec3& p : m.positions) p.z += 0.6f * p.x;  // depth now varies along x
+    for (glm::vec3& p : m.objectPositions) p.z += 0.6f * p.x;  // depth now varies along x
     m.finalize();
     return m;
 }
@@ -152,13 +152,13 @@ TEST(PenumbraMapGeometry, TiltedEdgeSheetIsPlanarAndTangentToBothEndCones) {
         int s = g.sheetOfEdge[i];
         ASSERT_GE(s, 0);
         const SilhouetteEdge& e = sil.edges[i];
-        float za = 2.0f - m.positions[e.a].z, zb = 2.0f - m.positions[e.b].z;
+        float za = 2.0f - m.objectPositions[e.a].z, zb = 2.0f - m.objectPositions[e.b].z;
         const glm::uvec3& t1 = g.triangles[g.sheetFirstTriangle[s]];
         const glm::uvec3& t2 = g.triangles[g.sheetFirstTriangle[s] + 1];
         // Vertices: edge end a, its far corner, edge end b, its far corner; Z_V per ruling.
         uint32_t first = t1[0];
-        EXPECT_EQ(g.vertices[first].position, m.positions[e.a]);
-        EXPECT_EQ(g.vertices[first + 2].position, m.positions[e.b]);
+        EXPECT_EQ(g.vertices[first].position, m.objectPositions[e.a]);
+        EXPECT_EQ(g.vertices[first + 2].position, m.objectPositions[e.b]);
         EXPECT_FLOAT_EQ(g.vertices[first].zv, za);
         EXPECT_FLOAT_EQ(g.vertices[first + 1].zv, za);
         EXPECT_FLOAT_EQ(g.vertices[first + 2].zv, zb);
@@ -167,7 +167,7 @@ TEST(PenumbraMapGeometry, TiltedEdgeSheetIsPlanarAndTangentToBothEndCones) {
         EXPECT_LT(sheetTwist(g, t1, t2), 1e-3f) << "depths " << za << " " << zb;
         // Its far edge is the two base circles' common tangent, both circles on its inner side.
         glm::vec2 qa(g.vertices[first + 1].position), qb(g.vertices[first + 3].position);
-        FarCircle ca = farCircle(l, m.positions[e.a]), cb = farCircle(l, m.positions[e.b]);
+        FarCircle ca = farCircle(l, m.objectPositions[e.a]), cb = farCircle(l, m.objectPositions[e.b]);
         differentRadii += std::abs(ca.radius - cb.radius) > 0.5f;
         glm::vec2 dir = glm::normalize(qb - qa), normal(-dir.y, dir.x);
         float da = glm::dot(ca.centre - qa, normal), db = glm::dot(cb.centre - qa, normal);
@@ -201,7 +201,7 @@ TEST(PenumbraMapGeometry, NoSliverBetweenASheetAndItsConesWhenTheRadiiDiffer) {
     // One triangle, its long edge steep in depth: the silhouette is its three edges.
     Mesh m;
     m.name = "steep";
-    m.positions = {{-1.0f, 0.0f, 1.0f}, {1.0f, 0.0f, -2.0f}, {0.0f, -1.5f, -0.5f}};
+    m.objectPositions = {{-1.0f, 0.0f, 1.0f}, {1.0f, 0.0f, -2.0f}, {0.0f, -1.5f, -0.5f}};
     m.triangles = {{0, 2, 1}};
     m.flags = SS_MESH_CAST;
     m.finalize();
@@ -224,7 +224,7 @@ TEST(PenumbraMapGeometry, NoSliverBetweenASheetAndItsConesWhenTheRadiiDiffer) {
     }
     ASSERT_LT(edge, sil.edges.size());
     ASSERT_GE(g.sheetOfEdge[edge], 0);
-    FarCircle A = farCircle(l, m.positions[0]), B = farCircle(l, m.positions[1]);
+    FarCircle A = farCircle(l, m.objectPositions[0]), B = farCircle(l, m.objectPositions[1]);
     ASSERT_NEAR(A.radius, 9.0f, 1e-4f);
     ASSERT_NEAR(B.radius, 1.5f, 1e-4f);
     glm::vec2 axis = glm::normalize(B.centre - A.centre), out(-axis.y, axis.x);
@@ -275,7 +275,7 @@ TEST(PenumbraMapGeometry, EdgeAimedThroughTheLightStillGetsAFiniteSheet) {
     Mesh m;
     m.name = "aimed";
     // Edge (0, 1) lies on a line through (0.2, 0, 2), inside the light's 0.5 disk.
-    m.positions = {{0.3f, 0.0f, 1.0f}, {0.5f, 0.0f, -1.0f}, {1.0f, 0.8f, 0.0f}};
+    m.objectPositions = {{0.3f, 0.0f, 1.0f}, {0.5f, 0.0f, -1.0f}, {1.0f, 0.8f, 0.0f}};
     m.triangles = {{0, 1, 2}};
     m.flags = SS_MESH_CAST;
     m.finalize();
@@ -324,7 +324,7 @@ TEST(PenumbraMapGeometry, VertexWithFourSilhouetteEdgesGetsOneCone) {
     // Two open triangles touching at one vertex (a bow tie): that vertex has 4 silhouette edges.
     Mesh m;
     m.name = "bowtie";
-    m.positions = {{0, 0, 0}, {1, 0.5f, 0}, {1, -0.5f, 0}, {-1, 0.5f, 0}, {-1, -0.5f, 0}};
+    m.objectPositions = {{0, 0, 0}, {1, 0.5f, 0}, {1, -0.5f, 0}, {-1, 0.5f, 0}, {-1, -0.5f, 0}};
     m.triangles = {{0, 2, 1}, {0, 3, 4}};
     m.flags = SS_MESH_CAST;
     m.finalize();
@@ -346,7 +346,7 @@ TEST(PenumbraMapGeometry, EverySilhouetteVertexOneConeEveryEdgeOneSheetOnAnIcosp
     // A sphere-like closed mesh: build an octahedron and subdivide it twice.
     Mesh m;
     m.name = "sphere";
-    m.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    m.objectPositions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
     for (int level = 0; level < 2; ++level) {
@@ -356,8 +356,8 @@ TEST(PenumbraMapGeometry, EverySilhouetteVertexOneConeEveryEdgeOneSheetOnAnIcosp
             auto key = std::make_pair(std::min(a, b), std::max(a, b));
             auto it = mids.find(key);
             if (it != mids.end()) return it->second;
-            m.positions.push_back(glm::normalize(m.positions[a] + m.positions[b]));
-            return mids[key] = uint32_t(m.positions.size() - 1);
+            m.objectPositions.push_back(glm::normalize(m.objectPositions[a] + m.objectPositions[b]));
+            return mids[key] = uint32_t(m.objectPositions.size() - 1);
         };
         for (const glm::uvec3& t : m.triangles) {
             uint32_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
@@ -365,7 +365,7 @@ TEST(PenumbraMapGeometry, EverySilhouetteVertexOneConeEveryEdgeOneSheetOnAnIcosp
         }
         m.triangles = next;
     }
-    for (glm::vec3& p : m.positions) p = 0.5f * p + glm::vec3(0.1f, 0.2f, -1.0f);
+    for (glm::vec3& p : m.objectPositions) p = 0.5f * p + glm::vec3(0.1f, 0.2f, -1.0f);
     m.finalize();
     PenumbraLight l = overhead(0.3f);
     PointSilhouette sil = pointSilhouette(m, l.centre);
@@ -390,7 +390,7 @@ TEST(PenumbraMapGeometry, VerticesBehindTheLightGetNoCone) {
     PointSilhouette sil = pointSilhouette(m, l.centre);
     ConesSheets g = buildConesSheets(m, sil, l);
     for (size_t i = 0; i < sil.vertices.size(); ++i) {
-        float z = lightDepth(l, m.positions[sil.vertices[i].vertex]);
+        float z = lightDepth(l, m.objectPositions[sil.vertices[i].vertex]);
         EXPECT_EQ(g.coneOfVertex[i] >= 0, z >= l.nearDepth) << "depth " << z;
     }
 }

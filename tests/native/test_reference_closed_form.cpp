@@ -30,10 +30,10 @@ Mesh occluderDisk(float radius, float height, int segments = 256) {
     m.name = "occluder";
     double step = 2.0 * M_PI / segments;
     float vertexRadius = radius * float(std::sqrt(step / std::sin(step)));
-    m.positions.push_back({0.0f, 0.0f, height});
+    m.objectPositions.push_back({0.0f, 0.0f, height});
     for (int i = 0; i < segments; ++i)
-        m.positions.push_back({vertexRadius * float(std::cos(i * step)),
-                               vertexRadius * float(std::sin(i * step)), height});
+        m.objectPositions.push_back({vertexRadius * float(std::cos(i * step)),
+                                     vertexRadius * float(std::sin(i * step)), height});
     for (uint32_t i = 0; i < uint32_t(segments); ++i)
         m.triangles.push_back({0, 1 + i, 1 + (i + 1) % uint32_t(segments)});
     m.flags = SS_MESH_CAST;
@@ -44,7 +44,7 @@ Mesh occluderDisk(float radius, float height, int segments = 256) {
 Mesh occluderHalfPlane(float height) {
     Mesh m;
     m.name = "half-plane";
-    m.positions = {{0, -60, height}, {60, -60, height}, {60, 60, height}, {0, 60, height}};
+    m.objectPositions = {{0, -60, height}, {60, -60, height}, {60, 60, height}, {0, 60, height}};
     m.triangles = {{0, 1, 2}, {0, 2, 3}};
     m.flags = SS_MESH_CAST;
     return m;

@@ -324,8 +324,7 @@ TEST(ReferenceRender, AMovedMeshKeepsItsBvhAndIsTracedWhereItIsNow) {
     auto builtThere = [&](const Scene& moved) {
         Scene fresh = test::sceneBox(p);
         Mesh box = moved.meshes()[1];
-        box.objectPositions.clear();
-        box.objectToWorld = glm::mat4(1.0f);
+        box.objectPositions = box.positions;  // fresh's box has the identity, kept by updateMesh
         fresh.updateMesh(1, box);
         return fresh;
     };

@@ -1,6 +1,8 @@
 // Does an edited scene keep the caches of what the edit left alone, and render as a fresh one?
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +26,40 @@ constexpr uint32_t kBoth = SS_MESH_CAST | SS_MESH_RECEIVE;
 Mesh boxA() { return test::makeBox({-0.9f, -0.5f, 0.6f}, {-0.2f, 0.2f, 1.0f}, kBoth); }
 Mesh boxB() { return test::makeBox({0.3f, -0.2f, 0.4f}, {0.8f, 0.5f, 0.9f}, kBoth); }
 Mesh boxBEdited() { return test::makeBox({0.2f, -0.4f, 0.5f}, {0.9f, 0.3f, 1.1f}, kBoth); }
+
+// Mesh `m` through the C API, placed by `objectToWorld` (nullptr: the identity).
+ss_status addMeshThroughCApi(ss_scene* scene, const Mesh& m, const float* objectToWorld, const char* name = nullptr) {
+    std::vector<float> xyz;
+    for (const glm::vec3& p : m.objectPositions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    return ss_scene_add_mesh(scene, name ? name : m.name.c_str(), xyz.data(), uint32_t(m.objectPositions.size()),
+                             &m.triangles[0][0], uint32_t(m.triangles.size()), objectToWorld, kBoth, nullptr);
+}
+
+// Light "A" of threeMeshTwoLights() as the C API takes it.
+ss_light_desc lightADesc() {
+    ss_light_desc light{};
+    light.name = "A";
+    light.type = SS_LIGHT_DISK;
+    const glm::mat4 at = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 4.0f));
+    for (int i = 0; i < 16; ++i) light.light_to_world[i] = (&at[0][0])[i];
+    light.size = light.size_y = 1.0f;
+    light.cast_shadows = 1;
+    return light;
+}
+
+// test::makeTopCamera(64, 48) as the C API takes it.
+ss_camera_desc topCameraDesc() {
+    const Camera cam = test::makeTopCamera(64, 48);
+    ss_camera_desc camera{};
+    for (int i = 0; i < 16; ++i) {
+        camera.world_to_camera[i] = (&cam.worldToCamera[0][0])[i];
+        camera.projection[i] = (&cam.projection[0][0])[i];
+    }
+    camera.width = cam.width;
+    camera.height = cam.height;
+    camera.pixel_aspect = 1.0f;
+    return camera;
+}
 
 Scene threeMeshTwoLights() {
     Scene s;
@@ -130,7 +166,7 @@ TEST(SceneUpdates, AMovedMeshCostsAMatrixAndRendersAsTheMovedGeometry) {
     EXPECT_NE(before.find("V")->pixels, moved.find("V")->pixels);  // the shadow moved
 
     Mesh a = boxA();
-    for (glm::vec3& p : a.positions) p = glm::vec3(move * glm::vec4(p, 1.0f));
+    for (glm::vec3& p : a.objectPositions) p = glm::vec3(move * glm::vec4(p, 1.0f));
     Scene fresh;
     fresh.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
     fresh.addMesh(a);
@@ -142,7 +178,7 @@ TEST(SceneUpdates, AMovedMeshCostsAMatrixAndRendersAsTheMovedGeometry) {
 
     // A second move starts from the coordinates as given, not from the last placement.
     scene.setMeshTransform(1, glm::mat4(1.0f));
-    EXPECT_EQ(scene.meshes()[1].positions, boxA().positions);
+    EXPECT_EQ(scene.meshes()[1].positions, boxA().objectPositions);
 
     // A move that raises the scene's top changes every map's fit: the maps are redrawn whole,
     // the camera pass is still patched, and the result is still a fresh scene's.
@@ -154,7 +190,7 @@ TEST(SceneUpdates, AMovedMeshCostsAMatrixAndRendersAsTheMovedGeometry) {
     EXPECT_EQ(renderer.cacheStats().shadowMaps, settled.shadowMaps + 1);
     EXPECT_EQ(renderer.cacheStats().cameraPassesPatched, settled.cameraPassesPatched + 1);
     Mesh raised = boxA();
-    for (glm::vec3& p : raised.positions) p = glm::vec3(raise * glm::vec4(p, 1.0f));
+    for (glm::vec3& p : raised.objectPositions) p = glm::vec3(raise * glm::vec4(p, 1.0f));
     Scene fresh2;
     fresh2.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
     fresh2.addMesh(raised);
@@ -215,7 +251,7 @@ TEST(SceneUpdates, APatchDrawsOnlyTheClustersOfALargeMeshThatReachTheMove) {
         s.addMesh(test::makeGround(4.0f, 0.0f, kBoth));
         s.addMesh(torus);
         Mesh box = test::makeBox(centre - glm::vec3(0.15f), centre + glm::vec3(0.15f), kBoth);
-        for (glm::vec3& p : box.positions) p = glm::vec3(boxPlace * glm::vec4(p, 1.0f));
+        for (glm::vec3& p : box.objectPositions) p = glm::vec3(boxPlace * glm::vec4(p, 1.0f));
         s.addMesh(box);
         s.addLight(test::makeDiskLight(light, 0.6f, "Key"));
         s.setCamera(test::makeTopCamera(96, 72));
@@ -370,30 +406,11 @@ TEST(SceneUpdates, OneBvhServesReferenceRefineAndTheCheckUntilAMeshEdit) {
 TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
     ss_scene* scene = nullptr;
     ASSERT_EQ(ss_scene_create(&scene), SS_OK);
-    for (const Mesh& m : {test::makeGround(4.0f, 0.0f, kBoth), boxA(), boxB()}) {
-        std::vector<float> xyz;
-        for (const glm::vec3& p : m.positions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
-        ASSERT_EQ(ss_scene_add_mesh(scene, m.name.c_str(), xyz.data(), uint32_t(m.positions.size()),
-                                    &m.triangles[0][0], uint32_t(m.triangles.size()), kBoth, nullptr),
-                  SS_OK);
-    }
-    ss_light_desc light{};
-    light.name = "A";
-    light.type = SS_LIGHT_DISK;
-    glm::mat4 at = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 4.0f));
-    for (int i = 0; i < 16; ++i) light.light_to_world[i] = (&at[0][0])[i];
-    light.size = light.size_y = 1.0f;
-    light.cast_shadows = 1;
+    for (const Mesh& m : {test::makeGround(4.0f, 0.0f, kBoth), boxA(), boxB()})
+        ASSERT_EQ(addMeshThroughCApi(scene, m, nullptr), SS_OK);
+    const ss_light_desc light = lightADesc();
     ASSERT_EQ(ss_scene_add_light(scene, &light, nullptr), SS_OK);
-    Camera cam = test::makeTopCamera(64, 48);
-    ss_camera_desc camera{};
-    for (int i = 0; i < 16; ++i) {
-        camera.world_to_camera[i] = (&cam.worldToCamera[0][0])[i];
-        camera.projection[i] = (&cam.projection[0][0])[i];
-    }
-    camera.width = cam.width;
-    camera.height = cam.height;
-    camera.pixel_aspect = 1.0f;
+    const ss_camera_desc camera = topCameraDesc();
     ASSERT_EQ(ss_scene_set_camera(scene, &camera), SS_OK);
 
     ss_context* context = nullptr;
@@ -411,7 +428,7 @@ TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
     EXPECT_EQ(stats.mesh_uploads, 3);  // a move sends a matrix, no vertex
     EXPECT_EQ(stats.shadow_maps, 2);
     std::vector<float> xyz;
-    for (const glm::vec3& p : boxBEdited().positions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    for (const glm::vec3& p : boxBEdited().objectPositions) xyz.insert(xyz.end(), {p.x, p.y, p.z});
     ASSERT_EQ(ss_scene_update_mesh(scene, 2, xyz.data(), uint32_t(xyz.size() / 3), &boxBEdited().triangles[0][0],
                                    uint32_t(boxBEdited().triangles.size()), kBoth),
               SS_OK);
@@ -450,6 +467,75 @@ TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
     EXPECT_EQ(ss_scene_remove_mesh(scene, 3), SS_ERROR_INVALID_ARGUMENT);
     ss_context_destroy(context);
     ss_scene_destroy(scene);
+}
+
+
+// One mesh model through the C API: a mesh added with its matrix is the mesh added at the
+// identity and moved there, and a scene file keeps it; each renders the same pixels, bit for bit.
+// A matrix the mesh cannot be placed by is refused naming the mesh, and nothing is added.
+TEST(SceneUpdates, AMeshAddedWithItsMatrixIsTheMovedMeshAndItsSavedFile) {
+    const glm::mat4 place = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, -0.2f, 0.4f)), 0.7f,
+                                                   glm::normalize(glm::vec3(0.2f, 1.0f, 0.5f))),
+                                       glm::vec3(1.3f, 0.6f, 0.9f));
+    auto build = [&](bool matrixFirst) {
+        ss_scene* scene = nullptr;
+        EXPECT_EQ(ss_scene_create(&scene), SS_OK);
+        EXPECT_EQ(addMeshThroughCApi(scene, test::makeGround(4.0f, 0.0f, kBoth), nullptr), SS_OK);
+        EXPECT_EQ(addMeshThroughCApi(scene, boxA(), matrixFirst ? &place[0][0] : nullptr), SS_OK);
+        if (!matrixFirst) {
+            EXPECT_EQ(ss_scene_set_mesh_transform(scene, 1, &place[0][0]), SS_OK);
+        }
+        const ss_light_desc light = lightADesc();
+        EXPECT_EQ(ss_scene_add_light(scene, &light, nullptr), SS_OK);
+        const ss_camera_desc camera = topCameraDesc();
+        EXPECT_EQ(ss_scene_set_camera(scene, &camera), SS_OK);
+        return scene;
+    };
+    ss_context* context = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &context), SS_OK);
+    auto visibility = [&](const ss_scene* scene, const char* method) {
+        ss_render_options options;
+        ss_render_options_default(&options);
+        options.samples = 8;
+        ss_result* result = nullptr;
+        EXPECT_EQ(ss_render(context, scene, 0, method, &options, &result), SS_OK) << ss_last_error();
+        const float* px = nullptr;
+        int32_t w = 0, h = 0;
+        EXPECT_EQ(ss_result_layer(result, 0, nullptr, &px, &w, &h), SS_OK);
+        std::vector<float> v(px, px + size_t(w) * size_t(h));
+        ss_result_destroy(result);
+        return v;
+    };
+    ss_scene* given = build(true);
+    ss_scene* moved = build(false);
+    const std::string file = testing::TempDir() + "ss_matrix_scene.json";
+    ASSERT_EQ(ss_scene_save(given, file.c_str()), SS_OK);
+    ss_scene* loaded = nullptr;
+    ASSERT_EQ(ss_scene_load(file.c_str(), &loaded), SS_OK) << ss_last_error();
+    std::remove(file.c_str());
+    ss_scene* atIdentity = build(false);
+    const glm::mat4 identity(1.0f);
+    ASSERT_EQ(ss_scene_set_mesh_transform(atIdentity, 1, &identity[0][0]), SS_OK);
+    for (const char* method : {"shadow_map", "reference"}) {
+        const std::vector<float> v = visibility(given, method);
+        EXPECT_EQ(v, visibility(moved, method)) << method;
+        EXPECT_EQ(v, visibility(loaded, method)) << method;
+        EXPECT_NE(v, visibility(atIdentity, method)) << method << ": the matrix moves the shadow";
+    }
+
+    glm::mat4 projective = place;
+    projective[0][3] = 0.25f;
+    glm::mat4 notFinite = place;
+    notFinite[3][1] = std::numeric_limits<float>::quiet_NaN();
+    for (const glm::mat4& bad : {projective, notFinite}) {
+        EXPECT_EQ(addMeshThroughCApi(given, boxB(), &bad[0][0], "Refused"), SS_ERROR_INVALID_ARGUMENT);
+        EXPECT_NE(std::string(ss_last_error()).find("mesh 'Refused'"), std::string::npos) << ss_last_error();
+        EXPECT_EQ(ss_scene_mesh_count(given), 2);
+        EXPECT_EQ(ss_scene_set_mesh_transform(given, 1, &bad[0][0]), SS_ERROR_INVALID_ARGUMENT);
+    }
+    EXPECT_EQ(visibility(given, "shadow_map"), visibility(moved, "shadow_map")) << "a refused move moves nothing";
+    for (ss_scene* s : {given, moved, loaded, atIdentity}) ss_scene_destroy(s);
+    ss_context_destroy(context);
 }
 
 

@@ -19,8 +19,8 @@ Mesh makePrism(const std::vector<glm::vec2>& polygon, size_t fanVertex, float z0
     Mesh m;
     m.name = "prism";
     const uint32_t n = uint32_t(polygon.size());
-    for (const glm::vec2& p : polygon) m.positions.push_back({p.x, p.y, z0});
-    for (const glm::vec2& p : polygon) m.positions.push_back({p.x, p.y, z1});
+    for (const glm::vec2& p : polygon) m.objectPositions.push_back({p.x, p.y, z0});
+    for (const glm::vec2& p : polygon) m.objectPositions.push_back({p.x, p.y, z1});
     const uint32_t f = uint32_t(fanVertex);
     for (uint32_t k = 1; k + 1 < n; ++k) {
         uint32_t a = (f + k) % n, b = (f + k + 1) % n;
@@ -53,8 +53,8 @@ Mesh makeTorus(const glm::vec3& centre, float majorRadius, float minorRadius, in
         for (int j = 0; j < minorSegments; ++j) {
             float v = 2.0f * float(M_PI) * float(j) / float(minorSegments);
             float r = majorRadius + minorRadius * std::cos(v);
-            m.positions.push_back(centre + glm::vec3(r * std::cos(u), r * std::sin(u),
-                                                     minorRadius * std::sin(v)));
+            m.objectPositions.push_back(centre + glm::vec3(r * std::cos(u), r * std::sin(u),
+                                                           minorRadius * std::sin(v)));
         }
     }
     auto at = [&](int i, int j) {
@@ -76,7 +76,7 @@ Mesh makeUvSphere(const glm::vec3& centre, float radius, int rings, int segments
     TriangleSoup soup = ss::makeUvSphere(radius, segments, rings);
     Mesh m;
     m.name = "sphere";
-    for (const glm::vec3& p : soup.positions) m.positions.push_back(centre + p);
+    for (const glm::vec3& p : soup.positions) m.objectPositions.push_back(centre + p);
     m.triangles = std::move(soup.triangles);
     m.flags = flags;
     m.finalize();
@@ -86,7 +86,7 @@ Mesh makeUvSphere(const glm::vec3& centre, float radius, int rings, int segments
 Mesh makeMesh(std::vector<glm::vec3> positions, std::vector<glm::uvec3> triangles) {
     Mesh m;
     m.name = "test";
-    m.positions = std::move(positions);
+    m.objectPositions = std::move(positions);
     m.triangles = std::move(triangles);
     m.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
     m.finalize();
@@ -96,8 +96,8 @@ Mesh makeMesh(std::vector<glm::vec3> positions, std::vector<glm::uvec3> triangle
 Mesh makeGround(float halfSize, float z, uint32_t flags) {
     Mesh m;
     m.name = "ground";
-    m.positions = {{-halfSize, -halfSize, z}, {halfSize, -halfSize, z},
-                   {halfSize, halfSize, z}, {-halfSize, halfSize, z}};
+    m.objectPositions = {{-halfSize, -halfSize, z}, {halfSize, -halfSize, z},
+                         {halfSize, halfSize, z}, {-halfSize, halfSize, z}};
     m.triangles = {{0, 1, 2}, {0, 2, 3}};
     m.flags = flags;
     m.finalize();

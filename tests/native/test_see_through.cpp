@@ -34,8 +34,8 @@ Mesh card(int n, const std::string& name = "card", bool slanted = false) {
     m.flags = SS_MESH_CAST;
     for (int j = 0; j <= n; ++j)
         for (int i = 0; i <= n; ++i)
-            m.positions.push_back({-kCardHalf + 2.0f * kCardHalf * float(i) / float(n),
-                                   -kCardHalf + 2.0f * kCardHalf * float(j) / float(n), kCardZ});
+            m.objectPositions.push_back({-kCardHalf + 2.0f * kCardHalf * float(i) / float(n),
+                                         -kCardHalf + 2.0f * kCardHalf * float(j) / float(n), kCardZ});
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
             uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
@@ -50,7 +50,7 @@ std::vector<glm::vec2> cardUvs(const Mesh& m) {
     std::vector<glm::vec2> uvs;
     for (const glm::uvec3& t : m.triangles)
         for (int k = 0; k < 3; ++k) {
-            const glm::vec3 p = m.positions[t[k]];
+            const glm::vec3 p = m.objectPositions[t[k]];
             uvs.push_back((glm::vec2(p.x, p.y) + kCardHalf) / (2.0f * kCardHalf));
         }
     return uvs;
@@ -88,11 +88,11 @@ Mesh checkerGeometry() {
         for (int i = 0; i < kChecker; ++i) {
             if ((i + j) % 2) continue;
             const float x0 = -kCardHalf + cell * float(i), y0 = -kCardHalf + cell * float(j);
-            const uint32_t base = uint32_t(m.positions.size());
-            m.positions.push_back({x0, y0, kCardZ});
-            m.positions.push_back({x0 + cell, y0, kCardZ});
-            m.positions.push_back({x0 + cell, y0 + cell, kCardZ});
-            m.positions.push_back({x0, y0 + cell, kCardZ});
+            const uint32_t base = uint32_t(m.objectPositions.size());
+            m.objectPositions.push_back({x0, y0, kCardZ});
+            m.objectPositions.push_back({x0 + cell, y0, kCardZ});
+            m.objectPositions.push_back({x0 + cell, y0 + cell, kCardZ});
+            m.objectPositions.push_back({x0, y0 + cell, kCardZ});
             m.triangles.push_back({base, base + 1, base + 2});
             m.triangles.push_back({base, base + 2, base + 3});
         }
@@ -146,14 +146,14 @@ TEST(SeeThroughReference, HalfTransparentCardLetsHalfThrough) {
 TEST(SeeThroughReference, TransmissionsMultiplyAlongTheRay) {
     Scene scene = sceneWith(card(4), nullptr);
     Mesh second = card(3, "second");
-    for (glm::vec3& p : second.positions) p.z = 1.5f;
+    for (glm::vec3& p : second.objectPositions) p.z = 1.5f;
     const int upper = scene.addMesh(second);
     scene.setMeshAlpha(1, constantAlpha(scene.meshes()[1], 0.5f));
     scene.setMeshAlpha(upper, constantAlpha(scene.meshes()[upper], 0.75f));
     // 0.5 x 0.25 under both; a fully transparent third card changes nothing.
     EXPECT_NEAR(visibilityAt(scene, 0.0f, 0.0f), 0.5 * 0.25, 1e-6);
     Mesh third = card(2, "third");
-    for (glm::vec3& p : third.positions) p.z = 2.0f;
+    for (glm::vec3& p : third.objectPositions) p.z = 2.0f;
     const int clear = scene.addMesh(third);
     scene.setMeshAlpha(clear, constantAlpha(scene.meshes()[clear], 0.0f));
     EXPECT_NEAR(visibilityAt(scene, 0.0f, 0.0f), 0.5 * 0.25, 1e-6);
@@ -253,7 +253,7 @@ TEST(SeeThroughCApi, SetMeshMaterialsCopiesChecksAndClears) {
     const float xyz[] = {0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
     const uint32_t tris[] = {0, 1, 2, 0, 2, 3};
     int32_t index = -1;
-    ASSERT_EQ(ss_scene_add_mesh(scene, "card", xyz, 4, tris, 2, SS_MESH_CAST, &index), SS_OK);
+    ASSERT_EQ(ss_scene_add_mesh(scene, "card", xyz, 4, tris, 2, nullptr, SS_MESH_CAST, &index), SS_OK);
     const float uvs[] = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
     float texels[] = {1, 0, 0, 1};
     const int32_t material[] = {0, 1};

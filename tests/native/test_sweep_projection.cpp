@@ -26,17 +26,17 @@ Mesh makeBumpySphere(std::mt19937& rng, const glm::vec3& centre, float radius, i
     std::uniform_real_distribution<float> bump(0.7f, 1.3f);
     Mesh m;
     m.name = "bumpy";
-    m.positions.push_back(centre + glm::vec3(0, 0, -radius * bump(rng)));
+    m.objectPositions.push_back(centre + glm::vec3(0, 0, -radius * bump(rng)));
     for (int i = 1; i < rings; ++i) {
         float th = float(M_PI) * i / rings;
         for (int j = 0; j < segs; ++j) {
             float ph = 2.0f * float(M_PI) * j / segs, r = radius * bump(rng);
-            m.positions.push_back(centre + r * glm::vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), -std::cos(th)));
+            m.objectPositions.push_back(centre + r * glm::vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), -std::cos(th)));
         }
     }
-    m.positions.push_back(centre + glm::vec3(0, 0, radius * bump(rng)));
+    m.objectPositions.push_back(centre + glm::vec3(0, 0, radius * bump(rng)));
     auto at = [&](int i, int j) { return uint32_t(1 + (i - 1) * segs + (j % segs)); };
-    uint32_t top = uint32_t(m.positions.size() - 1);
+    uint32_t top = uint32_t(m.objectPositions.size() - 1);
     for (int j = 0; j < segs; ++j) m.triangles.push_back({0, at(1, j + 1), at(1, j)});
     for (int i = 1; i + 1 < rings; ++i)
         for (int j = 0; j < segs; ++j) {
@@ -50,7 +50,7 @@ Mesh makeBumpySphere(std::mt19937& rng, const glm::vec3& centre, float radius, i
 }
 
 Mesh rotated(Mesh m, const glm::mat4& xf) {
-    for (glm::vec3& p : m.positions) p = glm::vec3(xf * glm::vec4(p, 1.0f));
+    for (glm::vec3& p : m.objectPositions) p = glm::vec3(xf * glm::vec4(p, 1.0f));
     m.finalize();
     return m;
 }
@@ -79,7 +79,7 @@ Case runCase(const Scene& scene, const LightSample& sample) {
         const Mesh& m = scene.meshes()[mi];
         for (const glm::uvec3& t : m.triangles) {
             glm::dvec3 p[3];
-            for (int k = 0; k < 3; ++k) p[k] = glm::dvec3(m.positions[t[k]]);
+            for (int k = 0; k < 3; ++k) p[k] = glm::dvec3(m.objectPositions[t[k]]);
             if (glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), sample.point - p[0]) <= 0) continue;
             ClipperLib::Path path;
             for (int k = 0; k < 3; ++k) {

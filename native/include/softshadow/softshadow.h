@@ -176,9 +176,16 @@ SS_API ss_status ss_scene_create(ss_scene** out);
 SS_API void ss_scene_destroy(ss_scene* scene);
 SS_API ss_status ss_scene_load(const char* path, ss_scene** out);
 SS_API ss_status ss_scene_save(const ss_scene* scene, const char* path);
+/* A mesh: `xyz` its vertices in object space, `triangles` 0-based vertex indices, placed in the
+   world by `object_to_world` (column-major, affine: last row 0 0 0 1; NULL = the identity, for
+   vertices given in world space). The library derives the world vertices and normals from the
+   three (ss_scene_set_mesh_transform moves it later). A non-finite or non-affine matrix, or one
+   that sends a vertex to infinity, fails with SS_ERROR_INVALID_ARGUMENT naming the mesh; NaN
+   coordinates and indices out of range with SS_ERROR_INVALID_SCENE. */
 SS_API ss_status ss_scene_add_mesh(ss_scene* scene, const char* name, const float* xyz,
                                    uint32_t vertex_count, const uint32_t* triangles,
-                                   uint32_t triangle_count, uint32_t flags, int32_t* out_index);
+                                   uint32_t triangle_count, const float object_to_world[16], uint32_t flags,
+                                   int32_t* out_index);
 SS_API ss_status ss_scene_add_light(ss_scene* scene, const ss_light_desc* light, int32_t* out_index);
 /* Incremental edits of a scene kept alive across renders (the preview's): each changes one mesh
    or light and leaves the others' cached GPU buffers and shadow maps in place (a mesh edit
@@ -186,12 +193,13 @@ SS_API ss_status ss_scene_add_light(ss_scene* scene, const ss_light_desc* light,
    that light's maps; a camera change only the camera pass). Indices out of range fail with
    SS_ERROR_INVALID_ARGUMENT; a refused edit leaves the scene as it was.
    update_mesh: new geometry and flags for mesh `index`; its name and transform are kept, and
-   `xyz` is in the mesh's object space (world space while no transform was set). */
+   `xyz` is in the mesh's object space. */
 SS_API ss_status ss_scene_update_mesh(ss_scene* scene, int32_t index, const float* xyz,
                                       uint32_t vertex_count, const uint32_t* triangles,
                                       uint32_t triangle_count, uint32_t flags);
-/* Places mesh `index` at object_to_world (column-major) applied to its coordinates as given:
-   a move costs one matrix product per vertex, never a new adjacency. */
+/* Places mesh `index` at object_to_world (column-major, affine, as in ss_scene_add_mesh)
+   applied to its object-space vertices: a move costs one matrix product per vertex, never a new
+   adjacency. A refused matrix leaves the mesh where it was. */
 SS_API ss_status ss_scene_set_mesh_transform(ss_scene* scene, int32_t index, const float object_to_world[16]);
 /* What a mesh's materials let through on shadow rays, as Cycles' shadow rays see them: a
    surface transmits (1 - alpha) of the light, transmissions multiply along the ray, and an

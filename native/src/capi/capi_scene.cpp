@@ -71,9 +71,9 @@ ss::Mesh meshFrom(const char* function, const std::string& name, const float* xy
     ss::Mesh mesh;
     mesh.name = name;
     mesh.flags = flags;
-    mesh.positions.resize(vertex_count);
+    mesh.objectPositions.resize(vertex_count);
     for (uint32_t i = 0; i < vertex_count; ++i)
-        mesh.positions[i] = glm::vec3(xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]);
+        mesh.objectPositions[i] = glm::vec3(xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]);
     mesh.triangles.resize(triangle_count);
     for (uint32_t f = 0; f < triangle_count; ++f)
         mesh.triangles[f] = glm::uvec3(triangles[3 * size_t(f)], triangles[3 * size_t(f) + 1],
@@ -110,12 +110,14 @@ extern "C" {
 
 SS_API ss_status ss_scene_add_mesh(ss_scene* scene, const char* name, const float* xyz,
                                    uint32_t vertex_count, const uint32_t* triangles,
-                                   uint32_t triangle_count, uint32_t flags, int32_t* out_index) {
+                                   uint32_t triangle_count, const float object_to_world[16], uint32_t flags,
+                                   int32_t* out_index) {
     return guarded([&] {
         require(scene, "ss_scene_add_mesh", "scene");
         require(name, "ss_scene_add_mesh", "name");
-        int index = scene->scene.addMesh(
-            meshFrom("ss_scene_add_mesh", name, xyz, vertex_count, triangles, triangle_count, flags));
+        ss::Mesh mesh = meshFrom("ss_scene_add_mesh", name, xyz, vertex_count, triangles, triangle_count, flags);
+        if (object_to_world) mesh.objectToWorld = toMat4(object_to_world);
+        int index = scene->scene.addMesh(std::move(mesh));
         if (out_index) *out_index = index;
     });
 }

@@ -20,12 +20,12 @@ inline constexpr double kBudgetBytesPerPixelGl = 120.0;
 inline constexpr double kBudgetBytesPerPixelAuto = 150.0;
 // The reference: its float images, no GL. Measured: 17 at 1024².
 inline constexpr double kBudgetBytesPerPixelCpu = 24.0;
-// A triangle of the scene (a vertex for two triangles counted in): positions, indices, face
-// normals, edge adjacency, then GPU buffers (shadow_map: 376 measured) or the Embree BVH
-// (reference: 435 measured).
-inline constexpr double kBudgetBytesPerTriangle = 440.0;
+// A triangle of the scene (a vertex for two triangles counted in): object-space and world
+// positions and face normals, indices, edge adjacency, then GPU buffers (shadow_map: 399
+// measured) or the Embree BVH (reference: 456 measured; a 2M-triangle sphere, 64² pixels).
+inline constexpr double kBudgetBytesPerTriangle = 460.0;
 // What a scene file may build in all (primitives, inline and external meshes), triangles and
-// vertices each, checked before anything is allocated for it (16.8M: about 7.4 GB by
+// vertices each, checked before anything is allocated for it (16.8M: about 7.7 GB by
 // kBudgetBytesPerTriangle).
 inline constexpr int64_t kMaxSceneTriangles = int64_t(1) << 24;
 

@@ -1,4 +1,4 @@
-// How a mesh is validated and its edge adjacency and report are built.
+// How a mesh is validated, its edge adjacency and report are built, and it is placed in the world.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "core/mesh.h"
 
@@ -41,15 +41,6 @@ EdgeAdjacency buildEdgeAdjacency(const std::vector<glm::uvec3>& triangles) {
     return adj;
 }
 
-namespace {
-
-void computeFaceNormals(Mesh& mesh) {
-    mesh.faceNormals = faceNormalsOf(mesh.positions, mesh.triangles);
-    mesh.report.degenerateFaces = size_t(std::count(mesh.faceNormals.begin(), mesh.faceNormals.end(), glm::vec3(0.0f)));
-}
-
-}  // namespace
-
 std::vector<glm::vec3> faceNormalsOf(const std::vector<glm::vec3>& p, const std::vector<glm::uvec3>& triangles) {
     std::vector<glm::vec3> normals(triangles.size());
     for (size_t f = 0; f < triangles.size(); ++f) {
@@ -62,31 +53,33 @@ std::vector<glm::vec3> faceNormalsOf(const std::vector<glm::vec3>& p, const std:
     return normals;
 }
 
-std::vector<glm::vec3> objectFaceNormals(const Mesh& mesh) {
-    return mesh.objectPositions.empty() ? mesh.faceNormals : faceNormalsOf(mesh.objectPositions, mesh.triangles);
-}
-
-void Mesh::setTransform(const glm::mat4& transform) {
+void Mesh::place(const glm::mat4& transform) {
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
             if (!std::isfinite(transform[c][r]))
                 fail(SS_ERROR_INVALID_ARGUMENT, "mesh '" + name + "': the transform is not finite");
-    if (objectPositions.empty()) objectPositions = positions;  // as given: identity so far
-    std::vector<glm::vec3> moved(objectPositions.size());
-    for (size_t i = 0; i < moved.size(); ++i) {
-        moved[i] = glm::vec3(transform * glm::vec4(objectPositions[i], 1.0f));
-        if (!std::isfinite(moved[i].x) || !std::isfinite(moved[i].y) || !std::isfinite(moved[i].z))
-            fail(SS_ERROR_INVALID_ARGUMENT, "mesh '" + name + "': the transform moves vertex " +
-                                                std::to_string(i) + " to a non-finite point");
-    }
-    positions = std::move(moved);
+    // The GPU and the ray tracer place vertices without a perspective divide.
+    if (glm::vec4(transform[0][3], transform[1][3], transform[2][3], transform[3][3]) != glm::vec4(0, 0, 0, 1))
+        fail(SS_ERROR_INVALID_ARGUMENT, "mesh '" + name + "': the transform is not affine (its last row must be 0 0 0 1)");
+    const bool identity = transform == glm::mat4(1.0f);
+    std::vector<glm::vec3> world = objectPositions;
+    if (!identity)
+        for (size_t i = 0; i < world.size(); ++i) {
+            world[i] = glm::vec3(transform * glm::vec4(objectPositions[i], 1.0f));
+            if (!std::isfinite(world[i].x) || !std::isfinite(world[i].y) || !std::isfinite(world[i].z))
+                fail(SS_ERROR_INVALID_ARGUMENT, "mesh '" + name + "': the transform moves vertex " +
+                                                    std::to_string(i) + " to a non-finite point");
+        }
+    std::vector<glm::vec3> normals = identity ? objectFaceNormals : faceNormalsOf(world, triangles);
+    positions = std::move(world);
+    faceNormals = std::move(normals);
     objectToWorld = transform;
-    computeFaceNormals(*this);
+    report.degenerateFaces = size_t(std::count(faceNormals.begin(), faceNormals.end(), glm::vec3(0.0f)));
 }
 
 void Mesh::finalize() {
-    for (size_t i = 0; i < positions.size(); ++i) {
-        const glm::vec3& p = positions[i];
+    for (size_t i = 0; i < objectPositions.size(); ++i) {
+        const glm::vec3& p = objectPositions[i];
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
             std::ostringstream m;
             m << "mesh '" << name << "': vertex " << i << " is not finite (NaN or Inf)";
@@ -95,21 +88,22 @@ void Mesh::finalize() {
     }
     for (size_t f = 0; f < triangles.size(); ++f)
         for (int k = 0; k < 3; ++k)
-            if (triangles[f][k] >= positions.size()) {
+            if (triangles[f][k] >= objectPositions.size()) {
                 std::ostringstream m;
                 m << "mesh '" << name << "': triangle " << f << " uses vertex index "
-                  << triangles[f][k] << " but the mesh has " << positions.size() << " vertices";
+                  << triangles[f][k] << " but the mesh has " << objectPositions.size() << " vertices";
                 fail(SS_ERROR_INVALID_SCENE, m.str());
             }
 
     adjacency = buildEdgeAdjacency(triangles);
     report = MeshReport{};
-    computeFaceNormals(*this);
+    objectFaceNormals = faceNormalsOf(objectPositions, triangles);
     for (const Edge& e : adjacency.edges) {
         if (e.isOpen()) ++report.openEdges;
         else if (e.faces.size() > 2) ++report.nonManifoldEdges;
         else if (!e.isConsistent()) ++report.inconsistentEdges;
     }
+    place(objectToWorld);
 }
 
 std::string MeshReport::toJson(const std::string& meshName) const {

@@ -1,4 +1,5 @@
-// What a world-space triangle mesh is, and how its edges connect its faces (built once, shared).
+// What a triangle mesh is (object-space vertices, triangles, an object-to-world matrix, and the
+// world-space vertices and normals derived from them), and how its edges connect its faces.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
@@ -45,46 +46,50 @@ struct MeshReport {
 
 struct Mesh {
     std::string name;
-    std::vector<glm::vec3> positions;
+    // The mesh as given: its vertices in object space, its triangles and where it is placed.
+    // finalize() derives the shape's and the placement's data below from them; place() moves it.
+    std::vector<glm::vec3> objectPositions;
     std::vector<glm::uvec3> triangles;
+    glm::mat4 objectToWorld{1.0f};  // affine (last row 0 0 0 1)
     uint32_t flags = 0;  // SS_MESH_CAST | SS_MESH_RECEIVE | SS_MESH_THIN | SS_MESH_CAMERA_HIDDEN
     // What its materials let through on shadow rays; null where it blocks every ray it meets
     // (no materials, or only opaque ones). Shared: copies of a scene do not copy textures.
     std::shared_ptr<const MeshAlpha> alpha;
-    // `positions` are objectToWorld applied to the coordinates as given; those are kept in
-    // objectPositions only once a transform other than the identity is set, so a move costs a
-    // matrix product per vertex and never rebuilds the adjacency.
-    glm::mat4 objectToWorld{1.0f};
-    std::vector<glm::vec3> objectPositions;
-    // Unique over the process for each content the mesh has had (set by the Scene): GPU
-    // buffers are cached by it, so an unchanged mesh is never uploaded again.
+    // Unique over the process for each content the mesh has had, its placement included (set
+    // by the Scene): what is built from world positions is cached by it.
     uint64_t version = 0;
-    // Unique for each shape the mesh has had (coordinates as given, triangles, flags; set by the
-    // Scene): a move keeps it, so GPU buffers keyed by it are kept and drawn with the new matrix.
+    // Unique for each shape the mesh has had (object-space vertices, triangles, flags; set by the
+    // Scene): a move keeps it, so GPU buffers and BVHs keyed by it are kept and drawn with the
+    // new matrix.
     uint64_t shapeVersion = 0;
 
-    EdgeAdjacency adjacency;  // filled by finalize()
-    MeshReport report;        // filled by finalize()
-    std::vector<glm::vec3> faceNormals;  // unit, zero for degenerate faces
+    // Of the shape (finalize()):
+    EdgeAdjacency adjacency;
+    MeshReport report;
+    std::vector<glm::vec3> objectFaceNormals;  // unit, zero for degenerate faces: what the GPU and
+                                               // the ray tracer keep across moves
+    // Of the placement (finalize() and place()): what the methods read.
+    std::vector<glm::vec3> positions;    // objectToWorld applied to objectPositions
+    std::vector<glm::vec3> faceNormals;  // of `positions`: unit, zero for degenerate faces
 
     bool casts() const;
     bool receives() const;
     // It has materials that let some light through (see `alpha`).
     bool seeThrough() const { return alpha != nullptr; }
+    // objectToWorld is not the identity.
+    bool transformed() const { return objectToWorld != glm::mat4(1.0f); }
 
-    // Validates (throws ss::Error on NaN/Inf coordinates or out-of-range indices) and builds
-    // adjacency, face normals and the report.
+    // Validates (throws ss::Error on NaN/Inf coordinates, out-of-range indices or a bad
+    // objectToWorld) and builds the adjacency, the normals, the report and the world positions.
     void finalize();
-    // Moves the mesh to objectToWorld = `transform` (validated finite): positions, face normals
-    // and the degenerate-face count are recomputed; the adjacency stays.
-    void setTransform(const glm::mat4& transform);
+    // Moves the finalized mesh to `transform` (finite and affine, else ss::Error and the mesh is
+    // left as it was): world positions, world normals and the degenerate-face count are made
+    // again; the adjacency and the object-space normals stay.
+    void place(const glm::mat4& transform);
 };
 
 EdgeAdjacency buildEdgeAdjacency(const std::vector<glm::uvec3>& triangles);
 // The unit normal of each triangle, zero for a degenerate one (a repeated vertex, no area).
 std::vector<glm::vec3> faceNormalsOf(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles);
-// The face normals in the mesh's coordinates as given (its world normals when it has no
-// transform): what the GPU and the ray tracer keep across moves.
-std::vector<glm::vec3> objectFaceNormals(const Mesh& mesh);
 
 }  // namespace ss

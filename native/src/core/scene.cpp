@@ -59,11 +59,8 @@ const Mesh& Scene::mesh(int index, const std::string& where) const {
 void Scene::updateMesh(int index, Mesh mesh) {
     const Mesh& old = this->mesh(index, "updating a mesh");
     mesh.name = old.name;
-    const glm::mat4 transform = old.objectToWorld;
-    mesh.objectToWorld = glm::mat4(1.0f);
-    mesh.objectPositions.clear();
-    mesh.finalize();  // validates the coordinates as given and builds the adjacency
-    if (transform != glm::mat4(1.0f)) mesh.setTransform(transform);
+    mesh.objectToWorld = old.objectToWorld;
+    mesh.finalize();
     mesh.version = nextVersion();
     mesh.shapeVersion = mesh.version;
     meshes_[size_t(index)] = std::move(mesh);
@@ -74,17 +71,7 @@ void Scene::updateMesh(int index, Mesh mesh) {
 void Scene::setMeshTransform(int index, const glm::mat4& objectToWorld) {
     (void)this->mesh(index, "moving a mesh");
     Mesh& mesh = meshes_[size_t(index)];
-    Mesh moved;  // built aside so a refused transform leaves the mesh as it was
-    moved.name = mesh.name;
-    moved.positions = mesh.positions;
-    moved.objectPositions = mesh.objectPositions;
-    moved.triangles = mesh.triangles;
-    moved.setTransform(objectToWorld);
-    mesh.positions = std::move(moved.positions);
-    mesh.objectPositions = std::move(moved.objectPositions);
-    mesh.faceNormals = std::move(moved.faceNormals);
-    mesh.report.degenerateFaces = moved.report.degenerateFaces;
-    mesh.objectToWorld = objectToWorld;
+    mesh.place(objectToWorld);
     mesh.version = nextVersion();
     geometryVersion_ = nextVersion();
     ++revision_;

@@ -1,4 +1,4 @@
-// What a scene is: world-space meshes, lights and the camera, validated as they enter.
+// What a scene is: placed meshes, lights and the camera, validated as they enter.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
@@ -28,7 +28,8 @@ struct Bounds {
 
 class Scene {
 public:
-    // Each adder validates its input (throws ss::Error) and bumps the revision.
+    // Each adder validates its input (throws ss::Error) and bumps the revision. A mesh comes
+    // with its objectPositions, triangles and objectToWorld; the rest is derived here.
     int addMesh(Mesh mesh);
     int addLight(Light light);
     void setCamera(const Camera& camera);
@@ -37,9 +38,10 @@ public:
     // Incremental edits of a persistent scene (the preview's): each changes one thing, gives it
     // a new version and leaves every other mesh's and light's version (and caches) alone.
     // Indices out of range throw ss::Error(SS_ERROR_INVALID_ARGUMENT) naming them.
-    // New geometry for mesh `index` (its name and transform are kept; `mesh.positions` are in
-    // the mesh's object space when it has a transform; its materials are cleared).
+    // New geometry for mesh `index` (`mesh.objectPositions`, triangles, flags; its name and
+    // transform are kept, its materials are cleared).
     void updateMesh(int index, Mesh mesh);
+    // Moves mesh `index` (Mesh::place): its shape and the caches keyed by it stay.
     void setMeshTransform(int index, const glm::mat4& objectToWorld);
     // Mesh `index`'s materials (validated against its triangles); an opaque set clears them.
     // A new shape for the mesh: what depends on its triangles is rebuilt.

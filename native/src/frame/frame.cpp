@@ -63,15 +63,15 @@ void Frame::dropStalePasses() {
 
 namespace {
 
-// objectFaceNormals as vec4, the SSBO's layout.
+// Mesh::objectFaceNormals as vec4, the SSBO's layout.
 std::vector<glm::vec4> faceNormalBuffer(const Mesh& mesh) {
     std::vector<glm::vec4> normals;
-    for (const glm::vec3& n : objectFaceNormals(mesh)) normals.emplace_back(n, 0.0f);
+    for (const glm::vec3& n : mesh.objectFaceNormals) normals.emplace_back(n, 0.0f);
     return normals;
 }
 
 std::vector<GpuMesh::Cluster> clustersOf(const Mesh& mesh) {
-    const std::vector<glm::vec3>& p = mesh.objectPositions.empty() ? mesh.positions : mesh.objectPositions;
+    const std::vector<glm::vec3>& p = mesh.objectPositions;
     std::vector<GpuMesh::Cluster> clusters;
     for (size_t first = 0; first < mesh.triangles.size(); first += GpuMesh::kClusterTriangles) {
         GpuMesh::Cluster c;
@@ -84,15 +84,9 @@ std::vector<GpuMesh::Cluster> clustersOf(const Mesh& mesh) {
     return clusters;
 }
 
-// The coordinates a mesh is uploaded with (GpuMesh::positions): object space when it has a
-// transform.
-const std::vector<glm::vec3>& uploadedPositions(const Mesh& mesh) {
-    return mesh.objectPositions.empty() ? mesh.positions : mesh.objectPositions;
-}
-
 void place(GpuMesh& gm, const Mesh& mesh) {
     gm.objectToWorld = mesh.objectToWorld;
-    gm.transformed = !mesh.objectPositions.empty() && mesh.objectToWorld != glm::mat4(1.0f);
+    gm.transformed = mesh.transformed();
     gm.normalToWorld = glm::mat4(glm::transpose(glm::inverse(glm::mat3(mesh.objectToWorld))));
 }
 
@@ -117,7 +111,7 @@ const std::vector<GpuMesh>& Frame::meshes() {
             uploaded.erase(kept);
             continue;
         }
-        const std::vector<glm::vec3>& positions = uploadedPositions(mesh);
+        const std::vector<glm::vec3>& positions = mesh.objectPositions;
         GpuMesh gm;
         gm.meshIndex = int(i);
         gm.shapeVersion = mesh.shapeVersion;
@@ -329,7 +323,7 @@ void Frame::listCoveringTriangles(const Camera& camera, const PixelRect& rect) {
             if (run.mesh != mesh) {
                 coverage_[part].beginMesh(CoverageView{camera.worldToClip(), m.transformed, m.objectToWorld,
                                                        camera.width, camera.height, rect},
-                                          uploadedPositions(sceneMesh));
+                                          sceneMesh.objectPositions);
                 mesh = run.mesh;
             }
             const size_t before = out.size();

@@ -143,15 +143,6 @@ TriangleSoup makeCylinder(float radius, float depth, int segments) {
     return s;
 }
 
-void transformSoup(TriangleSoup& soup, const glm::mat4& transform) {
-    for (glm::vec3& p : soup.positions) {
-        glm::vec4 q = transform * glm::vec4(p, 1.0f);
-        p = glm::vec3(q) / q.w;
-    }
-    if (glm::determinant(glm::mat3(transform)) < 0.0f)
-        for (glm::uvec3& t : soup.triangles) std::swap(t[1], t[2]);
-}
-
 double signedVolume(const TriangleSoup& soup) {
     double v = 0.0;
     for (const glm::uvec3& t : soup.triangles) {

@@ -22,9 +22,6 @@ TriangleSoup makeTorus(float majorRadius, float minorRadius, int majorSegments,
                        int minorSegments);                                    // closed, around Z
 TriangleSoup makeCylinder(float radius, float depth, int segments);           // closed, axis Z
 
-// Applies a transform; flips the winding when it mirrors, so outward stays outward.
-void transformSoup(TriangleSoup& soup, const glm::mat4& transform);
-
 // Signed volume (positive when a closed mesh is oriented outward).
 double signedVolume(const TriangleSoup& soup);
 

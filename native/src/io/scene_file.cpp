@@ -157,7 +157,10 @@ glm::mat4 readTransform(const JsonNode& n) {
     if (n.has("transform")) {
         if (n.has("translate") || n.has("rotate_deg") || n.has("scale"))
             n.fail("give either transform or translate/rotate_deg/scale, not both");
-        return n.at("transform").mat4();
+        const glm::mat4 m = n.at("transform").mat4();
+        if (glm::vec4(m[0][3], m[1][3], m[2][3], m[3][3]) != glm::vec4(0, 0, 0, 1))
+            n.at("transform").fail("is not affine: its last row (elements 3, 7, 11, 15) must be 0 0 0 1");
+        return m;
     }
     glm::mat4 m(1.0f);
     if (n.has("translate")) m = glm::translate(m, n.at("translate").vec3());
@@ -318,8 +321,6 @@ TriangleSoup readGeometry(const JsonNode& n, const std::string& baseDir, Geometr
         soup.triangles.resize(idx.size() / 3);
         std::memcpy(soup.triangles.data(), idx.data(), soup.triangles.size() * sizeof(glm::uvec3));
     }
-    if (n.has("transform") || n.has("translate") || n.has("rotate_deg") || n.has("scale"))
-        transformSoup(soup, readTransform(n));
     return soup;
 }
 
@@ -334,8 +335,9 @@ Mesh readMesh(const JsonNode& n, const std::string& baseDir, GeometryBudget& bud
               (n.boolean("thin", false) ? SS_MESH_THIN : 0u) |
               (n.boolean("camera_visible", true) ? 0u : SS_MESH_CAMERA_HIDDEN);
     TriangleSoup soup = readGeometry(n, baseDir, budget);
-    m.positions = std::move(soup.positions);
+    m.objectPositions = std::move(soup.positions);
     m.triangles = std::move(soup.triangles);
+    m.objectToWorld = readTransform(n);
     if (n.has("materials")) m.alpha = std::make_shared<const MeshAlpha>(readMeshAlpha(n.at("materials")));
     return m;
 }

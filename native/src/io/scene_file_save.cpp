@@ -1,5 +1,5 @@
-// How a Scene is written as a scene file: matrices for lights and camera, meshes inline or, when
-// big, as raw little-endian files beside it.
+// How a Scene is written as a scene file: matrices for lights and camera, meshes (object-space
+// vertices and their transform) inline or, when big, as raw little-endian files beside it.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cstring>
 #include <filesystem>
@@ -78,22 +78,23 @@ void saveSceneFile(const Scene& scene, const std::string& path, size_t inlineVer
                             {"receive", m.receives()},
                             {"thin", (m.flags & SS_MESH_THIN) != 0},
                             {"camera_visible", (m.flags & SS_MESH_CAMERA_HIDDEN) == 0}};
-        if (m.positions.size() > inlineVertexLimit) {
+        if (m.objectPositions.size() > inlineVertexLimit) {
             std::string base = stem + "." + std::to_string(i);
             std::string pos = base + ".positions.f32", tri = base + ".triangles.u32";
-            writeBytes((target.parent_path() / pos).string(), m.positions.data(),
-                       m.positions.size() * sizeof(glm::vec3));
+            writeBytes((target.parent_path() / pos).string(), m.objectPositions.data(),
+                       m.objectPositions.size() * sizeof(glm::vec3));
             writeBytes((target.parent_path() / tri).string(), m.triangles.data(),
                        m.triangles.size() * sizeof(glm::uvec3));
             j["positions_file"] = pos;
             j["triangles_file"] = tri;
         } else {
             nlohmann::json p = nlohmann::json::array(), t = nlohmann::json::array();
-            for (const glm::vec3& v : m.positions) p.push_back(v.x), p.push_back(v.y), p.push_back(v.z);
+            for (const glm::vec3& v : m.objectPositions) p.push_back(v.x), p.push_back(v.y), p.push_back(v.z);
             for (const glm::uvec3& f : m.triangles) t.push_back(f.x), t.push_back(f.y), t.push_back(f.z);
             j["positions"] = std::move(p);
             j["triangles"] = std::move(t);
         }
+        if (m.transformed()) j["transform"] = matrixJson(m.objectToWorld);
         if (m.alpha) j["materials"] = meshAlphaJson(*m.alpha);
         root["meshes"].push_back(std::move(j));
     }

@@ -21,7 +21,7 @@ bool invertible(const glm::mat4& m) {
     return std::isfinite(det) && scale > 0.0 && std::abs(det) > kFlatRelativeVolume * scale * scale * scale;
 }
 
-bool inObjectSpace(const Mesh& mesh) { return mesh.objectPositions.empty() || invertible(mesh.objectToWorld); }
+bool inObjectSpace(const Mesh& mesh) { return invertible(mesh.objectToWorld); }
 
 }  // namespace
 
@@ -48,13 +48,12 @@ MeshBvh::Key MeshBvh::keyOf(const Mesh& mesh) {
 }
 
 glm::mat4 MeshBvh::toWorldOf(const Mesh& mesh) {
-    return !mesh.objectPositions.empty() && inObjectSpace(mesh) ? mesh.objectToWorld : glm::mat4(1.0f);
+    return inObjectSpace(mesh) ? mesh.objectToWorld : glm::mat4(1.0f);
 }
 
 MeshBvh::MeshBvh(const Mesh& mesh) : key_(keyOf(mesh)), triangles_(mesh.triangles) {
-    const bool asGiven = key_.objectSpace && !mesh.objectPositions.empty();
-    positions_ = asGiven ? mesh.objectPositions : mesh.positions;
-    faceNormals_ = asGiven ? objectFaceNormals(mesh) : mesh.faceNormals;
+    positions_ = key_.objectSpace ? mesh.objectPositions : mesh.positions;
+    faceNormals_ = key_.objectSpace ? mesh.objectFaceNormals : mesh.faceNormals;
 
     RTCDevice device = embreeDevice();
     scene_.reset(rtcNewScene(device));
