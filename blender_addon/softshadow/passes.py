@@ -45,8 +45,9 @@ class LiveScene:
     shape: GPU buffers; per light: shadow maps) survive from call to call. Meshes are sent in
     object space with their matrix, so a move sends 16 floats and the library draws the mesh it
     has with the new matrix; a scene built afresh from the same export renders the same numbers,
-    and so does its scene file in the CLI. A failed edit drops the scene: the next sync rebuilds
-    it."""
+    and so does its scene file in the CLI. An object the library refuses is remembered as it was
+    (with the message that names it) and not sent again until it changes, so one bad object does
+    not make every sync a rebuild. A failed edit drops the scene: the next sync rebuilds it."""
 
     def __init__(self):
         self.lock = threading.Lock()
@@ -55,6 +56,7 @@ class LiveScene:
         self.lights = []      # light dicts as sent, in native index order
         self.camera = None
         self.problems = []
+        self.refused = {}     # name: (mesh or light dict as last exported, the problem naming it)
 
     def close(self):
         if self.scene is not None:
@@ -82,21 +84,53 @@ class LiveScene:
         self.scene.add_light(light)
         self.lights.append(light)
 
+    def _try_add_mesh(self, mesh):
+        try:
+            self._add_mesh(mesh)
+            self._forget_refusal(mesh["name"])
+        except native.SoftShadowError as exc:
+            self._refuse(mesh, "object '%s' skipped: %s" % (mesh["name"], exc))
+
+    def _try_add_light(self, light):
+        try:
+            self._add_light(light)
+            self._forget_refusal(light["name"])
+        except native.SoftShadowError as exc:
+            self._refuse(light, "light '%s' gets no pass: %s" % (light["name"], exc))
+
+    def _refuse(self, item, problem):
+        self._forget_refusal(item["name"])
+        self.refused[item["name"]] = (item, problem)
+        self.problems.append(problem)
+
+    def _forget_refusal(self, name):
+        if name in self.refused:
+            problem = self.refused.pop(name)[1]
+            self.problems = [p for p in self.problems if p != problem]
+
+    def _still_refused(self, item):
+        """Whether the library refused this very object: sent again, it would fail the same way."""
+        old = self.refused.get(item["name"], (None,))[0]
+        if old is None or ("triangles" in old) != ("triangles" in item):
+            return False
+        if "triangles" not in item:
+            return self._light_key(old) == self._light_key(item)
+        local = old["local"] if item["local"] is None else item["local"]  # a move exports no geometry
+        triangles = old["triangles"] if item["triangles"] is None else item["triangles"]
+        return (old["flags"] == item["flags"] and np.array_equal(old["matrix"], item["matrix"])
+                and (local is old["local"] or np.array_equal(local, old["local"]))
+                and (triangles is old["triangles"] or np.array_equal(triangles, old["triangles"]))
+                and (item["local"] is None or scene_export.same_alpha(old.get("alpha"), item.get("alpha"))))
+
     def rebuild(self, exported):
         self.close()
-        self.problems = []
+        self.problems, self.refused = [], {}
         self.scene = native.Scene()
         self.scene.set_view_layer(exported.view_layer)
         for mesh in exported.meshes:
-            try:
-                self._add_mesh(mesh)
-            except native.SoftShadowError as exc:
-                self.problems.append("object '%s' skipped: %s" % (mesh["name"], exc))
+            self._try_add_mesh(mesh)
         for light in exported.lights:
-            try:
-                self._add_light(light)
-            except native.SoftShadowError as exc:
-                self.problems.append("light '%s' gets no pass: %s" % (light["name"], exc))
+            self._try_add_light(light)
         self._send_links()
 
     def _replace_mesh(self, index, mesh):
@@ -133,15 +167,18 @@ class LiveScene:
         lights changed, else only the meshes and lights that differ are sent."""
         with self.lock:
             try:
-                if (self.scene is None or [m["name"] for m in self.meshes] != [m["name"] for m in exported.meshes]
-                        or [l["name"] for l in self.lights] != [l["name"] for l in exported.lights
-                                                                if not scene_export.light_problem(l)]
+                meshes = [m for m in exported.meshes if not self._still_refused(m)]
+                lights = [l for l in exported.lights
+                          if not scene_export.light_problem(l) and not self._still_refused(l)]
+                exported_names = {item["name"] for item in exported.meshes + exported.lights}
+                if (self.scene is None or [m["name"] for m in self.meshes] != [m["name"] for m in meshes]
+                        or [l["name"] for l in self.lights] != [l["name"] for l in lights]
+                        or any(name not in exported_names for name in self.refused)
                         or self.scene_view_layer != exported.view_layer):
                     self.rebuild(exported)
                 else:
-                    for index, mesh in enumerate(exported.meshes):
+                    for index, mesh in enumerate(meshes):
                         self._replace_mesh(index, mesh)
-                    lights = [l for l in exported.lights if not scene_export.light_problem(l)]
                     for index, light in enumerate(lights):
                         self._replace_light(index, light)
                     self._send_links()
@@ -161,8 +198,15 @@ class LiveScene:
                 meshes = {m["name"]: m for m in partial.meshes}
                 lights = {l["name"]: l for l in partial.lights if not scene_export.light_problem(l)}
                 for name in changed:
+                    if name in self.refused and not any(name in found for found in (meshes, lights)):
+                        self._forget_refusal(name)  # the refused object is gone
                     index = next((i for i, m in enumerate(self.meshes) if m["name"] == name), None)
                     mesh = meshes.get(name)
+                    if mesh is not None and self._still_refused(mesh):
+                        mesh = None
+                    elif mesh is not None and mesh["local"] is None and name in self.refused:
+                        old = self.refused[name][0]  # a refused mesh moved: sent again whole
+                        mesh = dict(mesh, local=old["local"], triangles=old["triangles"], alpha=old.get("alpha"))
                     if mesh is not None and mesh["local"] is None and index is not None:
                         mesh = dict(mesh, local=self.meshes[index]["local"], triangles=self.meshes[index]["triangles"],
                                     alpha=self.meshes[index].get("alpha"))
@@ -172,16 +216,18 @@ class LiveScene:
                     elif index is not None:
                         self._replace_mesh(index, mesh)
                     elif mesh is not None and mesh["local"] is not None:
-                        self._add_mesh(mesh)
+                        self._try_add_mesh(mesh)
                     index = next((i for i, l in enumerate(self.lights) if l["name"] == name), None)
                     light = lights.get(name)
+                    if light is not None and self._still_refused(light):
+                        light = None
                     if index is not None and light is None:
                         self.scene.remove_light(index)
                         del self.lights[index]
                     elif index is not None:
                         self._replace_light(index, light)
                     elif light is not None:
-                        self._add_light(light)
+                        self._try_add_light(light)
                 self._send_links()
             except Exception:
                 self.close()

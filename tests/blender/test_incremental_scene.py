@@ -270,3 +270,35 @@ def test_a_scene_rebuilt_with_the_same_names_is_read_again():
 
 
 sstest.run(globals())
+
+
+def test_an_object_the_library_refuses_does_not_rebuild_the_scene_at_each_sync():
+    scene = _scene()
+    sstest.add_light("evil\u202etxt", location=(1, 1, 6)).data.softshadow.method = "shadow_map"
+    sstest.add_box("bad\u202ebox", 0.3, (-2.0, -2.0, 0.3))
+    bpy.context.view_layer.update()
+    live = passes.LiveScene()
+    try:
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        live.sync(scene_export.export(depsgraph, scene))
+        refused = sorted(live.refused)
+        sstest.check(refused == ["bad\u202ebox", "evil\u202etxt"], "both refused: %s" % refused)
+        sstest.check(len(live.problems) == 2, "one problem each: %s" % live.problems)
+        kept = live.scene
+        live.sync(scene_export.export(depsgraph, scene))
+        sstest.check(live.scene is kept, "an unchanged refusal leaves the scene as it was (no rebuild)")
+        sstest.check(len(live.problems) == 2, "the problems stay, once each: %s" % live.problems)
+
+        scene.objects["Occluder"].location.x += 0.5
+        bpy.context.view_layer.update()
+        live.sync(scene_export.export(bpy.context.evaluated_depsgraph_get(), scene))
+        sstest.check(live.scene is kept, "an edit of another object is sent, not rebuilt")
+
+        scene.objects["bad\u202ebox"].name = "good box"  # the library takes it now
+        bpy.context.view_layer.update()
+        live.sync(scene_export.export(bpy.context.evaluated_depsgraph_get(), scene))
+        sstest.check("good box" in [m["name"] for m in live.meshes] and sorted(live.refused) == ["evil\u202etxt"],
+                     "the renamed object is sent: %s / %s" % ([m["name"] for m in live.meshes], sorted(live.refused)))
+        sstest.check(len(live.problems) == 1 and "evil" in live.problems[0], "its problem is gone: %s" % live.problems)
+    finally:
+        live.close()
