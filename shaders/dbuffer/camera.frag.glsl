@@ -48,6 +48,8 @@ void main() {
     oResult.y = 1.0;
     vec2 uv;
     vec3 toC = normalize(uCentre - s.position);
+    // Seen from behind P's plane, the map and the D-buffer hold P's own mesh: lit (no evidence).
+    if (!centreAboveHorizon(s.normal, toC)) return;
     vec3 lookup = shadowLookupPoint(s.position, s.normal, toC);
     if (!shadowMapUv(lookup, uv)) return;
     ivec2 texel = clamp(ivec2(uv * uShadowSize), ivec2(0), ivec2(int(uShadowSize) - 1));

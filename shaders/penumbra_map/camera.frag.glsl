@@ -45,6 +45,9 @@ void main() {
     vec3 toLight = uShadowOrthographic != 0 ? -uShadowAxis : normalize(uShadowOrigin - s.position);
     vec3 P = shadowLookupPoint(s.position, s.normal, toLight);
     vec2 uvP;
+    // The map's texels at P hold P's own mesh seen from behind P's plane: no evidence of a shadow
+    // there, and the penumbra map's value is that surface's, not P's.
+    if (!centreAboveHorizon(s.normal, toLight)) return;
     if (!inMap || !shadowMapUv(P, uvP)) return;
     float dP = shadowDistanceOf(P);
     if (blockedAtTexel(receiverPlane(P, s.normal), shadowTexel(uvP), dP)) {

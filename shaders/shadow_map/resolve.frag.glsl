@@ -21,7 +21,7 @@ void main() {
     vec2 uv;
     vec3 toLight = uShadowOrthographic != 0 ? -uShadowAxis : normalize(uShadowOrigin - s.position);
     vec3 P = shadowLookupPoint(s.position, s.normal, toLight);
-    if (shadowMapUv(P, uv)) {
+    if (centreAboveHorizon(s.normal, toLight) && shadowMapUv(P, uv)) {
         ivec2 texel = clamp(ivec2(uv * uShadowSize), ivec2(0), ivec2(int(uShadowSize) - 1));
         float stored = texelFetch(uShadowDistance, texel, 0).r;
         d = shadowDistanceOf(P);
