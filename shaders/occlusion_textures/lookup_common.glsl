@@ -45,10 +45,11 @@ SliceLookup lookupSlice(SlicePoint p, int k) {
 
 // The part of the light whose rays to P cross slice k in front of P's tangent plane, as the
 // largest axis-aligned box inside it, in units of the light's half sizes: (centre, half size);
-// the whole light (0, 0, 1, 1) when all of it qualifies, nothing (0) when none does. A ray from a light point below P's
-// horizon reaches P through its own surface's unlit side, so what a slice holds there is P's own
-// mesh seen from behind, never a blocker (without the clip a lit caster's faces that see part of
-// the light shadowed themselves; tests/native/test_lit_caster_faces.cpp). A slice is flattened
+// the whole light (0, 0, 1, 1) when all of it qualifies, nothing (0) when none does. A ray from
+// a light point below P's horizon reaches P through its own surface's unlit side, so what a
+// slice holds there is P's own mesh seen from behind, never a blocker (without the clip a lit
+// caster's faces that see part of the light shadowed themselves;
+// tests/native/test_lit_caster_faces.cpp). A slice is flattened
 // onto its lower plane through the slicing camera, so the mesh behind P's plane spreads there up
 // to the farther of two parallel lines: the plane's trace on the lower plane and its trace on the
 // upper plane as the camera projects it (lower = m upper + (0, 0, oz), sliceProjections[k]).

@@ -53,11 +53,13 @@ bool inFrontOfReceiver(ReceiverPlane rp, ivec2 texel, float z, float dP) {
     const float keep = 1.0 - kReceiverTolerance;
     if (uShadowOrthographic != 0) {
         float num = rp.k - rp.dots.x * ndc.x - rp.dots.y * ndc.y;
-        return num < 0.0 ? z * min(rp.dots.z, -0.08) > keep * num : rp.dots.z > 0.0 && z < keep * dP && keep * z * rp.dots.z > num;
+        if (num < 0.0) return z * min(rp.dots.z, -0.08) > keep * num;
+        return rp.dots.z > 0.0 && z < keep * dP && keep * z * rp.dots.z > num;
     }
     float len = sqrt(rp.scale2 * dot(ndc, ndc) + 1.0);
     float dn = rp.dots.x * ndc.x + rp.dots.y * ndc.y + rp.dots.z;
-    return rp.k < 0.0 ? z * min(dn, -0.08 * len) > keep * rp.k * len : dn > 0.0 && z < keep * dP && keep * z * dn > rp.k * len;
+    if (rp.k < 0.0) return z * min(dn, -0.08 * len) > keep * rp.k * len;
+    return dn > 0.0 && z < keep * dP && keep * z * dn > rp.k * len;
 }
 
 // True when the map says a caster is in front of the receiver plane at texel `texel`.
