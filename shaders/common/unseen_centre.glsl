@@ -28,7 +28,8 @@ bool middleOfSeenLight(vec3 P, vec3 N, out vec3 middle) {
         float nx = dot(N, uLight.halfAxisX), ny = dot(N, uLight.halfAxisY);
         if (uLight.type == LIGHT_DISK || uLight.type == LIGHT_ELLIPSE) {
             reach = sqrt(nx * nx + ny * ny);
-            toHighest = reach > 0.0 ? (nx * uLight.halfAxisX + ny * uLight.halfAxisY) / reach : vec3(0.0);
+            toHighest = nx * uLight.halfAxisX + ny * uLight.halfAxisY;
+            toHighest = reach > 0.0 ? toHighest / reach : vec3(0.0);
         } else {
             reach = abs(nx) + abs(ny);
             toHighest = sign(nx) * uLight.halfAxisX + sign(ny) * uLight.halfAxisY;
