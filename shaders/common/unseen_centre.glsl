@@ -11,10 +11,10 @@
 // tangent plane, on the way to that part of the light: a concave caster's own brow over its eye,
 // which the map shows between the centre and points of the segment from P towards the middle of
 // the light's part above P's horizon. The march takes points X on that segment, nearer P first
-// (kUnseenCentreSteps, each twice as far as the last), and calls P shadowed when the map's caster
+// (kUnseenCentreSteps, each sqrt(2) times as far as the last), and calls P shadowed when the map's caster
 // in front of some X lies in front of P's plane. On a convex caster every caster the map shows in
 // front of X lies behind that plane (its own faces) and P stays lit, as the reference has it.
-const int kUnseenCentreSteps = 12;
+const int kUnseenCentreSteps = 24;
 
 // The middle of the light's part above P's horizon: halfway between the light's point highest
 // above P's tangent plane and the point where the line from the centre to it meets that plane.
@@ -60,9 +60,9 @@ bool unseenCentreBlocked(vec3 P, vec3 N, bool needed) {
     bool blocked = false;
     int steps = needed && middleOfSeenLight(P, N, middle) ? kUnseenCentreSteps : 0;
     vec3 toMiddle = middle - P;
-    float t = exp2(-float(kUnseenCentreSteps));
+    float t = exp2(-0.5 * float(kUnseenCentreSteps));
     for (int i = 0; i < steps && !blocked; ++i) {
-        t *= 2.0;  // 2^-11 ... 1 of the way
+        t *= 1.41421356;  // 2^-11.5 ... 1 of the way
         vec3 X = P + t * toMiddle;
         vec2 uv;
         if (!shadowMapUv(X, uv)) continue;
