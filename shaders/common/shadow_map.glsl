@@ -42,4 +42,15 @@ vec3 shadowLookupPoint(vec3 P, vec3 N, vec3 toLight) {
     return P + N * (shadowTexelWorldSize(shadowDistanceOf(P)) * kNormalOffsetTexels * sinT);
 }
 
+// Whether the map's ray from the light centre reaches P from in front of P's tangent plane
+// (toLight: unit direction from P to the centre, or to a sun). Where it does not, the centre is
+// on or below P's horizon while some of the light may be above it (lightReaches): every surface
+// the map holds along that ray lies behind the plane, where nothing can block light that reaches
+// P, so P's own texel holds no evidence of a shadow (the hard-shadow methods march towards the
+// light P sees instead: common/unseen_centre.glsl). Read there, the faces of a lit caster that
+// see the light but not its centre (a box's sides under a light wider than its top, the band of
+// a sphere between the centre's terminator and the light's) found their own mesh and came out
+// black (tests/native/test_lit_caster_faces.cpp).
+bool centreAboveHorizon(vec3 N, vec3 toLight) { return dot(N, toLight) > 0.0; }
+
 #endif

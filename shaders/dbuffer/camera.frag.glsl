@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "common/camera_gbuffer.glsl"
 #include "common/shadow_map.glsl"
+#include "common/unseen_centre.glsl"
 #include "common/visibility_contract.glsl"
 
 uniform sampler2D uDBuffer;  // R |cx_uv|, G |cx_s| (umbra), B |cx_pv|, A |cx_s| (penumbra); 0 = none
@@ -48,6 +49,15 @@ void main() {
     oResult.y = 1.0;
     vec2 uv;
     vec3 toC = normalize(uCentre - s.position);
+    // Seen from behind P's plane, the map and the D-buffer hold P's own mesh: the march towards
+    // the light P sees decides, lit or umbra.
+    bool seesCentre = centreAboveHorizon(s.normal, toC);
+    bool unseenBlocked = unseenCentreBlocked(s.position, s.normal, !seesCentre);
+    if (!seesCentre) {
+        oResult.x = unseenBlocked ? 0.0 : 1.0;
+        oResult.z = unseenBlocked ? 1.0 : 0.0;
+        return;
+    }
     vec3 lookup = shadowLookupPoint(s.position, s.normal, toC);
     if (!shadowMapUv(lookup, uv)) return;
     ivec2 texel = clamp(ivec2(uv * uShadowSize), ivec2(0), ivec2(int(uShadowSize) - 1));

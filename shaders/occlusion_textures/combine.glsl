@@ -39,10 +39,10 @@ bool maySliceShadow(vec3 world) {
 // busiest pixel of its SIMD block needs (and at least once).
 
 // Bit k: slice k can shadow the point.
-uint slicesToRead(SlicePoint p) {
+uint slicesToRead(SlicePoint p, TangentPlane plane) {
     uint pending = 0u;
     for (int k = 0; k < SS_OT_SLICES; ++k) {
-        SliceLookup s = lookupSlice(p, k);
+        SliceLookup s = clippedLookup(p, k, plane);
         // Bitwise, not && and ||: those become branches, and branches cost both sides here. The
         // 1e-4 is also in shading.cpp (setReachUniforms).
         uint use = uint(s.weight > 1e-4) & (uint(boxMeetsSlice(k, s.centre, s.size)) | uint(!skipEmptySlices));
@@ -52,15 +52,17 @@ uint slicesToRead(SlicePoint p) {
 }
 
 // occlusion[g][c] receives w_k I_k of slice k = 4 g + c (the debug layers).
-float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
+float sliceVisibility(vec3 world, vec3 normal, out vec4 occlusion[4]) {
     for (int g = 0; g < 4; ++g) occlusion[g] = vec4(0.0);
-    SlicePoint p = slicePoint((worldToLight * vec4(world, 1.0)).xyz);
-    uint pending = slicesToRead(p);
+    vec3 local = (worldToLight * vec4(world, 1.0)).xyz;
+    SlicePoint p = slicePoint(local);
+    TangentPlane plane = tangentPlane(local, mat3(worldToLight) * normal);
+    uint pending = slicesToRead(p, plane);
     float visibility = 1.0;
     while (pending != 0u && visibility >= 1e-4) {
         int k = findLSB(pending);
         pending &= pending - 1u;
-        SliceLookup s = lookupSlice(p, k);
+        SliceLookup s = clippedLookup(p, k, plane);
         float I = clamp(boxFilterSlice(k, s.centre, s.size), 0.0, 1.0) * s.weight;
 #if defined(SS_OT_SLICE_LAYERS)
         occlusion[k >> 2][k & 3] = I;  // a dynamic index costs even when nobody reads the layers
@@ -76,7 +78,7 @@ float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
 // drops the absent slices.
 #define SS_OT_SLICE(G, C)                                                                   \
     if (4 * G + C < SS_OT_SLICES && visibility >= 1e-4) {                                   \
-        SliceLookup s = lookupSlice(p, 4 * G + C);                                          \
+        SliceLookup s = clippedLookup(p, 4 * G + C, plane);                                 \
         if (s.weight > 1e-4) {                                                              \
             float I = clamp(boxFilterChannel##C(G, s.centre, s.size), 0.0, 1.0) * s.weight; \
             occlusion[G][C] = I;                                                            \
@@ -86,9 +88,11 @@ float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
 #define SS_OT_GROUP(G) SS_OT_SLICE(G, 0) SS_OT_SLICE(G, 1) SS_OT_SLICE(G, 2) SS_OT_SLICE(G, 3)
 
 // occlusion[g][c] receives w_k I_k of slice k = 4 g + c (the debug layers).
-float sliceVisibility(vec3 world, out vec4 occlusion[4]) {
+float sliceVisibility(vec3 world, vec3 normal, out vec4 occlusion[4]) {
     for (int g = 0; g < 4; ++g) occlusion[g] = vec4(0.0);
-    SlicePoint p = slicePoint((worldToLight * vec4(world, 1.0)).xyz);
+    vec3 local = (worldToLight * vec4(world, 1.0)).xyz;
+    SlicePoint p = slicePoint(local);
+    TangentPlane plane = tangentPlane(local, mat3(worldToLight) * normal);
     float visibility = 1.0;
     SS_OT_GROUP(0)
     SS_OT_GROUP(1)

@@ -34,7 +34,7 @@ void main() {
 #if defined(SS_OT_CLASSIFY)
     gl_FragDepth = reached && maySliceShadow(s.position) ? 0.0 : 1.0;
 #else
-    if (reached) visibility = clamp(sliceVisibility(s.position, occlusion), 0.0, 1.0);
+    if (reached) visibility = clamp(sliceVisibility(s.position, s.normal, occlusion), 0.0, 1.0);
 #endif
     result = vec2(visibility, reached ? 1.0 : 0.0);
     slices0 = occlusion[0];

@@ -32,25 +32,34 @@ ReceiverPlane receiverPlane(vec3 P, vec3 N) {
 // receivers whose plane guess is off by curvature x texel^2.
 const float kReceiverTolerance = 1e-3;
 
-// True when the map's quantity z at `texel` is in front of the receiver plane: z is below the
-// quantity the map would store for the plane along the ray through the texel's centre, less the
-// tolerance. Where that ray grazes the plane (beyond ~85 degrees) the plane is taken as tilted
-// no further than that: the exact quantity runs to infinity there and makes a curved receiver's
-// own neighbouring facets shadow it (acne along terminators). Where the ray meets the plane
-// behind the light (or not at all), the quantity is dP. Along the ray B (x, y, 1) (perspective)
-// the plane's quantity is k |B (x, y, 1)| / (B (x, y, 1)).N; along the axis from origin +
-// B (x, y, 0) (orthographic) it is (k - x B0.N - y B1.N) / B2.N. The comparisons are multiplied
-// out by the (negative) denominators: pcss runs this for every kernel sample.
+// True when the map's quantity z at `texel` is in front of the receiver plane (on the side its
+// normal points to, where the light P receives comes from). A ray through the texel's centre
+// that starts in front of the plane (the light centre above P's horizon) is in front until it
+// meets the plane: z must be below the plane's quantity along it, less the tolerance. Where that
+// ray grazes the plane (beyond ~85 degrees) the plane is taken as tilted no further than that:
+// the exact quantity runs to infinity there and makes a curved receiver's own neighbouring facets
+// shadow it (acne along terminators). A ray that starts behind the plane (the centre on or below
+// P's horizon) is in front only beyond the point where it crosses the plane: z must be above the
+// plane's quantity, plus the tolerance, and below P's own dP (nearer the light than P: the ground
+// beyond a curved caster's rim is in front of the plane too, but farther); a ray that never
+// crosses holds nothing in front. Without
+// that, a lit caster's faces that see part of the light but not its centre read their own mesh
+// as a blocker (tests/native/test_lit_caster_faces.cpp). Along the ray B (x, y, 1)
+// (perspective) the plane's quantity is k |B (x, y, 1)| / (B (x, y, 1)).N; along the axis from
+// origin + B (x, y, 0) (orthographic) it is (k - x B0.N - y B1.N) / B2.N. The comparisons are
+// multiplied out by the denominators: pcss runs this for every kernel sample.
 bool inFrontOfReceiver(ReceiverPlane rp, ivec2 texel, float z, float dP) {
     vec2 ndc = (vec2(texel) + 0.5) * (2.0 / uShadowSize) - 1.0;
     const float keep = 1.0 - kReceiverTolerance;
     if (uShadowOrthographic != 0) {
         float num = rp.k - rp.dots.x * ndc.x - rp.dots.y * ndc.y;
-        return num < 0.0 ? z * min(rp.dots.z, -0.08) > keep * num : z < keep * dP;
+        if (num < 0.0) return z * min(rp.dots.z, -0.08) > keep * num;
+        return rp.dots.z > 0.0 && z < keep * dP && keep * z * rp.dots.z > num;
     }
     float len = sqrt(rp.scale2 * dot(ndc, ndc) + 1.0);
     float dn = rp.dots.x * ndc.x + rp.dots.y * ndc.y + rp.dots.z;
-    return rp.k < 0.0 ? z * min(dn, -0.08 * len) > keep * rp.k * len : z < keep * dP;
+    if (rp.k < 0.0) return z * min(dn, -0.08 * len) > keep * rp.k * len;
+    return dn > 0.0 && z < keep * dP && keep * z * dn > rp.k * len;
 }
 
 // True when the map says a caster is in front of the receiver plane at texel `texel`.

@@ -4,6 +4,7 @@
 #include "common/camera_gbuffer.glsl"
 #include "common/visibility_contract.glsl"
 #include "pcss/receiver_plane.glsl"
+#include "common/unseen_centre.glsl"
 
 uniform sampler2D uPenumbraMap;  // R32F, same texel grid as the shadow map
 
@@ -45,6 +46,15 @@ void main() {
     vec3 toLight = uShadowOrthographic != 0 ? -uShadowAxis : normalize(uShadowOrigin - s.position);
     vec3 P = shadowLookupPoint(s.position, s.normal, toLight);
     vec2 uvP;
+    // The map's texels at P hold P's own mesh seen from behind P's plane, and the penumbra map's
+    // value is that surface's, not P's: the march towards the light P sees decides, lit or not.
+    bool seesCentre = centreAboveHorizon(s.normal, toLight);
+    bool unseenBlocked = unseenCentreBlocked(s.position, s.normal, !seesCentre);
+    if (!seesCentre) {
+        oResult.x = unseenBlocked ? 0.0 : 1.0;
+        oResult.z = unseenBlocked ? 1.0 : 0.0;
+        return;
+    }
     if (!inMap || !shadowMapUv(P, uvP)) return;
     float dP = shadowDistanceOf(P);
     if (blockedAtTexel(receiverPlane(P, s.normal), shadowTexel(uvP), dP)) {

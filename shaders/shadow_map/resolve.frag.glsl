@@ -3,6 +3,7 @@
 #include "common/camera_gbuffer.glsl"
 #include "common/visibility_contract.glsl"
 #include "common/shadow_map.glsl"
+#include "common/unseen_centre.glsl"
 
 // Bias in texel footprints (methods/shadow_map.cpp explains the numbers).
 uniform float uConstantBias;
@@ -21,7 +22,9 @@ void main() {
     vec2 uv;
     vec3 toLight = uShadowOrthographic != 0 ? -uShadowAxis : normalize(uShadowOrigin - s.position);
     vec3 P = shadowLookupPoint(s.position, s.normal, toLight);
-    if (shadowMapUv(P, uv)) {
+    bool seesCentre = centreAboveHorizon(s.normal, toLight);
+    if (unseenCentreBlocked(s.position, s.normal, !seesCentre)) V = 0.0;
+    if (seesCentre && shadowMapUv(P, uv)) {
         ivec2 texel = clamp(ivec2(uv * uShadowSize), ivec2(0), ivec2(int(uShadowSize) - 1));
         float stored = texelFetch(uShadowDistance, texel, 0).r;
         d = shadowDistanceOf(P);

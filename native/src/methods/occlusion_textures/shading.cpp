@@ -91,8 +91,14 @@ void setShadingUniforms(Frame& frame, const gl::Program& program, int lightIndex
         program.set(("sliceDepths" + index).c_str(), glm::vec4(top, bottom, 1.0f / (bottom - top), 0.0f));
         program.set(("sliceScales" + index).c_str(),
                     glm::vec4(bottom * ndc * 0.5f * texels, lightHalf * ndc * texels));
+        // Where the slicing camera flattens an upper-plane point onto the lower plane:
+        // lower = m upper + (0, 0, oz) (lookup_common.glsl, clippedLookup).
+        const float m = setup.projection == Projection::Orthographic ? 1.0f : (bottom + setup.d) / (top + setup.d);
+        const float oz = setup.projection == Projection::Orthographic ? bottom - top : (m - 1.0f) * setup.d;
+        program.set(("sliceProjections" + index).c_str(), glm::vec2(m, oz));
     }
     program.set("sliceSize", texels);
+    program.set("lightHalfSize", lightHalf);
     program.set("skipEmptySlices", skipEmptySlices ? 1 : 0);
     setReachUniforms(program, setup, filtered, fade, skipEmptySlices);
     program.set("fadeRule", fade == Fade::Paper ? 1 : 0);
