@@ -70,11 +70,11 @@ Scene sphereOverGround(int m, uint32_t sphereFlags, LightType light, int resolut
 namespace {
 
 Mesh partMesh(TriangleSoup soup, const glm::mat4& placed) {
-    transformSoup(soup, placed);
     Mesh m;
     m.name = "part";
-    m.positions = std::move(soup.positions);
+    m.objectPositions = std::move(soup.positions);
     m.triangles = std::move(soup.triangles);
+    m.objectToWorld = placed;
     m.flags = SS_MESH_CAST;
     m.finalize();
     return m;
