@@ -74,14 +74,31 @@ TEST(SeeThroughCamera, ReferenceSeesTheGroundThroughTheHole) {
     EXPECT_GT(countWhere(hole, [&](size_t i) { return va.pixels[i] > 0.95f; }), 100u);
 }
 
-// Each method on the cut-out card, over the pixels through the hole: against the reference, and
-// against the same method on the card with the hole cut in its geometry.
+// Each method on the cut-out card, over the pixels through the hole: against the reference on the
+// card with the hole cut in its geometry (the truth, whatever the camera's alpha test does), and
+// against the same method there.
 struct HoleCase {
     std::string method;
-    double referenceRmse;  // most RMSE vs the reference through the hole
+    double referenceRmse;  // most RMSE vs the reference through the hole (-1: not asserted)
     double geometryRmse;   // most RMSE vs the same method on the holed geometry (-1: not asserted)
+    // The method shadows a see-through card as opaque (sweep): held instead to itself on the
+    // whole, opaque card hidden from the camera, which sees the ground everywhere.
+    bool shadowsAsOpaque = false;
 };
 void PrintTo(const HoleCase& c, std::ostream* os) { *os << c.method; }
+
+// The cut-out scene with its card opaque and hidden from the camera.
+Scene opaqueHiddenCard(const Scene& cut) {
+    Scene s;
+    s.addMesh(cut.meshes()[0]);
+    Mesh card = cut.meshes()[1];
+    card.alpha.reset();
+    card.flags = SS_MESH_CAST | SS_MESH_CAMERA_HIDDEN;
+    s.addMesh(std::move(card));
+    s.addLight(cut.lights()[0]);
+    s.setCamera(cut.camera());
+    return s;
+}
 
 class SeeThroughCameraMethods : public ::testing::TestWithParam<HoleCase> {};
 
@@ -92,9 +109,9 @@ TEST_P(SeeThroughCameraMethods, PixelsThroughTheHoleGetTheGroundsVisibility) {
     Renderer renderer(SS_BACKEND_AUTO);
     RenderSettings settings;
     settings.samples = 64;
-    const Layers ref = renderer.render(cut, 0, "reference", settings, nullptr);
+    const Layers ref = renderer.render(holed, 0, "reference", settings, nullptr);
     const Layers a = renderer.render(cut, 0, c.method, settings, nullptr);
-    const Layers b = renderer.render(holed, 0, c.method, settings, nullptr);
+    const Layers b = renderer.render(c.shadowsAsOpaque ? opaqueHiddenCard(cut) : holed, 0, c.method, settings, nullptr);
     const Image& mask = *a.find("mask");
     EXPECT_EQ(countWhere(hole, [&](size_t i) { return mask.pixels[i] > 0.5f; }), countWhere(hole))
         << "the ground receives through the hole";
@@ -105,9 +122,12 @@ TEST_P(SeeThroughCameraMethods, PixelsThroughTheHoleGetTheGroundsVisibility) {
     const Layers fixed = renderer.render(cut, 0, c.method, refine, nullptr);
     const Metrics refined = compareVisibility(*fixed.find("V"), *ref.find("V"), &hole);
     std::cout << "  " << c.method << " through the hole: vs reference " << vsReference.toString()
-              << "\n  vs the holed geometry " << vsGeometry.toString() << "\n  refined vs reference "
+              << "\n  vs " << (c.shadowsAsOpaque ? "the opaque card hidden from the camera " : "the holed geometry ")
+              << vsGeometry.toString() << "\n  refined vs reference "
               << refined.toString() << "\n";
-    EXPECT_LT(vsReference.rmse, c.referenceRmse) << vsReference.toString();
+    if (c.referenceRmse >= 0.0) {
+        EXPECT_LT(vsReference.rmse, c.referenceRmse) << vsReference.toString();
+    }
     if (c.geometryRmse >= 0.0) {
         EXPECT_LT(vsGeometry.rmse, c.geometryRmse) << vsGeometry.toString();
     }
@@ -120,12 +140,13 @@ INSTANTIATE_TEST_SUITE_P(Methods, SeeThroughCameraMethods,
                          // pcss 0.016 / 0.0007, occlusion_textures 0.013 / 0, penumbra_map 0.159 /
                          // 0.133 and dbuffer 0.106 / 0.103 (their penumbrae grow from the whole
                          // card's outline, not the hole's edges), sweep 0.79 (it shadows the card
-                         // as opaque), auto 0.016; refined 0.0016 each. With the camera seeing the
-                         // card in its hole, the lit card, every method is 0.5 or more off there.
+                         // as opaque: 0 vs itself on the opaque card hidden from the camera), auto
+                         // 0.016; refined 0.0016 each. Where the camera sees the lit card in its
+                         // hole, every method, refined or not, is 0.57 off (0.57-0.60 vs itself).
                          ::testing::Values(HoleCase{"shadow_map", 0.15, 0.005}, HoleCase{"pcss", 0.03, 0.005},
                                            HoleCase{"occlusion_textures", 0.03, 0.005},
                                            HoleCase{"penumbra_map", 0.2, 0.17}, HoleCase{"dbuffer", 0.15, 0.14},
-                                           HoleCase{"sweep", 1.0, -1.0}, HoleCase{"auto", 0.03, -1.0}),
+                                           HoleCase{"sweep", -1.0, 1e-4, true}, HoleCase{"auto", 0.03, -1.0}),
                          [](const auto& info) { return info.param.method; });
 
 }  // namespace
