@@ -178,9 +178,13 @@ def test_half_transparent_card_matches_cycles():
 STRIPES_W, STRIPES_H = 128, 96
 STRIPES_CARD = 1.6  # size; at z = 2.5, UVs (0, 0) .. (1, 1)
 STRIPES_LENS = 40.0
-# Measured (final pass vs Cycles at 256 samples, the pixels through the holes): see the test.
-THROUGH_HOLES_RMSE = 0.03
-THROUGH_HOLES_GL_RMSE = 0.06
+# Measured in Blender 3.4 against Cycles at 256 samples over the pixels through the holes (476,
+# Cycles' mean V 0.029): the final pass 0.0047 (0.975 where the camera sees the lit card there);
+# the GL passes shadow_map, penumbra_map and dbuffer 0.097 (hard or outline-grown edges in the
+# stripes' shadow), pcss 0.012, occlusion_textures 0.027.
+THROUGH_HOLES_RMSE = 0.015
+THROUGH_HOLES_GL_RMSE = {"shadow_map": 0.15, "pcss": 0.04, "occlusion_textures": 0.06, "penumbra_map": 0.15,
+                         "dbuffer": 0.15}
 
 
 def _stripes_image():
@@ -216,10 +220,12 @@ def _through_holes(scene, card, alpha, margin=1.0):
             j = np.clip((v * TEXTURE).astype(int), 0, TEXTURE - 1)
             out &= inside & (alpha[j, i] == 0.0)
     # The mapping is Blender's: a point of the card maps back to its own pixel.
+    bpy.context.view_layer.update()  # the objects' matrices
     r, c = np.argwhere(out)[len(np.argwhere(out)) // 2]
     x = camera.location.x + (c + 0.5 - STRIPES_W / 2.0) * per_pixel
     y = camera.location.y + (STRIPES_H / 2.0 - r - 0.5) * per_pixel
-    sstest.check(sstest.pixel_of(scene, (x, y, card.location.z)) == (r, c), "pixel (%d, %d) maps back" % (r, c))
+    back = sstest.pixel_of(scene, (x, y, card.location.z))
+    sstest.check(back == (r, c), "pixel (%d, %d) maps back: %s" % (r, c, back))
     return out
 
 
@@ -238,18 +244,21 @@ def test_camera_sees_the_ground_through_cut_out_holes_as_cycles_does():
     sstest.check(where.sum() > 100, "pixels through the holes: %d" % where.sum())
     # Through the holes Cycles shows the ground in the opaque stripes' shadow (the card itself,
     # with nothing above it, is lit): a pass that sees the card there is far off.
-    sstest.check(float(truth[where].mean()) < 0.6, "Cycles' ground through the holes: mean %.3f"
+    sstest.check(float(truth[where].mean()) < 0.2, "Cycles' ground through the holes: mean %.3f"
                  % truth[where].mean())
     final = _final_pass(scene)[0]
-    gl = ss.api.render_passes(scene, methods="shadow_map")[("Key", "shadow_map")]
-    errors = {"final": cycles_truth.rmse(final, truth, where), "shadow_map": cycles_truth.rmse(gl, truth, where)}
-    print("   through the holes (%d pixels): final pass RMSE %.4f, shadow_map %.4f vs Cycles; mean V %.3f,"
-          " Cycles %.3f" % (where.sum(), errors["final"], errors["shadow_map"], final[where].mean(),
-                            truth[where].mean()))
+    errors = {"final": cycles_truth.rmse(final, truth, where)}
+    gl = ss.api.render_passes(scene, methods=list(THROUGH_HOLES_GL_RMSE))
+    for method in THROUGH_HOLES_GL_RMSE:
+        errors[method] = cycles_truth.rmse(gl[("Key", method)], truth, where)
+    print("   through the holes (%d pixels), RMSE vs Cycles: %s; mean V %.3f, Cycles %.3f"
+          % (where.sum(), ", ".join("%s %.4f" % kv for kv in errors.items()), final[where].mean(),
+             truth[where].mean()))
     sstest.check(errors["final"] <= THROUGH_HOLES_RMSE, "final pass through the holes: RMSE %.4f > %.3f"
                  % (errors["final"], THROUGH_HOLES_RMSE))
-    sstest.check(errors["shadow_map"] <= THROUGH_HOLES_GL_RMSE, "shadow_map through the holes: RMSE %.4f > %.3f"
-                 % (errors["shadow_map"], THROUGH_HOLES_GL_RMSE))
+    for method, bound in THROUGH_HOLES_GL_RMSE.items():
+        sstest.check(errors[method] <= bound,
+                     "%s through the holes: RMSE %.4f > %.3f" % (method, errors[method], bound))
 
 
 def test_unreadable_material_is_reported_once():
