@@ -261,6 +261,17 @@ def test_camera_sees_the_ground_through_cut_out_holes_as_cycles_does():
                      "%s through the holes: RMSE %.4f > %.3f" % (method, errors[method], bound))
 
 
+def test_a_card_that_casts_no_shadow_keeps_its_holes_for_the_camera():
+    scene = _scene()
+    image, _ = _leaf_image()
+    card = _card("Leaf", _leaf_material(image))
+    card.visible_shadow = False
+    exported = ss.scene_export.export(bpy.context.evaluated_depsgraph_get(), scene)
+    leaf = next(m for m in exported.meshes if m["name"] == "Leaf")
+    sstest.check(not leaf["flags"] & ss.native.MESH_CAST, "the card casts nothing: flags %d" % leaf["flags"])
+    sstest.check(leaf["alpha"] is not None, "its alpha is exported: the camera sees through its holes")
+
+
 def test_unreadable_material_is_reported_once():
     scene = _scene()
     material = bpy.data.materials.new("Procedural")
