@@ -208,11 +208,6 @@ def _local_mesh_arrays(obj):
         obj.to_mesh_clear()
 
 
-def native_cast():
-    from . import native
-    return native.MESH_CAST
-
-
 def _mesh_flags(obj):
     from . import native
     materials = [slot.material for slot in getattr(obj, "material_slots", [])]
@@ -233,7 +228,7 @@ def _layer_flags(flags, obj, parent, view_layer, engine):
 
 
 def _mesh_alpha(obj, engine, readings, unreadable):
-    """material_alpha.mesh_alpha for a casting object with see-through materials, else None.
+    """material_alpha.mesh_alpha for an object with see-through materials, else None.
     `readings` caches each material's reading for the export; unreadable ones are added to
     `unreadable` (names with the reason)."""
     from . import material_alpha
@@ -435,7 +430,8 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
                              scene.render.engine)
         if flags == 0:
             continue
-        alpha = _mesh_alpha(obj, engine, alpha_readings, unreadable) if flags & native_cast() else None
+        # Casters shadow through their materials' alpha; the camera sees through a cut-out's holes.
+        alpha = _mesh_alpha(obj, engine, alpha_readings, unreadable)
         if alpha is not None and len(alpha["triangle_material"]) != len(triangles):
             alpha = None
         out.meshes.append({"name": name, "local": vertices, "triangles": triangles, "flags": flags,

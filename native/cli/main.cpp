@@ -22,7 +22,8 @@ const char* kUsage =
     "      error metrics between the passes of two files (or of each method against\n"
     "      `reference` inside one file)\n"
     "  report SCENE [--json]\n"
-    "      the scene's meshes (open/non-manifold/inconsistent edges, degenerate faces), lights, camera\n"
+    "      the scene's meshes (open/non-manifold/inconsistent edges, degenerate faces), lights (with\n"
+    "      the meshes that shadow each and those it lights), camera\n"
     "  version\n";
 
 bool asksForHelp(const std::vector<std::string>& args) {

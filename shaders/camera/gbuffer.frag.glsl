@@ -1,7 +1,12 @@
 // What the camera pass writes per pixel: world position + view depth, facing normal + receive
-// flag, mesh and triangle ids (the layout is documented at ss::CameraPass).
+// flag, mesh and triangle ids (the layout is documented at ss::CameraPass). With SEE_THROUGH, the
+// fragments of the material drawn now where its alpha is below the camera's threshold are
+// discarded: the camera sees what lies behind a cut-out's holes.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "common/mesh_placement.glsl"
+#ifdef SEE_THROUGH
+#include "common/see_through.glsl"
+#endif
 
 in vec3 vWorld;
 flat in int vTriangle;  // index within the mesh (camera/gbuffer.vert.glsl)
@@ -20,6 +25,9 @@ layout(location = 1) out vec4 oNormalReceive;
 layout(location = 2) out vec4 oIds;
 
 void main() {
+#ifdef SEE_THROUGH
+    cameraAlphaTest(seeThroughAlpha());
+#endif
     // The face normal from the mesh (exact), not from derivatives (noisy at grazing angles).
     int triangle = vTriangle;
     vec3 n = meshNormalToWorld(faceNormal[triangle].xyz);

@@ -1,6 +1,7 @@
 // What a see-through mesh's material lets through at a fragment (ss::MeshAlpha): the alpha of
 // the material being drawn (Frame::drawSeeThroughWhere draws one material at a time), and the
-// hashed alpha test that turns it into a binary coverage whose average is the alpha.
+// hashed alpha test that turns it into a binary coverage whose average is the alpha (the light
+// side), or the camera's threshold test.
 // SPDX-License-Identifier: GPL-3.0-or-later
 in vec2 vAlphaUv;
 flat in uint vAlphaMaterial;
@@ -9,6 +10,7 @@ uniform uint uAlphaMaterial;      // the material drawn now
 uniform int uAlphaTextured;       // 1: uAlphaTexture at the UV, 0: uAlphaConstant
 uniform float uAlphaConstant;
 uniform sampler2D uAlphaTexture;  // R32F, its wrap and filter as the material says
+uniform float uCameraAlphaThreshold;  // ss::kCameraAlphaThreshold
 
 // The fragment's alpha (1 opaque .. 0 transparent); discards fragments of other materials.
 float seeThroughAlpha() {
@@ -32,4 +34,9 @@ float alphaHashThreshold(vec2 pixel) {
 // covers, alpha 0 never, a filtered look-up of the target sees the alpha on average.
 void alphaHashedTest(float alpha) {
     if (alpha <= alphaHashThreshold(gl_FragCoord.xy)) discard;
+}
+
+// Keeps the fragment where a camera ray stops at the surface (ss::MeshAlpha::seenByCamera).
+void cameraAlphaTest(float alpha) {
+    if (alpha < uCameraAlphaThreshold) discard;
 }

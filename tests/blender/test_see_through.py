@@ -1,6 +1,7 @@
 # Do see-through materials shadow as Cycles' shadow rays see them? A leaf-like cut-out card (an
 # Image Texture's alpha into the Principled BSDF's Alpha) and a 50 % card (a Mix Shader with a
-# Transparent BSDF), each against Cycles' own shadow ratio; and which materials the export reads.
+# Transparent BSDF), each against Cycles' own shadow ratio; does the camera see the ground through
+# a cut-out's holes as Cycles' camera rays do; and which materials the export reads.
 # SPDX-License-Identifier: GPL-3.0-or-later
 import os
 import sys
@@ -8,6 +9,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cycles_truth  # noqa: E402
 import sstest  # noqa: E402
 import bpy  # noqa: E402
 
@@ -169,6 +171,105 @@ def test_half_transparent_card_matches_cycles():
     covered = np.abs(truth - 0.5) < 0.01
     sstest.check(covered.sum() > 100, "Cycles gives 0.5 under the card: %d pixels" % covered.sum())
     sstest.close(float(v[covered].mean()), 0.5, 0.01, "V under the 50 % card")
+
+
+# The stripes card: the camera looks straight down through its holes at the ground, which the
+# light, to one side, shadows through the card's opaque stripes.
+STRIPES_W, STRIPES_H = 128, 96
+STRIPES_CARD = 1.6  # size; at z = 2.5, UVs (0, 0) .. (1, 1)
+STRIPES_LENS = 40.0
+# Measured in Blender 3.4 against Cycles at 256 samples over the pixels through the holes (476,
+# Cycles' mean V 0.029): the final pass 0.0047 (0.975 where the camera sees the lit card there);
+# the GL passes shadow_map, penumbra_map and dbuffer 0.097 (hard or outline-grown edges in the
+# stripes' shadow), pcss 0.012, occlusion_textures 0.027.
+THROUGH_HOLES_RMSE = 0.015
+THROUGH_HOLES_GL_RMSE = {"shadow_map": 0.15, "pcss": 0.04, "occlusion_textures": 0.06, "penumbra_map": 0.15,
+                         "dbuffer": 0.15}
+
+
+def _stripes_image():
+    """Four stripes across u: opaque, hole, opaque, hole (8 texels each)."""
+    image = bpy.data.images.new("leaf_stripes", TEXTURE, TEXTURE, alpha=True, float_buffer=True)
+    image.alpha_mode = "STRAIGHT"
+    alpha = np.zeros((TEXTURE, TEXTURE), np.float32)
+    alpha[:, (np.arange(TEXTURE) // 8) % 2 == 0] = 1.0
+    pixels = np.ones((TEXTURE, TEXTURE, 4), np.float32)
+    pixels[..., 3] = alpha
+    image.pixels.foreach_set(pixels.reshape(-1))
+    image.update()
+    return image, alpha
+
+
+def _through_holes(scene, card, alpha, margin=1.0):
+    """The pixels whose camera ray crosses the card inside a hole, `margin` pixels away from any
+    edge of it (the camera looks straight down: a pixel's footprint on the card is a square)."""
+    camera = scene.camera
+    depth = camera.location.z - card.location.z
+    # Sensor fit AUTO, wider than high: the width spans 36 mm at the lens.
+    per_pixel = depth * 36.0 / STRIPES_LENS / STRIPES_W
+    h = STRIPES_CARD / 2.0
+    rows, cols = np.mgrid[0:STRIPES_H, 0:STRIPES_W]
+    out = np.ones((STRIPES_H, STRIPES_W), bool)
+    for dr in (-margin, 0.0, margin):
+        for dc in (-margin, 0.0, margin):
+            x = camera.location.x + (cols + 0.5 + dc - STRIPES_W / 2.0) * per_pixel
+            y = camera.location.y + (STRIPES_H / 2.0 - rows - 0.5 - dr) * per_pixel
+            u, v = (x - card.location.x + h) / (2 * h), (y - card.location.y + h) / (2 * h)
+            inside = (u >= 0) & (u < 1) & (v >= 0) & (v < 1)
+            i = np.clip((u * TEXTURE).astype(int), 0, TEXTURE - 1)
+            j = np.clip((v * TEXTURE).astype(int), 0, TEXTURE - 1)
+            out &= inside & (alpha[j, i] == 0.0)
+    # The mapping is Blender's: a point of the card maps back to its own pixel.
+    bpy.context.view_layer.update()  # the objects' matrices
+    r, c = np.argwhere(out)[len(np.argwhere(out)) // 2]
+    x = camera.location.x + (c + 0.5 - STRIPES_W / 2.0) * per_pixel
+    y = camera.location.y + (STRIPES_H / 2.0 - r - 0.5) * per_pixel
+    back = sstest.pixel_of(scene, (x, y, card.location.z))
+    sstest.check(back == (r, c), "pixel (%d, %d) maps back: %s" % (r, c, back))
+    return out
+
+
+def test_camera_sees_the_ground_through_cut_out_holes_as_cycles_does():
+    scene = _scene()
+    scene.render.resolution_x, scene.render.resolution_y = STRIPES_W, STRIPES_H
+    key = scene.objects["Key"]
+    key.location = (-0.85, 0.0, 6.0)
+    key.data.size = 0.2
+    scene.camera.data.lens = STRIPES_LENS
+    image, alpha = _stripes_image()
+    card = _card("Stripes", _leaf_material(image), size=STRIPES_CARD)
+    holes = _through_holes(scene, card, alpha)
+    truth, lit = cycles_truth.shadow_ratio(scene, key)
+    where = holes & lit
+    sstest.check(where.sum() > 100, "pixels through the holes: %d" % where.sum())
+    # Through the holes Cycles shows the ground in the opaque stripes' shadow (the card itself,
+    # with nothing above it, is lit): a pass that sees the card there is far off.
+    sstest.check(float(truth[where].mean()) < 0.2, "Cycles' ground through the holes: mean %.3f"
+                 % truth[where].mean())
+    final = _final_pass(scene)[0]
+    errors = {"final": cycles_truth.rmse(final, truth, where)}
+    gl = ss.api.render_passes(scene, methods=list(THROUGH_HOLES_GL_RMSE))
+    for method in THROUGH_HOLES_GL_RMSE:
+        errors[method] = cycles_truth.rmse(gl[("Key", method)], truth, where)
+    print("   through the holes (%d pixels), RMSE vs Cycles: %s; mean V %.3f, Cycles %.3f"
+          % (where.sum(), ", ".join("%s %.4f" % kv for kv in errors.items()), final[where].mean(),
+             truth[where].mean()))
+    sstest.check(errors["final"] <= THROUGH_HOLES_RMSE, "final pass through the holes: RMSE %.4f > %.3f"
+                 % (errors["final"], THROUGH_HOLES_RMSE))
+    for method, bound in THROUGH_HOLES_GL_RMSE.items():
+        sstest.check(errors[method] <= bound,
+                     "%s through the holes: RMSE %.4f > %.3f" % (method, errors[method], bound))
+
+
+def test_a_card_that_casts_no_shadow_keeps_its_holes_for_the_camera():
+    scene = _scene()
+    image, _ = _leaf_image()
+    card = _card("Leaf", _leaf_material(image))
+    card.visible_shadow = False
+    exported = ss.scene_export.export(bpy.context.evaluated_depsgraph_get(), scene)
+    leaf = next(m for m in exported.meshes if m["name"] == "Leaf")
+    sstest.check(not leaf["flags"] & ss.native.MESH_CAST, "the card casts nothing: flags %d" % leaf["flags"])
+    sstest.check(leaf["alpha"] is not None, "its alpha is exported: the camera sees through its holes")
 
 
 def test_unreadable_material_is_reported_once():

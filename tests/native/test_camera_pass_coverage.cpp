@@ -1,7 +1,10 @@
 // Is the camera pass, drawn from only the triangles that may cover a pixel centre, the pass drawn
-// from every triangle bit for bit (positions, normals, ids and depth), whole and patched?
+// from every triangle bit for bit (positions, normals, ids and depth), whole and patched, and
+// does it see through a cut-out's holes where the reference's camera rays do?
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
 #include <cstring>
+#include <iostream>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -12,6 +15,8 @@
 #include "gl/program.h"
 #include "gl/render_state.h"
 #include "gl/render_thread.h"
+#include "reference/camera_rays.h"
+#include "reference/trace_scene.h"
 #include "test_scenes.h"
 
 namespace ss {
@@ -32,7 +37,8 @@ GBuffer read(const gl::Framebuffer& fb) {
 }
 
 // The camera pass drawn the plain way: every triangle of every mesh, one indexed draw per mesh
-// (tests/shaders/camera/every_triangle.frag.glsl).
+// (tests/shaders/camera/every_triangle.frag.glsl); see-through meshes whole, one draw per
+// material, with the camera's alpha test.
 GBuffer drawEveryTriangle(Frame& frame, const Camera& cam) {
     gl::Framebuffer fb(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RG32F}, GL_DEPTH_COMPONENT32F);  // as the camera pass
     fb.bind();
@@ -42,17 +48,27 @@ GBuffer drawEveryTriangle(Frame& frame, const Camera& cam) {
     fb.clearDepth(1.0f);
     gl::apply(gl::states::opaque);
     const gl::Program& p = gl::program("common/mesh.vert.glsl", "camera/every_triangle.frag.glsl");
-    p.use();
+    const gl::Program& q = gl::program("camera/every_triangle_see_through.vert.glsl", "camera/every_triangle.frag.glsl",
+                                       {"SEE_THROUGH"});
     const glm::mat4 cameraToWorld = glm::inverse(cam.worldToCamera);
-    p.set("uWorldToClip", cam.worldToClip());
-    p.set("uWorldToView", cam.worldToCamera);
-    p.set("uCameraPosition", glm::vec3(cameraToWorld[3]));
-    p.set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
-    p.set("uOrthographic", cam.isOrthographic() ? 1 : 0);
-    frame.drawMeshes(p, 0, [&](const GpuMesh& m) {
-        p.set("uMeshIndex", m.meshIndex);
-        p.set("uReceives", m.receives() ? 1.0f : 0.0f);
-    });
+    for (const gl::Program* prog : {&p, &q}) {
+        prog->set("uWorldToClip", cam.worldToClip());
+        prog->set("uWorldToView", cam.worldToCamera);
+        prog->set("uCameraPosition", glm::vec3(cameraToWorld[3]));
+        prog->set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
+        prog->set("uOrthographic", cam.isOrthographic() ? 1 : 0);
+    }
+    q.set("uCameraAlphaThreshold", kCameraAlphaThreshold);
+    auto ids = [&](const gl::Program& prog) {
+        return [&](const GpuMesh& m) {
+            prog.set("uMeshIndex", m.meshIndex);
+            prog.set("uReceives", m.receives() ? 1.0f : 0.0f);
+        };
+    };
+    p.use();
+    frame.drawMeshesWhere(p, 0, std::nullopt, ids(p), -1, true);
+    q.use();
+    frame.drawSeeThroughWhere(q, 0, ids(q));
     GBuffer out = read(fb);
     frame.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
     return out;
@@ -148,6 +164,54 @@ TEST(CameraPassCoverage, AGpuIsHandedEveryTriangleOfTheClustersAndDrawsTheSamePa
         EXPECT_EQ(differences(a, b), 0u);
         EXPECT_LT(tested.stats().cameraPassTriangles, total / 3) << "llvmpipe: each triangle tested";
         EXPECT_EQ(clusters.stats().cameraPassTriangles, total) << "every mesh is in view from above";
+    });
+}
+
+}  // namespace
+}  // namespace ss
+
+namespace ss {
+namespace {
+
+// A cut-out card (test::sceneCardWithHole) beside the dense torus: the listed pass alpha-tests
+// the card as the every-triangle pass does, and at each pixel it shows the surface the
+// reference's camera ray meets (TraceScene::intersect passes the hole the same way).
+TEST(CameraPassCoverage, ACutOutCardIsAlphaTestedAsTheCameraRaysSeeIt) {
+    Scene scene = test::sceneCardWithHole(true, 96, 72);
+    scene.addMesh(test::makeTorus({1.6f, 0.9f, 0.5f}, 0.5f, 0.2f, 128, 64, kBoth));
+    gl::RenderThread thread(SS_BACKEND_AUTO);
+    thread.run([&] {
+        Frame frame(scene);
+        const GBuffer pass = read(frame.cameraPass().framebuffer);
+        EXPECT_EQ(differences(pass, drawEveryTriangle(frame, scene.camera())), 0u);
+        const CameraImages& images = frame.cameraImages();
+        const Camera& cam = scene.camera();
+        TraceScene trace(scene);
+        const CameraRays rays(cam);
+        size_t disagree = 0, throughHole = 0, cardSeen = 0;
+        for (int y = 0; y < cam.height; ++y)
+            for (int x = 0; x < cam.width; ++x) {
+                Ray ray;
+                float tNear, tFar;
+                ASSERT_TRUE(rays.span(x, y, &ray, &tNear, &tFar));
+                const SurfaceHit hit = trace.intersect(ray, tNear, tFar);
+                const int traced = hit.hit ? int(hit.mesh) : -1;
+                const int drawn = int(images.ids[images.index(x, y)].x);
+                disagree += traced != drawn;
+                // The card's plane crossed inside the hole: the ground shows.
+                const float t = (test::kCardHeight - ray.origin.z) / ray.direction.z;
+                const glm::vec3 p = ray.origin + t * ray.direction;
+                const bool inHole = std::abs(p.x) < test::kCardHoleHalf && std::abs(p.y) < test::kCardHoleHalf;
+                throughHole += inHole && drawn == 0;
+                cardSeen += drawn == 1;
+            }
+        EXPECT_GT(throughHole, 300u);
+        EXPECT_GT(cardSeen, 300u);
+        // Only pixel centres within rounding of an edge (the card's, the hole's, the torus') may
+        // go either way.
+        EXPECT_LE(disagree, 8u) << "of " << cam.width * cam.height << " pixels";
+        std::cout << "  " << disagree << " pixels where the pass and the camera rays disagree, " << throughHole
+                  << " seen through the hole\n";
     });
 }
 

@@ -80,6 +80,37 @@ TEST(Cli, ReportListsMeshes) {
     EXPECT_NE(table.out.find("Torus"), std::string::npos) << table.out;
 }
 
+// Each light's shadow linking (blockers) and light linking (receivers) by mesh name: every
+// mesh when the light has no list, "none" for an empty one.
+TEST(Cli, ReportListsEachLightsLinks) {
+    fs::path dir = tempDir("report_links");
+    std::ofstream(dir / "links.json") << R"({"format":"softshadow-scene","version":1,
+      "camera":{"look_from":[3,-3,3],"look_at":[0,0,0],"fov_y_degrees":40,"width":32,"height":24},
+      "lights":[{"name":"Key","type":"disk","position":[0,0,4],"direction":[0,0,-1],"size":1,
+                 "blockers":["Tree"],"receivers":[0,"Tree"]},
+                {"name":"Fill","type":"point","position":[1,0,4],"direction":[0,0,-1],"blockers":[]},
+                {"name":"Rim","type":"point","position":[-1,0,4],"direction":[0,0,-1]}],
+      "meshes":[{"name":"Ground","primitive":{"type":"plane","size":4}},
+                {"name":"Rock","primitive":{"type":"box","size":1},"translate":[1,0,1]},
+                {"name":"Tree","primitive":{"type":"box","size":1},"translate":[-1,0,1]}]})";
+    CliRun r = cli("report '" + (dir / "links.json").string() + "' --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    auto lights = nlohmann::json::parse(r.out)["lights"];
+    ASSERT_EQ(lights.size(), 3u);
+    EXPECT_EQ(lights[0]["blockers"], nlohmann::json::array({"Tree"}));
+    EXPECT_EQ(lights[0]["receivers"], nlohmann::json::array({"Ground", "Tree"}));
+    EXPECT_EQ(lights[1]["blockers"], nlohmann::json::array());
+    EXPECT_TRUE(lights[1]["receivers"].is_null());
+    EXPECT_TRUE(lights[2]["blockers"].is_null());
+    EXPECT_TRUE(lights[2]["receivers"].is_null());
+    CliRun table = cli("report '" + (dir / "links.json").string() + "'");
+    ASSERT_EQ(table.code, 0) << table.err;
+    for (const char* line : {"shadowed by (blockers): Tree\n", "lights (receivers): Ground, Tree\n",
+                             "shadowed by (blockers): none\n", "lights (receivers): every mesh\n"})
+        EXPECT_NE(table.out.find(line), std::string::npos) << line << " in\n" << table.out;
+    fs::remove_all(dir);
+}
+
 TEST(Cli, CompareGivesKnownNumbers) {
     fs::path dir = tempDir("compare");
     // A: V = 0 on the left half, 1 on the right; B: 0.5 everywhere; a mask of the top row only.

@@ -114,6 +114,49 @@ Light makeDiskLight(const glm::vec3& position, float diameter, const std::string
     return l;
 }
 
+Scene sceneCardWithHole(bool holeInTexture, int width, int height) {
+    Scene s;
+    s.addMesh(makeGround(6.0f, 0.0f, SS_MESH_CAST | SS_MESH_RECEIVE));
+    Mesh card;
+    card.name = "card";
+    card.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
+    auto quad = [&](float x0, float y0, float x1, float y1) {
+        const uint32_t b = uint32_t(card.positions.size());
+        for (glm::vec2 p : {glm::vec2(x0, y0), glm::vec2(x1, y0), glm::vec2(x1, y1), glm::vec2(x0, y1)})
+            card.positions.push_back({p.x, p.y, kCardHeight});
+        card.triangles.push_back({b, b + 1, b + 2});
+        card.triangles.push_back({b, b + 2, b + 3});
+    };
+    const float h = kCardHalf, o = kCardHoleHalf;
+    if (holeInTexture) {
+        for (int j = 0; j < 4; ++j)  // 4 x 4 cells: triangle edges cross the hole and the card
+            for (int i = 0; i < 4; ++i)
+                quad(-h + 0.5f * float(i), -h + 0.5f * float(j), -h + 0.5f * float(i + 1), -h + 0.5f * float(j + 1));
+    } else {
+        quad(-h, -h, h, -o), quad(-h, o, h, h), quad(-h, -o, -o, o), quad(o, -o, h, o);
+    }
+    card.finalize();
+    MeshAlpha alpha;
+    for (const glm::uvec3& t : card.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 p = card.positions[t[k]];
+            alpha.cornerUvs.push_back((glm::vec2(p.x, p.y) + h) / (2.0f * h));
+        }
+    AlphaMaterial hole;
+    hole.width = hole.height = 8;
+    hole.filter = AlphaFilter::Closest;
+    hole.wrap = AlphaWrap::Extend;
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) hole.texels.push_back(i >= 2 && i < 6 && j >= 2 && j < 6 ? 0.0f : 1.0f);
+    alpha.materials.push_back(std::move(hole));
+    const int index = s.addMesh(std::move(card));
+    if (holeInTexture) s.setMeshAlpha(index, std::move(alpha));
+    s.addLight(makeDiskLight({1.5f, 0.0f, 4.0f}, 0.5f));
+    s.setCamera(makeLookAtCamera({0.0f, 0.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, glm::radians(35.0f),
+                                 width, height, 0.1f, 50.0f));
+    return s;
+}
+
 Camera makeTopCamera(int width, int height) {
     return makeLookAtCamera({0.0f, -2.5f, 8.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
                             glm::radians(45.0f), width, height, 0.1f, 50.0f);

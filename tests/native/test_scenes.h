@@ -58,6 +58,15 @@ Scene sceneOverlapping(const SceneParams& p = {});
 // A torus lying flat over the ground (its hole lets light through).
 Scene sceneTorus(const SceneParams& p = {});
 
+// A card the camera sees the ground through: a receiving, casting 2 x 2 square at z = 1 (mesh 1,
+// "card") whose middle (|x|, |y| < 0.5) is a hole, over the ground (mesh 0, casting and
+// receiving), a disk light to the +x side so the ground seen through the hole is partly in the
+// card's shadow, and a camera looking straight down through the hole. With `holeInTexture` the
+// card is whole and the hole is its alpha texture (8 x 8 texels, 0 in the middle 4 x 4, Closest,
+// Extend; UVs (0, 0) .. (1, 1) over the card); else the hole is cut out of its geometry.
+Scene sceneCardWithHole(bool holeInTexture, int width = 128, int height = 96);
+inline constexpr float kCardHoleHalf = 0.5f, kCardHalf = 1.0f, kCardHeight = 1.0f;
+
 struct NamedScene {
     std::string name;
     Scene scene;

@@ -111,8 +111,7 @@ Scene sceneWith(Mesh occluder, const MeshAlpha* alpha = nullptr, float lightDiam
     return s;
 }
 
-// Pixels both results hold in their masks: the camera sees the card itself where its holes show
-// the ground in the squares' scene (camera rays stop at the first surface).
+// Pixels both results hold in their masks (the card does not receive: its pixels are outside).
 Image bothMasks(const Layers& a, const Layers& b) {
     Image m = *a.find("mask");
     const Image& other = *b.find("mask");

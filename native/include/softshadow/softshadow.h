@@ -230,7 +230,9 @@ typedef struct ss_alpha_material {
    mesh is opaque again), as does a set whose materials all have alpha 1. Fails with
    SS_ERROR_INVALID_SCENE naming the mesh for a bad index, an alpha outside [0, 1] or a texture
    without texels, leaving the mesh as it was. A material change is a mesh edit (every cache of
-   the mesh is redrawn); ss_scene_update_mesh clears the materials (set them again after it). */
+   the mesh is redrawn); ss_scene_update_mesh clears the materials (set them again after it).
+   Shadow rays through the mesh let 1 - alpha through; the camera sees through it where alpha
+   is below 0.5 (a cut-out's holes: the pixel is what lies behind), and sees it elsewhere. */
 SS_API ss_status ss_scene_set_mesh_materials(ss_scene* scene, int32_t index, const float* corner_uvs,
                                              const int32_t* triangle_material,
                                              const ss_alpha_material* materials, int32_t material_count);

@@ -89,15 +89,23 @@ bool MeshAlpha::opaque() const {
     return std::all_of(materials.begin(), materials.end(), [](const AlphaMaterial& m) { return m.opaque(); });
 }
 
-float MeshAlpha::transmission(uint32_t triangle, float b1, float b2) const {
+bool MeshAlpha::cameraSeesThrough() const {
+    return std::any_of(materials.begin(), materials.end(), [](const AlphaMaterial& m) {
+        if (!m.textured()) return m.constant < kCameraAlphaThreshold;
+        if (m.wrap == AlphaWrap::Clip) return true;  // transparent outside the image
+        return std::any_of(m.texels.begin(), m.texels.end(), [](float a) { return a < kCameraAlphaThreshold; });
+    });
+}
+
+float MeshAlpha::alpha(uint32_t triangle, float b1, float b2) const {
     const AlphaMaterial& m = materialOf(triangle);
-    if (!m.textured()) return 1.0f - m.constant;
+    if (!m.textured()) return m.constant;
     glm::vec2 uv(0.0f);
     if (!cornerUvs.empty()) {
         const glm::vec2* c = &cornerUvs[3 * size_t(triangle)];
         uv = (1.0f - b1 - b2) * c[0] + b1 * c[1] + b2 * c[2];
     }
-    return 1.0f - m.alphaAt(uv);
+    return m.alphaAt(uv);
 }
 
 }  // namespace ss

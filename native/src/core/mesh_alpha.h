@@ -10,6 +10,12 @@
 
 namespace ss {
 
+// Where a camera ray meets a see-through surface it stops when the alpha there is at least this
+// and passes on otherwise (the GL camera pass's alpha test and the reference's camera rays alike).
+// Cycles blends a fractional alpha into the pixel; a pass shows one surface per pixel, so a
+// pixel of a cut-out is the card or what lies behind its hole, and a 50 % card is seen.
+inline constexpr float kCameraAlphaThreshold = 0.5f;
+
 enum class AlphaWrap : int32_t { Repeat = 0, Extend = 1, Clip = 2 };  // Blender's image extension
 enum class AlphaFilter : int32_t { Linear = 0, Closest = 1 };          // Blender's interpolation
 
@@ -41,9 +47,18 @@ struct MeshAlpha {
     const AlphaMaterial& materialOf(uint32_t triangle) const {
         return materials[triangleMaterial.empty() ? 0u : triangleMaterial[triangle]];
     }
-    // 1 - alpha at the point of `triangle` with barycentric weights b1, b2 of its corners 1 and 2
+    // Alpha at the point of `triangle` with barycentric weights b1, b2 of its corners 1 and 2
     // (Embree's u, v).
-    float transmission(uint32_t triangle, float b1, float b2) const;
+    float alpha(uint32_t triangle, float b1, float b2) const;
+    // 1 - alpha there: what a shadow ray lets through.
+    float transmission(uint32_t triangle, float b1, float b2) const { return 1.0f - alpha(triangle, b1, b2); }
+    // Whether a camera ray stops there (kCameraAlphaThreshold).
+    bool seenByCamera(uint32_t triangle, float b1, float b2) const {
+        return alpha(triangle, b1, b2) >= kCameraAlphaThreshold;
+    }
+    // Some point of the mesh lets a camera ray through (a material below kCameraAlphaThreshold
+    // somewhere).
+    bool cameraSeesThrough() const;
 };
 
 }  // namespace ss

@@ -367,14 +367,22 @@ void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rec
     fb.clearDepth(1.0f);
     gl::apply(gl::states::opaque);
 
-    const gl::Program& prog = gl::program("camera/gbuffer.vert.glsl", "camera/gbuffer.frag.glsl");
-    prog.use();
-    glm::mat4 cameraToWorld = glm::inverse(cam.worldToCamera);
-    prog.set("uWorldToClip", cam.worldToClip());
-    prog.set("uWorldToView", cam.worldToCamera);
-    prog.set("uCameraPosition", glm::vec3(cameraToWorld[3]));
-    prog.set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
-    prog.set("uOrthographic", cam.isOrthographic() ? 1 : 0);
+    // Meshes the camera may see through (a cut-out's holes) are drawn with the alpha-tested
+    // variant, one material at a time as drawSeeThroughWhere draws them.
+    const gl::Program& opaque = gl::program("camera/gbuffer.vert.glsl", "camera/gbuffer.frag.glsl");
+    const gl::Program& seeThrough =
+        gl::program("camera/gbuffer.vert.glsl", "camera/gbuffer.frag.glsl", {"SEE_THROUGH"});
+    const glm::mat4 cameraToWorld = glm::inverse(cam.worldToCamera);
+    for (const gl::Program* prog : {&seeThrough, &opaque}) {
+        prog->set("uWorldToClip", cam.worldToClip());
+        prog->set("uWorldToView", cam.worldToCamera);
+        prog->set("uCameraPosition", glm::vec3(cameraToWorld[3]));
+        prog->set("uCameraForward", glm::normalize(-glm::vec3(cameraToWorld[2])));
+        prog->set("uOrthographic", cam.isOrthographic() ? 1 : 0);
+    }
+    seeThrough.set("uCameraAlphaThreshold", kCameraAlphaThreshold);
+    const gl::Program* inUse = &opaque;
+    opaque.use();
     bindEmptyVertexArray();
     if (listed > 0) g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, listedBuffer_.id());
     for (size_t i = 0; i < meshes_.size(); ++i) {
@@ -382,13 +390,30 @@ void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rec
         if (count == 0) continue;
         const GpuMesh& m = meshes_[i];
         if (m.flags & SS_MESH_CAMERA_HIDDEN) continue;  // the camera sees past it
+        const bool alphaTested = m.seeThrough && m.seeThrough->cameraSeesThrough;
+        const gl::Program& prog = alphaTested ? seeThrough : opaque;
+        if (&prog != inUse) prog.use(), inUse = &prog;
         setPlacement(prog, m);
         prog.set("uMeshIndex", m.meshIndex);
         prog.set("uReceives", m.receives() ? 1.0f : 0.0f);
         g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.faceNormals.id());
         g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.indices.id());
         g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.positions.id());
-        g.DrawArrays(GL_TRIANGLES, GLint(3 * first), GLsizei(3 * count));
+        if (!alphaTested) {
+            g.DrawArrays(GL_TRIANGLES, GLint(3 * first), GLsizei(3 * count));
+            continue;
+        }
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.seeThrough->cornerUvs.id());
+        g.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m.seeThrough->triangleMaterial.id());
+        for (size_t k = 0; k < m.seeThrough->materials.size(); ++k) {
+            const GpuSeeThrough::Material& mat = m.seeThrough->materials[k];
+            if (!mat.textured && mat.constant < kCameraAlphaThreshold) continue;  // the camera sees past it
+            prog.set("uAlphaMaterial", uint32_t(k));
+            prog.set("uAlphaTextured", mat.textured ? 1 : 0);
+            prog.set("uAlphaConstant", mat.constant);
+            if (mat.textured) prog.setTexture("uAlphaTexture", kAlphaTextureUnit, mat.texture.id());
+            g.DrawArrays(GL_TRIANGLES, GLint(3 * first), GLsizei(3 * count));
+        }
     }
     g.BindVertexArray(0);
     g.Disable(GL_SCISSOR_TEST);

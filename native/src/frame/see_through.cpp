@@ -9,6 +9,7 @@ namespace ss {
 GpuSeeThrough uploadSeeThrough(const MeshAlpha& alpha, size_t triangleCount) {
     const gl::Functions& g = gl::api();
     GpuSeeThrough out;
+    out.cameraSeesThrough = alpha.cameraSeesThrough();
     std::vector<glm::vec2> uvs = alpha.cornerUvs;
     uvs.resize(3 * triangleCount, glm::vec2(0.0f));
     std::vector<uint32_t> materials = alpha.triangleMaterial;

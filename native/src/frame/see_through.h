@@ -1,5 +1,6 @@
 // What the GPU holds of a see-through mesh's materials (ss::MeshAlpha), for the light-side passes
-// that alpha-test their casters (the shared shadow map, occlusion_textures' slices).
+// that alpha-test their casters (the shared shadow map, occlusion_textures' slices) and for the
+// camera pass, which alpha-tests what the camera sees (ss::kCameraAlphaThreshold).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <vector>
@@ -18,6 +19,7 @@ struct GpuSeeThrough {
         gl::Texture texture;  // R32F alpha, wrap and filter as the material says
     };
     std::vector<Material> materials;
+    bool cameraSeesThrough = false;  // MeshAlpha::cameraSeesThrough: the camera pass alpha-tests it
 };
 
 // Uploads `alpha` for a mesh of `triangleCount` triangles (needs the GL context current).

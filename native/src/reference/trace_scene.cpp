@@ -75,6 +75,25 @@ void shadowFilter(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+// The camera-ray context: a hit on a see-through mesh where the camera sees through it
+// (MeshAlpha::seenByCamera: a cut-out's hole) is rejected, so the ray goes on to what lies behind.
+struct CameraContext {
+    RTCIntersectContext base;
+    const std::shared_ptr<const MeshAlpha>* alpha = nullptr;  // per mesh index
+};
+
+void cameraFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* ctx = reinterpret_cast<const CameraContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const uint32_t mesh = RTCHitN_instID(args->hit, args->N, i, 0);
+        const MeshAlpha* alpha = ctx->alpha[mesh].get();
+        if (alpha && !alpha->seenByCamera(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                                          RTCHitN_v(args->hit, args->N, i)))
+            args->valid[i] = 0;
+    }
+}
+
 // Single-precision error bound factor gamma(n) = n u / (1 - n u) (pbrt), u = 2^-24.
 constexpr float gammaBound(int n) {
     constexpr float u = 0.5f * std::numeric_limits<float>::epsilon();
@@ -127,6 +146,8 @@ struct TraceScene::Impl {
     std::vector<Instance> instances;  // per mesh index
     // Per mesh index, what it lets through; empty when every caster is opaque.
     std::vector<std::shared_ptr<const MeshAlpha>> alpha;
+    // Per mesh index, the materials of the meshes camera rays may pass through; empty when none.
+    std::vector<std::shared_ptr<const MeshAlpha>> cameraAlpha;
 
     void start(ShadowContext* ctx, uint32_t skipMesh, uint32_t skipTriangle) const {
         rtcInitIntersectContext(&ctx->base);
@@ -164,7 +185,8 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<con
     m.all = rtcNewScene(device);
     m.casters = rtcNewScene(device);
     checkEmbree(device, "creating scenes");
-    rtcSetSceneFlags(m.all, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(m.all, RTCSceneFlags(RTC_SCENE_FLAG_ROBUST |
+                                          (m.filterSupported ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : 0)));
     rtcSetSceneFlags(m.casters, RTCSceneFlags(RTC_SCENE_FLAG_ROBUST |
                                               (m.filterSupported ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : 0)));
 
@@ -194,6 +216,10 @@ TraceScene::TraceScene(const Scene& scene, const std::vector<std::shared_ptr<con
             m.alpha.resize(meshes.size());
             m.alpha[i] = mesh.alpha;
         }
+        if (!(mesh.flags & SS_MESH_CAMERA_HIDDEN) && mesh.seeThrough() && mesh.alpha->cameraSeesThrough()) {
+            m.cameraAlpha.resize(meshes.size());
+            m.cameraAlpha[i] = mesh.alpha;
+        }
         if (!(mesh.flags & SS_MESH_CAMERA_HIDDEN)) Impl::instance(device, m.all, in, uint32_t(i));
         if (castersOf < 0 ? mesh.casts() : scene.castsFor(int(i), castersOf))
             Impl::instance(device, m.casters, in, uint32_t(i));
@@ -214,8 +240,12 @@ std::vector<std::shared_ptr<const MeshBvh>> TraceScene::meshBvhs() const {
 }
 
 SurfaceHit TraceScene::intersect(const Ray& ray, float tNear, float tFar) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    CameraContext ctx;
+    rtcInitIntersectContext(&ctx.base);
+    if (impl_->filterSupported && !impl_->cameraAlpha.empty()) {
+        ctx.base.filter = cameraFilter;
+        ctx.alpha = impl_->cameraAlpha.data();
+    }
     RTCRayHit rh{};
     rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
     rh.ray.dir_x = ray.direction.x, rh.ray.dir_y = ray.direction.y, rh.ray.dir_z = ray.direction.z;
@@ -224,7 +254,7 @@ SurfaceHit TraceScene::intersect(const Ray& ray, float tNear, float tFar) const 
     rh.ray.mask = 0xffffffffu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl_->all, &ctx, &rh);
+    rtcIntersect1(impl_->all, &ctx.base, &rh);
 
     SurfaceHit h;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;

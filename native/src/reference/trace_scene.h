@@ -53,7 +53,9 @@ public:
     // The BVHs of its meshes, for a later TraceScene to take over.
     std::vector<std::shared_ptr<const MeshBvh>> meshBvhs() const;
 
-    // Nearest surface of any mesh along the ray with t in [tNear, tFar].
+    // Nearest surface of any mesh the camera sees along the ray with t in [tNear, tFar]: camera
+    // rays pass through a see-through mesh where MeshAlpha::seenByCamera says so (a cut-out's
+    // holes), as the GL camera pass's alpha test does.
     SurfaceHit intersect(const Ray& ray, float tNear, float tFar) const;
     // What reaches the end of the segment origin + t dir, t in (0, tFar), through the casting
     // meshes: 0 where an opaque one blocks it, else the product of (1 - alpha) over the

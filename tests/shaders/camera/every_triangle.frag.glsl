@@ -1,8 +1,12 @@
 // The camera pass as drawn from every triangle of each mesh (one indexed draw per mesh, the
 // triangle from gl_PrimitiveID): the reference the listed-triangle pass must equal bit for bit.
-// Same outputs and arithmetic as shaders/camera/gbuffer.frag.glsl.
+// Same outputs and arithmetic as shaders/camera/gbuffer.frag.glsl; with SEE_THROUGH, the same
+// alpha test (drawn by Frame::drawSeeThroughWhere, unindexed: gl_PrimitiveID is still the triangle).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "common/mesh_placement.glsl"
+#ifdef SEE_THROUGH
+#include "common/see_through.glsl"
+#endif
 
 in vec3 vWorld;
 
@@ -20,6 +24,9 @@ layout(location = 1) out vec4 oNormalReceive;
 layout(location = 2) out vec4 oIds;
 
 void main() {
+#ifdef SEE_THROUGH
+    cameraAlphaTest(seeThroughAlpha());
+#endif
     int triangle = gl_PrimitiveID;
     vec3 n = meshNormalToWorld(faceNormal[triangle].xyz);
     vec3 toEye = uOrthographic != 0 ? -uCameraForward : uCameraPosition - vWorld;
