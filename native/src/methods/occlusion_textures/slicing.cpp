@@ -26,7 +26,8 @@ void frameAround(const glm::vec3& normal, glm::vec3* x, glm::vec3* y) {
     *x = glm::normalize(glm::cross(helper, z));
     *y = glm::cross(z, *x);
 }
-// The casting planes no ray from a caster or receiver to the light can cross: every other mesh
+// The casting planes, not parallel to the light, that no ray from a caster or receiver to the
+// light can cross: every other mesh
 // that casts or receives and the light's rectangle lie on the plane's lit side (within `tol`), so
 // a segment between two such points meets the plane at most at an end. Each mesh is first
 // tested by its bounding box's corners, vertex by vertex only when a corner dips below.
@@ -47,6 +48,9 @@ std::vector<int> planesThatCannotShadow(const Scene& scene, const KernelLight& l
         glm::dvec3 o, n;
         if (!casts(i) || !planeOfMesh(meshes[i], &o, &n)) continue;
         auto height = [&](const glm::vec3& p) { return glm::dot(glm::dvec3(p) - o, n); };
+        // A plane parallel to the light lies at one depth, past the occluders over it: it stays
+        // sliced (the bottom slice, which fade=below never lets it shadow itself through).
+        if (std::abs(glm::dot(n, glm::dvec3(light.normal))) > 1.0 - 1e-7) continue;
         const double lightHeight = height(light.centre);
         if (std::abs(lightHeight) <= tol) continue;
         if (lightHeight < 0) n = -n;

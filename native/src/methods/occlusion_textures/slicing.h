@@ -47,10 +47,11 @@ struct SliceSetup {
     glm::mat4 worldToClip{1.0f};    // the slicing camera (COP) for the slicing pass
     float receiverDepthMax = 0.0f;  // the deepest receiving vertex in front of the light
     int lightIndex = -1;  // the scene light whose blockers are sliced (-1: every casting mesh)
-    // Casting meshes left out of the slices (sorted mesh indices): planes that cannot shadow
-    // anything, every other caster and receiver and the light's rectangle lying on their lit
-    // side (a ground under the scene). Under a tilted light such a plane spans the whole depth
-    // range, so slicing it would spread the slices over the ground instead of the occluders.
+    // Casting meshes left out of the slices (sorted mesh indices): planes not parallel to the
+    // light that cannot shadow anything, every other caster and receiver and the light's
+    // rectangle lying on their lit side (a ground under a tilted light). Such a plane spans the
+    // whole depth range, so slicing it would spread the slices over the ground instead of the
+    // occluders (and flatten each occluder onto one far plane).
     std::vector<int> unsliced;
     bool sliced(int mesh) const;
     int count() const { return int(planes.size()) - 1; }
