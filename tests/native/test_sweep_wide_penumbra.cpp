@@ -62,12 +62,14 @@ double neighbourStep(const Image& V, const Image& ref, const Image& mask) {
     return d[size_t(0.99 * double(d.size() - 1))];
 }
 
-// Measured (reference 256 samples; 64 with SS_TEST_QUICK), p99 step one set / auto / reference
+// Measured (reference 256 samples), p99 step one set / auto / reference
 // and RMSE one set / auto: square 0.077 / 0.051 / 0.027, RMSE 0.025 / 0.010; square turned 30
 // degrees 0.087 / 0.041 / 0.038, 0.021 / 0.011; disk 0.114 / 0.051 / 0.036, 0.024 / 0.012.
 TEST(SweepWidePenumbra, AutomaticPassesEvenOutTheBands) {
     Renderer renderer(SS_BACKEND_AUTO);
-    const int refSamples = test::quickTests() ? 64 : 256;
+    // 256 samples even with SS_TEST_QUICK: the reference's own steps are the yardstick, and at
+    // 64 its noise alone doubles them.
+    const int refSamples = 256;
     struct Case {
         LightType type;
         float yaw;
@@ -92,8 +94,8 @@ TEST(SweepWidePenumbra, AutomaticPassesEvenOutTheBands) {
         std::printf("%s yaw %.0f: p99 step one set %.4f, auto %.4f, reference %.4f; RMSE one set %.4f, auto %.4f\n",
                     lightTypeName(c.type), c.yaw, oneStep, autoStep, refStep, eOne.rmse, eAuto.rmse);
         const std::string name = std::string(lightTypeName(c.type)) + " yaw " + std::to_string(int(c.yaw));
-        EXPECT_GT(oneStep, 2.0 * refStep) << name << ": one set of 16 samples bands the penumbra";
-        EXPECT_LE(autoStep, 2.0 * refStep) << name;
+        EXPECT_GT(oneStep, 2.0 * refStep + 0.005) << name << ": one set of 16 samples bands the penumbra";
+        EXPECT_LE(autoStep, 2.0 * refStep + 0.005) << name;
         EXPECT_LT(eAuto.rmse, eOne.rmse) << name;
         EXPECT_LT(eAuto.rmse, 0.02) << name;
     }
