@@ -186,6 +186,10 @@ TEST(OcclusionTextures, NoJumpWhereAReceiverCrossesSlicePlanes) {
     ramp.finalize();
     s.addMesh(std::move(ramp));
     s.addMesh(test::makeBox({-0.5f, -0.5f, 2.2f}, {0.5f, 0.5f, 2.5f}, SS_MESH_CAST));
+    // A receiver hidden under the ramp keeps the ramp in the slices: a tilted plane with
+    // everything on its lit side is left out of them (OcclusionTexturesTilted), and this test
+    // is about receivers that are sliced with the casters.
+    s.addMesh(test::makeBox({-0.1f, -0.1f, -1.0f}, {0.1f, 0.1f, -0.9f}, SS_MESH_RECEIVE));
     s.addLight(test::makeDiskLight({0.0f, 0.0f, 4.5f}, 1.5f));
     s.setCamera(test::makeTopCamera());
     Layers ot = run(renderer(), s, "occlusion_textures", 0, {{"slices", "16"}});

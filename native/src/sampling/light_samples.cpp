@@ -35,7 +35,8 @@ glm::dvec2 borderPoint(bool square, double t) {
 
 }  // namespace
 
-std::vector<glm::dvec2> unitSamplePattern(bool square, int count, uint32_t seed, double borderShare) {
+std::vector<glm::dvec2> unitSamplePattern(bool square, int count, uint32_t seed, double borderShare, int set,
+                                          int sets) {
     std::vector<glm::dvec2> out;
     if (count <= 1) {
         out.push_back({0.0, 0.0});
@@ -44,10 +45,16 @@ std::vector<glm::dvec2> unitSamplePattern(bool square, int count, uint32_t seed,
     Rng rng(seed);
     int border = count <= 3 ? count : std::clamp(int(std::lround(count * borderShare)), 3, count);
     int inside = count - border;
+    // Where this set sits inside each stratum, and how far it jitters there: one set spans the
+    // stratum's middle 60 % (border: 30 %, inside disk: 40 %), `sets` sets a slice each.
+    sets = std::max(sets, 1);
+    const double offset = (std::clamp(set, 0, sets - 1) + 0.5) / sets - 0.5, narrow = 1.0 / sets;
+    // The rows take the sets in the reverse order of the columns, so no two sets share both.
+    const double offsetY = -offset;
     // Border: evenly spaced with a random rotation and a small jitter, so the set is irregular.
     double phase = rng.uniform();
     for (int i = 0; i < border; ++i) {
-        double t = (i + phase + 0.3 * (rng.uniform() - 0.5)) / border;
+        double t = (i + phase + offset + 0.3 * narrow * (rng.uniform() - 0.5)) / border;
         out.push_back(borderPoint(square, t - std::floor(t)));
     }
     // Inside: stratified by area (golden-angle spiral in the disk, jittered grid in the square),
@@ -55,7 +62,7 @@ std::vector<glm::dvec2> unitSamplePattern(bool square, int count, uint32_t seed,
     const double shrink = 1.0 - 0.5 / std::sqrt(double(count));
     if (!square) {
         for (int i = 0; i < inside; ++i) {
-            double r = shrink * std::sqrt((i + 0.5 + 0.4 * (rng.uniform() - 0.5)) / inside);
+            double r = shrink * std::sqrt((i + 0.5 + offset + 0.4 * narrow * (rng.uniform() - 0.5)) / inside);
             double a = i * 2.39996322972865332 + 2 * M_PI * phase;
             out.push_back({r * std::cos(a), r * std::sin(a)});
         }
@@ -64,8 +71,8 @@ std::vector<glm::dvec2> unitSamplePattern(bool square, int count, uint32_t seed,
         for (int i = 0; i < inside; ++i) {
             int cx = i % cols, cy = i / cols;
             int rows = (inside + cols - 1) / cols;
-            double x = (cx + 0.5 + 0.6 * (rng.uniform() - 0.5)) / cols * 2 - 1;
-            double y = (cy + 0.5 + 0.6 * (rng.uniform() - 0.5)) / rows * 2 - 1;
+            double x = (cx + 0.5 + offset + 0.6 * narrow * (rng.uniform() - 0.5)) / cols * 2 - 1;
+            double y = (cy + 0.5 + offsetY + 0.6 * narrow * (rng.uniform() - 0.5)) / rows * 2 - 1;
             out.push_back({shrink * x, shrink * y});
         }
     }
@@ -83,7 +90,7 @@ std::vector<LightSample> placeLightSamples(const Light& light, const LightSample
         glm::dvec3 e1 = glm::normalize(glm::cross(axis, std::fabs(axis.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
         glm::dvec3 e2 = glm::cross(axis, e1);
         double t = std::tan(half);
-        for (const glm::dvec2& p : unitSamplePattern(false, count, options.seed, options.borderShare)) {
+        for (const glm::dvec2& p : unitSamplePattern(false, count, options.seed, options.borderShare, options.set, options.sets)) {
             LightSample s;
             s.directional = true;
             s.toLight = glm::normalize(axis + t * (p.x * e1 + p.y * e2));
@@ -106,7 +113,7 @@ std::vector<LightSample> placeLightSamples(const Light& light, const LightSample
         ay = double(light.radius) * glm::cross(n, e1);
         if (!(light.radius > 0.0f)) count = 1;
     }
-    for (const glm::dvec2& p : unitSamplePattern(square, count, options.seed, options.borderShare)) {
+    for (const glm::dvec2& p : unitSamplePattern(square, count, options.seed, options.borderShare, options.set, options.sets)) {
         LightSample s;
         s.point = centre + p.x * ax + p.y * ay;
         out.push_back(s);

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "methods/sweep/receiver.h"
 
 namespace ss::occlusion {
 
@@ -25,7 +26,57 @@ void frameAround(const glm::vec3& normal, glm::vec3* x, glm::vec3* y) {
     *x = glm::normalize(glm::cross(helper, z));
     *y = glm::cross(z, *x);
 }
+// The casting planes, not parallel to the light, that no ray from a caster or receiver to the
+// light can cross: every other mesh
+// that casts or receives and the light's rectangle lie on the plane's lit side (within `tol`), so
+// a segment between two such points meets the plane at most at an end. Each mesh is first
+// tested by its bounding box's corners, vertex by vertex only when a corner dips below.
+template <class Casts, class Receives>
+std::vector<int> planesThatCannotShadow(const Scene& scene, const KernelLight& light, const Casts& casts,
+                                        const Receives& receives) {
+    const auto& meshes = scene.meshes();
+    std::vector<Bounds> boxes(meshes.size());
+    Bounds all;
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        if (!casts(i) && !receives(i)) continue;
+        for (const glm::vec3& p : meshes[i].positions) boxes[i].extend(p);
+        if (!boxes[i].empty()) all.extend(boxes[i].lo), all.extend(boxes[i].hi);
+    }
+    const double tol = 1e-5 * std::max(double(all.diagonal()), 1e-30);
+    std::vector<int> out;
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        glm::dvec3 o, n;
+        if (!casts(i) || !planeOfMesh(meshes[i], &o, &n)) continue;
+        auto height = [&](const glm::vec3& p) { return glm::dot(glm::dvec3(p) - o, n); };
+        // A plane parallel to the light lies at one depth, past the occluders over it: it stays
+        // sliced (the bottom slice, which fade=below never lets it shadow itself through).
+        if (std::abs(glm::dot(n, glm::dvec3(light.normal))) > 1.0 - 1e-7) continue;
+        const double lightHeight = height(light.centre);
+        if (std::abs(lightHeight) <= tol) continue;
+        if (lightHeight < 0) n = -n;
+        bool lit = true;
+        for (float sx : {-1.0f, 1.0f})
+            for (float sy : {-1.0f, 1.0f})
+                lit = lit && height(light.centre + sx * light.halfX * light.axisX + sy * light.halfY * light.axisY) >= -tol;
+        for (size_t j = 0; lit && j < meshes.size(); ++j) {
+            if (j == i || boxes[j].empty()) continue;
+            bool corners = true;
+            for (const glm::vec3& c : boxes[j].corners()) corners = corners && height(c) >= -tol;
+            if (corners) continue;
+            for (const glm::vec3& p : meshes[j].positions)
+                if (height(p) < -tol) {
+                    lit = false;
+                    break;
+                }
+        }
+        if (lit) out.push_back(int(i));
+    }
+    return out;
+}
+
 }  // namespace
+
+bool SliceSetup::sliced(int mesh) const { return !std::binary_search(unsliced.begin(), unsliced.end(), mesh); }
 
 glm::vec3 KernelLight::toLocal(const glm::vec3& world) const {
     glm::vec3 r = world - centre;
@@ -90,22 +141,27 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
     if (resolution < 16 || resolution > 4096)
         fail(SS_ERROR_INVALID_ARGUMENT, "occlusion_textures: resolution = " + std::to_string(resolution) +
                                             " is outside 16..4096");
+    auto casts = [&](size_t i) { return lightIndex < 0 ? scene.meshes()[i].casts() : scene.castsFor(int(i), lightIndex); };
+    auto receives = [&](size_t i) {
+        return lightIndex < 0 ? scene.meshes()[i].receives() : scene.receivesFrom(int(i), lightIndex);
+    };
+    std::vector<int> unsliced = planesThatCannotShadow(scene, light, casts, receives);
     const float inf = std::numeric_limits<float>::infinity();
     float zAllMax = 0.0f, zCastMin = inf, zCastMax = 0.0f, zReceiveMax = 0.0f;
     float d = inf;
     float coverX = light.halfX, coverY = light.halfY;  // orthographic: the extent to cover
     for (size_t i = 0; i < scene.meshes().size(); ++i) {
         const Mesh& mesh = scene.meshes()[i];
-        const bool casts = lightIndex < 0 ? mesh.casts() : scene.castsFor(int(i), lightIndex);
-        const bool receives = lightIndex < 0 ? mesh.receives() : scene.receivesFrom(int(i), lightIndex);
-        if (!casts && !receives) continue;
+        const bool sliced = casts(i) && !std::binary_search(unsliced.begin(), unsliced.end(), int(i));
+        const bool receiving = receives(i);
+        if (!sliced && !receiving) continue;
         for (const glm::vec3& p : mesh.positions) {
             glm::vec3 q = light.toLocal(p);
             if (q.z <= 0.0f) continue;
             zAllMax = std::max(zAllMax, q.z);
             coverX = std::max(coverX, std::abs(q.x)), coverY = std::max(coverY, std::abs(q.y));
-            if (casts) zCastMin = std::min(zCastMin, q.z), zCastMax = std::max(zCastMax, q.z);
-            if (receives) zReceiveMax = std::max(zReceiveMax, q.z);
+            if (sliced) zCastMin = std::min(zCastMin, q.z), zCastMax = std::max(zCastMax, q.z);
+            if (receiving) zReceiveMax = std::max(zReceiveMax, q.z);
             // Inside the frustum when |x| <= a (z + d) / d, i.e. d <= a z / (|x| - a).
             if (std::abs(q.x) > light.halfX) d = std::min(d, light.halfX * q.z / (std::abs(q.x) - light.halfX));
             if (std::abs(q.y) > light.halfY) d = std::min(d, light.halfY * q.z / (std::abs(q.y) - light.halfY));
@@ -130,6 +186,7 @@ SliceSetup fitSlices(const Scene& scene, const KernelLight& light, int sliceCoun
     s.d = std::clamp(d, dMin, std::max(dMin, 4.0f * zAllMax));
     s.receiverDepthMax = zReceiveMax;
     s.lightIndex = lightIndex;
+    s.unsliced = std::move(unsliced);
     // Vertices touching the light plane would make the first slice start at 0 depth; keep a
     // thin gap so the slicing camera's near plane stays positive.
     float z0 = std::max(zCastMin, 1e-4f * zCastMax);

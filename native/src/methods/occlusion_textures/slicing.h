@@ -47,6 +47,13 @@ struct SliceSetup {
     glm::mat4 worldToClip{1.0f};    // the slicing camera (COP) for the slicing pass
     float receiverDepthMax = 0.0f;  // the deepest receiving vertex in front of the light
     int lightIndex = -1;  // the scene light whose blockers are sliced (-1: every casting mesh)
+    // Casting meshes left out of the slices (sorted mesh indices): planes not parallel to the
+    // light that cannot shadow anything, every other caster and receiver and the light's
+    // rectangle lying on their lit side (a ground under a tilted light). Such a plane spans the
+    // whole depth range, so slicing it would spread the slices over the ground instead of the
+    // occluders (and flatten each occluder onto one far plane).
+    std::vector<int> unsliced;
+    bool sliced(int mesh) const;
     int count() const { return int(planes.size()) - 1; }
     bool operator==(const SliceSetup&) const = default;
     // Slice holding depth z (clamped to the range).
@@ -57,7 +64,7 @@ struct SliceSetup {
 
 // Fits the slicing camera: d so that every casting or receiving vertex in front of the light is
 // inside the frustum (half-angle capped at 80 degrees), slices spread uniformly in depth over
-// the casters' depth range. Orthographic: the textures cover every casting or receiving vertex
+// the sliced casters' depth range (SliceSetup::unsliced left out). Orthographic: the textures cover every casting or receiving vertex
 // in front of the light (and the light), with the light's aspect. Throws ss::Error when no
 // geometry lies in front of the light. With `lightIndex`, the casters and receivers are that
 // light's (Scene::castsFor, Scene::receivesFrom: its light and shadow linking).

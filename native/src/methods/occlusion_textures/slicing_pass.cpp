@@ -47,6 +47,7 @@ void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bo
     if (rect) region = PatchRegion{*rect, setup.worldToClip, setup.width, setup.height};
     frame.drawMeshesWhere(program, SS_MESH_CAST, region, [&](const GpuMesh& mesh) {
         program.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
+        program.set("unsliced", setup.sliced(mesh.meshIndex) ? 0 : 1);
     }, setup.lightIndex, true);
     // See-through casters occlude their slice by their alpha (drawn whole; the scissor keeps
     // a patch's outside).
@@ -60,6 +61,7 @@ void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bo
     seeThrough.set("sliceCount", setup.count());
     frame.drawSeeThroughWhere(seeThrough, SS_MESH_CAST, [&](const GpuMesh& mesh) {
         seeThrough.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
+        seeThrough.set("unsliced", setup.sliced(mesh.meshIndex) ? 0 : 1);
     }, setup.lightIndex);
     gl.Disable(GL_SCISSOR_TEST);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -76,7 +76,7 @@ public:
 private:
     struct Key {
         Scene::LightGeometryKey geometry;
-        int samples = 0, clusters = 1;
+        int samples = 0, clusters = 1, passes = 1;  // passes 0: auto
         uint32_t seed = 0;
         double border = 0;
         planar::FillMode fill{};
@@ -87,9 +87,13 @@ private:
 
     const SweepShadow& shadowFor(const Scene& scene, int lightIndex, const RenderSettings& settings) {
         SweepOptions o = sweepOptions(settings);
-        Key k{scene.lightGeometryKey(lightIndex), o.samples, o.clusters, o.seed, o.borderShare, o.fill, o.receiver,
-              o.irradianceWeights};
-        if (!cached_ || !(key_ == k)) {
+        Key k{scene.lightGeometryKey(lightIndex), o.samples, o.clusters, o.passes, o.seed, o.borderShare, o.fill,
+              o.receiver, o.irradianceWeights};
+        // Automatic passes follow the camera (an orbit or a zoom can widen the penumbra on
+        // screen), but only a change of the count they come to makes the shadow again.
+        const bool passesChanged = cached_ && o.passes == 0 && scene.hasCamera() &&
+                                   autoSweepPasses(cached_->widest, scene.camera(), o.samples) != cached_->passes;
+        if (!cached_ || !(key_ == k) || passesChanged) {
             settings.report(0.0f, "sweep: geometry");
             cached_.reset();  // its memory is free before the new shadow is made
             cached_ = computeSweepShadow(scene, lightIndex, o, &projections_);

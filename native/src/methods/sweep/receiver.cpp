@@ -52,6 +52,10 @@ bool isPlanarMesh(const Mesh& mesh) {
     return true;
 }
 
+bool planeOfMesh(const Mesh& mesh, glm::dvec3* point, glm::dvec3* normal) {
+    return isPlanarMesh(mesh) && referencePlane(mesh, point, normal);
+}
+
 ReceiverPlane findReceiverPlane(const Scene& scene, const Light& light, const std::string& name) {
     const auto& meshes = scene.meshes();
     int chosen = -1;

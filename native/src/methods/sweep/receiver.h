@@ -26,6 +26,9 @@ struct ReceiverPlane {
 
 // True when every vertex of the mesh lies within a relative 1e-5 of its largest face's plane.
 bool isPlanarMesh(const Mesh& mesh);
+// A planar mesh's plane: a point on it and its largest face's unit normal; false when the mesh
+// is not planar (isPlanarMesh) or all its faces are degenerate.
+bool planeOfMesh(const Mesh& mesh, glm::dvec3* point, glm::dvec3* normal);
 
 // `name` empty: the receiving (SS_MESH_RECEIVE) planar mesh of largest area that the light
 // lights (its light linking). Throws ss::Error

@@ -17,7 +17,7 @@
 namespace ss {
 
 
-std::vector<std::string> sweepSettingKeys() { return {"receiver", "fill", "border", "clusters", "weights", "raster"}; }
+std::vector<std::string> sweepSettingKeys() { return {"receiver", "fill", "border", "clusters", "passes", "weights", "raster"}; }
 
 SweepOptions sweepOptions(const RenderSettings& settings) {
     SweepOptions o;
@@ -31,6 +31,7 @@ SweepOptions sweepOptions(const RenderSettings& settings) {
     o.fill = fill == "smooth" ? planar::FillMode::Smooth : fill == "steps" ? planar::FillMode::Steps : planar::FillMode::Rings;
     o.borderShare = settings.number("border", 0.25f, 0.0f, 1.0f);
     o.clusters = settings.integer("clusters", 1, 1, 64);
+    o.passes = settings.text("passes", "auto") == "auto" ? 0 : settings.integer("passes", 1, 1, 16);
     o.irradianceWeights = settings.choice("weights", "irradiance", {"irradiance", "equal"}) == "irradiance";
     return o;
 }
@@ -58,7 +59,57 @@ std::vector<LightCluster> splitLight(const Light& light, int clusters) {
     return out;
 }
 
+int autoSweepPasses(const WidestPenumbra& widest, const Camera& camera, int samples) {
+    if (!(widest.width > 0.0) || samples < 2) return 1;
+    // Pixels per world unit at the penumbra's depth (foreshortening left out: it only narrows).
+    const double scale = 0.5 * camera.height * std::abs(double(camera.projection[1][1]));
+    double depth = 1.0;
+    if (!camera.isOrthographic()) {
+        depth = -(camera.worldToCamera * glm::vec4(glm::vec3(widest.at), 1.0f)).z;
+        if (!(depth > 0.0)) return 1;  // behind the camera: not seen
+    }
+    const double pixels = widest.width * scale / depth;
+    const double passes = std::ceil(pixels / (kSweepPixelsPerRing * samples));
+    return int(std::clamp(std::isfinite(passes) ? passes : 1.0, 1.0, double(kSweepMaxPasses)));
+}
+
 namespace {
+
+// The light's largest extent across (its diameter) and the widest penumbra its occluders cast:
+// a point at height h under a light at height H casts a penumbra extent x h / (H - h) wide.
+WidestPenumbra widestPenumbra(const Scene& scene, const Light& light, const ReceiverPlane& plane,
+                              const std::vector<int>& occluders) {
+    WidestPenumbra out;
+    const bool sun = light.type == LightType::Sun;
+    double extent = 0.0, lightHeight = 0.0;
+    const glm::dvec3 centre(light.position());
+    glm::dvec3 toLight(0.0);
+    if (sun) {
+        toLight = -glm::dvec3(light.direction());
+        if (!(glm::dot(toLight, plane.normal) > 1e-6)) return out;
+        extent = 2.0 * std::tan(light.sunHalfAngle()) / glm::dot(toLight, plane.normal);
+    } else {
+        extent = light.isArea() ? 2.0 * std::max(glm::length(light.halfAxisX()), glm::length(light.halfAxisY()))
+                                : 2.0 * double(light.radius);
+        lightHeight = plane.height(centre);
+        if (!(lightHeight > 0.0)) return out;
+    }
+    for (int i : occluders)
+        for (const glm::vec3& p : scene.meshes()[size_t(i)].positions) {
+            const glm::dvec3 q(p);
+            const double h = plane.height(q);
+            if (!(h > 0.0)) continue;
+            if (sun) {
+                const double width = extent * h;
+                if (width > out.width) out = {q - toLight * (h / glm::dot(toLight, plane.normal)), width};
+                continue;
+            }
+            if (h >= 0.999 * lightHeight) continue;  // clipped by the projection, as there
+            const double width = extent * h / (lightHeight - h);
+            if (width > out.width) out = {centre + (q - centre) * (lightHeight / (lightHeight - h)), width};
+        }
+    return out;
+}
 
 // One cluster's shadow mesh (intensities not yet weighted) and the samples it used.
 planar::ShadowMesh clusterShadow(const Scene& scene, int lightIndex, int cluster, const std::vector<int>& occluders,
@@ -114,7 +165,6 @@ SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOp
     SweepProjectionCache uncached(0);
     SweepProjectionCache& projections = cache ? *cache : uncached;
     std::vector<LightCluster> clusters = splitLight(light, options.clusters);
-    projections.keep(int(scene.lights().size()), lightIndex, int(clusters.size()));
     SweepShadow out;
     out.plane = findReceiverPlane(scene, light, options.receiver);
     out.snap = planar::Snap(out.plane.cu, out.plane.cv, out.plane.half);
@@ -127,30 +177,41 @@ SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOp
     for (int i : occluders)
         for (const glm::vec3& p : scene.meshes()[i].positions) ob.extend(p);
     so.viewFrom = ob.empty() ? out.plane.origin : glm::dvec3(ob.center());
-    if (clusters.size() == 1) {
+    out.widest = widestPenumbra(scene, light, out.plane, occluders);
+    out.passes = options.passes > 0 ? options.passes
+                 : scene.hasCamera() ? autoSweepPasses(out.widest, scene.camera(), options.samples)
+                                     : 1;
+    if (clusters.size() == 1 && out.passes == 1) {
         so.count = options.samples;
+        projections.keep(int(scene.lights().size()), lightIndex, 1);
         out.mesh = clusterShadow(scene, lightIndex, 0, occluders, light, so, options, projections, &out, &out.samplesUsed);
         return out;
     }
-    // Clusters: each its own soft shadow from its share of the samples (at least one), merged
-    // without interpolation: V = sum_k w_k V_k, i.e. intensities weighted and added. A cluster
-    // whose samples are all below the receiver's horizon sends nothing there; the others'
-    // weights are renormalised so the part of the light that can reach still sums to one.
+    // Clusters and passes: each its own soft shadow from its share of the samples (at least
+    // one), merged without interpolation: V = sum_k w_k V_k, i.e. intensities weighted and
+    // added. Pass p of a cluster is a sample set of its own (seed offset), weighing 1/passes.
+    // A cluster whose samples are all below the receiver's horizon sends nothing there; the
+    // others' weights are renormalised so the part of the light that can reach still sums to one.
+    projections.keep(int(scene.lights().size()), lightIndex, int(clusters.size()) * out.passes);
     std::vector<planar::ShadowMesh> meshes;
     std::vector<double> weights;
     double total = 0.0;
-    for (size_t k = 0; k < clusters.size(); ++k) {
-        so.count = std::max(1, int(std::lround(options.samples * clusters[k].weight)));
-        so.seed = options.seed + uint32_t(k) * 7919u;
-        int used = 0;
-        planar::ShadowMesh m =
-            clusterShadow(scene, lightIndex, int(k), occluders, clusters[k].light, so, options, projections, &out, &used);
-        if (used == 0) continue;
-        out.samplesUsed += used;
-        total += clusters[k].weight;
-        meshes.push_back(std::move(m));
-        weights.push_back(clusters[k].weight);
-    }
+    for (int p = 0; p < out.passes; ++p)
+        for (size_t k = 0; k < clusters.size(); ++k) {
+            so.count = std::max(1, int(std::lround(options.samples * clusters[k].weight)));
+            so.seed = options.seed + uint32_t(k) * 7919u + uint32_t(p) * 104729u;
+            so.set = p;
+            so.sets = out.passes;
+            int used = 0;
+            const int set = p * int(clusters.size()) + int(k);
+            planar::ShadowMesh m =
+                clusterShadow(scene, lightIndex, set, occluders, clusters[k].light, so, options, projections, &out, &used);
+            if (used == 0) continue;
+            out.samplesUsed += used;
+            total += clusters[k].weight;
+            meshes.push_back(std::move(m));
+            weights.push_back(clusters[k].weight);
+        }
     for (size_t k = 0; k < meshes.size(); ++k) {
         planar::ShadowMesh& m = meshes[k];
         const float w = float(weights[k] / total);

@@ -26,6 +26,12 @@ struct SweepOptions {
     // Square/rectangle lights split into this many equal convex strips along their longer side,
     // each shadowed on its own and merged without interpolation (paper 2, section 6).
     int clusters = 1;
+    // Independent sample sets of `samples` each, swept apart and averaged (drawn additively like
+    // clusters): each ring weighs 1/passes as much, so a wide penumbra's ring spacing, uneven
+    // with few samples (the Gouraud bands), evens out at passes x the cost of one set, not the
+    // near-quadratic cost of one set passes times larger. 0: chosen from the widest penumbra on
+    // screen (autoSweepPasses).
+    int passes = 1;
     // Each sample weighed by the irradiance it sends to each shadow-mesh corner (the contract);
     // false: every sample counts the same (the paper).
     bool irradianceWeights = true;
@@ -36,8 +42,8 @@ struct SweepOptions {
 // The keys of RenderSettings::options the sweep reads (its shadow mesh and its camera pass).
 std::vector<std::string> sweepSettingKeys();
 // Reads RenderSettings: samples (0 = 16), seed, options "receiver", "fill" (smooth|steps|rings),
-// "border" (share of samples on the light's border, 0..1), "clusters" (1..64), "weights"
-// (irradiance|equal). Throws ss::Error on a bad value; unknown keys are the caller's check
+// "border" (share of samples on the light's border, 0..1), "clusters" (1..64), "passes"
+// (1..16 | auto, default auto), "weights" (irradiance|equal). Throws ss::Error on a bad value; unknown keys are the caller's check
 // (the renderer: the method's keys and refinement's; the C API: sweepSettingKeys()).
 SweepOptions sweepOptions(const RenderSettings& settings);
 
@@ -57,6 +63,19 @@ struct LightCluster {
 // one cluster returns the light itself. Throws SS_ERROR_UNSUPPORTED for other shapes.
 std::vector<LightCluster> splitLight(const Light& light, int clusters);
 
+// Where the widest penumbra of the occluders falls on the receiver plane (world) and how wide it
+// is there (world units): the highest occluder point's, light extent x h / (H - h).
+struct WidestPenumbra {
+    glm::dvec3 at{0.0};
+    double width = 0.0;
+};
+
+// Passes for `samples` light samples per set so that the widest penumbra, seen by `camera`,
+// holds at most kSweepPixelsPerRing pixels per ring over all sets; 1 to kSweepMaxPasses.
+constexpr double kSweepPixelsPerRing = 1.0;
+constexpr int kSweepMaxPasses = 4;
+int autoSweepPasses(const WidestPenumbra& widest, const Camera& camera, int samples);
+
 struct SweepShadow {
     ReceiverPlane plane;
     planar::Snap snap{0, 0, 1};
@@ -66,7 +85,9 @@ struct SweepShadow {
     // (V = 1 - sum_k w_k I_k, no interpolation between clusters); `parts` holds them apart.
     planar::ShadowMesh mesh;
     std::vector<planar::ShadowMesh> parts;  // empty with one cluster
-    int samplesUsed = 0;            // samples above the receiver plane
+    int samplesUsed = 0;            // samples above the receiver plane, over every pass
+    int passes = 1;                 // sample sets averaged (SweepOptions::passes, resolved)
+    WidestPenumbra widest;
     ProjectionStats projection;
     WeightStats weighting;  // irradiance weights: triangles weighed, and reused from the cache
     FillStats filling;      // parts of the shadow filled, and reused from the cache
