@@ -121,9 +121,9 @@ Scene sceneCardWithHole(bool holeInTexture, int width, int height) {
     card.name = "card";
     card.flags = SS_MESH_CAST | SS_MESH_RECEIVE;
     auto quad = [&](float x0, float y0, float x1, float y1) {
-        const uint32_t b = uint32_t(card.positions.size());
+        const uint32_t b = uint32_t(card.objectPositions.size());
         for (glm::vec2 p : {glm::vec2(x0, y0), glm::vec2(x1, y0), glm::vec2(x1, y1), glm::vec2(x0, y1)})
-            card.positions.push_back({p.x, p.y, kCardHeight});
+            card.objectPositions.push_back({p.x, p.y, kCardHeight});
         card.triangles.push_back({b, b + 1, b + 2});
         card.triangles.push_back({b, b + 2, b + 3});
     };
