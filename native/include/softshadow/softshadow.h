@@ -158,7 +158,7 @@ SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t
    scenes and mesh BVHs built, and more. The counters are index 0 .. ss_cache_stat_count()-1:
    ss_cache_stat_name gives each one's name ("mesh_uploads", "camera_pass_ms", ...) and
    ss_cache_stat_doc what it counts (NULL for an index out of range); the list may grow between
-   versions, so a caller looks counters up by name. docs/contracts.md lists them.
+   versions, so a caller looks counters up by name (docs/contracts.md).
    ss_context_cache_stat reads one by name into *out (counts are whole numbers); an unknown name
    fails with SS_ERROR_INVALID_ARGUMENT naming the valid ones. Each call reads the counters
    anew: read them while no render runs on the context for a consistent set. */
