@@ -11,7 +11,7 @@
 #     the depsgraph did not report changed come from mesh_cache; beside it the full export that reads
 #     every mesh), the C API update (LiveScene.sync),
 #     the library's mesh upload, camera pass, shadow map and the method's own work (timed by
-#     ss_context_cache_stats), the rest of ss_render (thread hand-off, checks), the copy of the
+#     ss_context_cache_stat), the rest of ss_render (thread hand-off, checks), the copy of the
 #     layers into numpy and the EXR write of a final render; and the floor: the same render on an
 #     unchanged scene (every cache kept: the method's own passes and the read-back, which no edit
 #     tracking removes); and the sweep once more with the box where its shadow stays apart from

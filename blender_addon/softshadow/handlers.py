@@ -28,9 +28,6 @@ EXIT_FAILED = 3
 # writing RNA properties is not safe).
 last_report = {"frame": None, "path": "", "problems": [], "chosen": {}, "layers": {}, "failed": {}}
 
-# Where each handler ran last, and whether the interface was locked (the GUI render test reads it).
-handler_threads = {}
-
 
 def _sync_frame(scene):
     """Evaluates the scene at the frame being rendered (an animation render sets the frame
@@ -117,8 +114,6 @@ def _record(frame, layers):
 @bpy.app.handlers.persistent
 def on_render_init(scene, *_args):
     """Before any frame: the checks that need no frame (the frame is not set yet here)."""
-    handler_threads["render_init"] = {"main_thread": threading.current_thread() is threading.main_thread(),
-                                      "lock_interface": bool(scene.render.use_lock_interface)}
     if not _enabled(scene):
         return
     causes = []
@@ -144,9 +139,6 @@ def on_render_init(scene, *_args):
 
 @bpy.app.handlers.persistent
 def on_render_pre(scene, *_args):
-    handler_threads["render_pre"] = {"main_thread": threading.current_thread() is threading.main_thread(),
-                                     "lock_interface": bool(scene.render.use_lock_interface),
-                                     "frame": scene.frame_current}
     if not _enabled(scene):
         return
     frame = scene.frame_current

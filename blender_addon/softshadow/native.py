@@ -103,14 +103,6 @@ class _RenderOptions(ctypes.Structure):
     ]
 
 
-class _CacheStats(ctypes.Structure):
-    _fields_ = [("frames", ctypes.c_int32), ("mesh_uploads", ctypes.c_int32),
-                ("camera_passes", ctypes.c_int32), ("shadow_maps", ctypes.c_int32),
-                ("upload_ms", ctypes.c_double), ("camera_pass_ms", ctypes.c_double),
-                ("shadow_map_ms", ctypes.c_double), ("method_ms", ctypes.c_double),
-                ("trace_scene_builds", ctypes.c_int32), ("mesh_bvh_builds", ctypes.c_int32)]
-
-
 _vp = ctypes.c_void_p
 _st = ctypes.c_int
 _SIGNATURES = {
@@ -146,7 +138,9 @@ _SIGNATURES = {
     "ss_scene_get_light_links": (_st, [_vp, ctypes.c_int32, ctypes.POINTER(ctypes.c_int32), ctypes.c_int32,
                                        ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_int32),
                                        ctypes.c_int32, ctypes.POINTER(ctypes.c_int32)]),
-    "ss_context_cache_stats": (_st, [_vp, ctypes.POINTER(_CacheStats)]),
+    "ss_cache_stat_count": (ctypes.c_int32, []),
+    "ss_cache_stat_name": (ctypes.c_char_p, [ctypes.c_int32]),
+    "ss_context_cache_stat": (_st, [_vp, ctypes.c_char_p, ctypes.POINTER(ctypes.c_double)]),
     "ss_scene_set_camera": (_st, [_vp, ctypes.POINTER(_CameraDesc)]),
     "ss_scene_set_view_layer": (_st, [_vp, ctypes.c_char_p]),
     "ss_scene_light_count": (ctypes.c_int32, [_vp]),
@@ -361,13 +355,17 @@ def reset_after_shutdown():
 
 
 def cache_stats():
-    """What the shared context's caches did so far: {frames, mesh_uploads, camera_passes,
-    shadow_maps, trace_scene_builds, mesh_bvh_builds} (tests count re-uploads and BVH builds with
-    it) and the milliseconds of {upload_ms, camera_pass_ms, shadow_map_ms, method_ms} (the
-    benchmark's stages)."""
-    stats = _CacheStats()
-    _check(lib().ss_context_cache_stats(context(), ctypes.byref(stats)))
-    return {name: getattr(stats, name) for name, _ in _CacheStats._fields_}
+    """What the shared context's caches did so far, every counter the library declares by name
+    (ss_cache_stat_name; docs/contracts.md lists them): e.g. mesh_uploads, shadow_maps,
+    mesh_bvh_builds (tests count re-uploads and BVH builds with them) and the milliseconds
+    upload_ms, camera_pass_ms, shadow_map_ms, method_ms (the benchmark's stages)."""
+    names = [lib().ss_cache_stat_name(i) for i in range(lib().ss_cache_stat_count())]
+    stats = {}
+    value = ctypes.c_double()
+    for name in names:
+        _check(lib().ss_context_cache_stat(context(), name, ctypes.byref(value)))
+        stats[name.decode()] = value.value
+    return stats
 
 
 def _light_desc(light):

@@ -4,7 +4,6 @@
 without Blender. The bottom half walks an evaluated depsgraph; it only touches the objects it
 is given, so this module never imports bpy itself.
 """
-import collections
 import math
 from dataclasses import dataclass, field
 
@@ -187,13 +186,8 @@ def rendering_objects(view_layer):
     return [obj for obj in view_layer.objects if _object_visible(obj, "RENDER", view_layer, collections)]
 
 
-# How often each object's mesh was read from Blender (the tests check what an export reads).
-mesh_reads = collections.Counter()
-
-
 def _local_mesh_arrays(obj):
     """(vertices (N,3) float32 local, triangles (M,3) uint32) of an evaluated object."""
-    mesh_reads[obj.original.name] += 1
     mesh = obj.to_mesh()
     try:
         if mesh is None:

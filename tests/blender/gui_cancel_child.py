@@ -17,6 +17,7 @@ OUT = os.environ["SOFTSHADOW_GUI_OUT"]
 OTHER = os.environ["SOFTSHADOW_OTHER_BLEND"]
 state = {"phase": "start", "t0": time.time(), "asked": None, "info": {}}
 softshadow = sstest.addon()
+handler_threads = sstest.watch_render_handlers()
 
 
 def _finish(**info):
@@ -40,7 +41,7 @@ def step():
         state["phase"] = "rendering"
         return 0.2
     if state["phase"] == "rendering":
-        if "render_pre" not in softshadow.handlers.handler_threads:
+        if "render_pre" not in handler_threads:
             return 0.2
         time.sleep(2.0)  # well inside the pass computation, the library's loops running
         state["asked"] = time.time()

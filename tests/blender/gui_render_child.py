@@ -14,6 +14,7 @@ import sstest  # noqa: E402
 
 OUT = os.environ["SOFTSHADOW_GUI_OUT"]
 state = {"started": False, "done": False, "t": time.time()}
+handler_threads = sstest.watch_render_handlers()
 
 
 @bpy.app.handlers.persistent
@@ -24,7 +25,7 @@ def _complete(*_args):
 def _finish(error=""):
     softshadow = sstest.addon()
     report = softshadow.handlers.last_report
-    info = {"error": error, "threads": softshadow.handlers.handler_threads,
+    info = {"error": error, "threads": handler_threads,
             "frame": report.get("frame"), "path": report.get("path"), "problems": report.get("problems"),
             "lock_interface": bpy.context.scene.render.use_lock_interface}
     with open(os.path.join(OUT, "gui.json"), "w") as f:

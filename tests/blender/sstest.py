@@ -70,6 +70,24 @@ def addon():
     return softshadow
 
 
+def watch_render_handlers():
+    """Where the add-on's render handlers run: a recorder placed just before each of them in
+    Blender's handler list (so called on the same thread, with the same scene) fills the returned
+    dict: {"render_init" / "render_pre": {main_thread, lock_interface, frame}}."""
+    import threading
+    seen = {}
+    for name in ("render_init", "render_pre"):
+        handlers = getattr(bpy.app.handlers, name)
+
+        @bpy.app.handlers.persistent
+        def record(scene, *_args, name=name):
+            seen[name] = {"main_thread": threading.current_thread() is threading.main_thread(),
+                          "lock_interface": bool(scene.render.use_lock_interface),
+                          "frame": scene.frame_current}
+        handlers.insert(handlers.index(getattr(addon().handlers, "on_" + name)), record)
+    return seen
+
+
 def child_blender(folder):
     """(arguments, environment) for a child Blender that loads the add-on the way this one does."""
     if INSTALLED_MODULE:

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <atomic>
 #include <chrono>
 #include <string>
@@ -19,6 +20,7 @@
 
 #include "capi/capi_internal.h"
 #include "io/exr_file.h"
+#include "renderer/cache_stats.h"
 #include "softshadow/softshadow.h"
 
 namespace {
@@ -453,6 +455,60 @@ TEST(CApiContext, MethodListComesFromTheLibrary) {
                                                "occlusion_textures", "reference"}));
     EXPECT_EQ(ss_method_name(-1), nullptr);
     EXPECT_EQ(ss_method_name(7), nullptr);
+}
+
+TEST(CApiContext, EveryCacheCounterIsReadByNameThroughTheCApi) {
+    // The counters are declared once (frame/cache_counters.h): each reaches the C API in that
+    // order under its name, with what it counts, and reads the renderer's own value.
+    std::vector<std::string> declared;
+#define SS_NAME(type, member, name, combine, doc) declared.push_back(name);
+    SS_CACHE_COUNTERS(SS_NAME)
+#undef SS_NAME
+    ASSERT_EQ(ss_cache_stat_count(), int32_t(declared.size()));
+    std::set<std::string> unique;
+    for (int32_t i = 0; i < ss_cache_stat_count(); ++i) {
+        const std::string name = ss_cache_stat_name(i);
+        EXPECT_EQ(name, declared[size_t(i)]);
+        EXPECT_EQ(name.find_first_not_of("abcdefghijklmnopqrstuvwxyz_"), std::string::npos) << name;
+        EXPECT_GT(std::strlen(ss_cache_stat_doc(i)), 10u) << name;
+        unique.insert(name);
+    }
+    EXPECT_EQ(unique.size(), declared.size());
+    EXPECT_EQ(ss_cache_stat_name(-1), nullptr);
+    EXPECT_EQ(ss_cache_stat_name(ss_cache_stat_count()), nullptr);
+    EXPECT_EQ(ss_cache_stat_doc(ss_cache_stat_count()), nullptr);
+
+    ss_context* ctx = nullptr;
+    ASSERT_EQ(ss_context_create(SS_BACKEND_AUTO, &ctx), SS_OK);
+    ss_scene* scene = smallScene(32, 24);
+    ss_render_options o;
+    ss_render_options_default(&o);
+    o.samples = 4;
+    for (const char* method : {"shadow_map", "reference"}) {
+        ss_result* r = nullptr;
+        ASSERT_EQ(ss_render(ctx, scene, 0, method, &o, &r), SS_OK) << ss_last_error();
+        ss_result_destroy(r);
+    }
+    const ss::CacheStats s = ctx->renderer.cacheStats();
+    EXPECT_EQ(s.frames, 1);
+    EXPECT_EQ(s.meshUploads, 2);
+    EXPECT_EQ(s.traceSceneBuilds, 1);
+#define SS_CHECK(type, member, name, combine, doc)                       \
+    {                                                                    \
+        double value = -1.0;                                             \
+        EXPECT_EQ(ss_context_cache_stat(ctx, name, &value), SS_OK) << name; \
+        EXPECT_EQ(value, double(s.member)) << name;                      \
+    }
+    SS_CACHE_COUNTERS(SS_CHECK)
+#undef SS_CHECK
+    double value = -1.0;
+    EXPECT_EQ(ss_context_cache_stat(ctx, "mesh_upload", &value), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(errorHas("unknown cache stat 'mesh_upload'") && errorHas("mesh_uploads, ")) << ss_last_error();
+    EXPECT_EQ(value, -1.0);
+    EXPECT_EQ(ss_context_cache_stat(ctx, nullptr, &value), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(ss_context_cache_stat(ctx, "frames", nullptr), SS_ERROR_INVALID_ARGUMENT);
+    ss_scene_destroy(scene);
+    ss_context_destroy(ctx);
 }
 
 TEST(CApiContext, UnknownSettingKeyIsRefusedNamingIt) {

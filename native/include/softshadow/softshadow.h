@@ -152,18 +152,20 @@ SS_API void ss_context_destroy(ss_context* context);
    stays usable; renders started once those returned run as usual. Does not wait. */
 SS_API void ss_context_cancel_renders(ss_context* context);
 SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t buffer_size);
-/* What the context's caches did over its life: frames made (one per scene), meshes uploaded to
-   the GPU, camera passes and light shadow maps drawn; the milliseconds spent uploading
-   meshes, drawing camera passes and shadow maps (each until the GL finished it), and running GL
-   methods (the shared passes they drew included); Embree scenes built (one per scene and
-   geometry edit, shared by reference, refine=on and auto's check) and the mesh BVHs they built
-   (one per mesh shape: a moved mesh keeps its BVH). For tests and the benchmark. */
-typedef struct ss_cache_stats {
-    int32_t frames, mesh_uploads, camera_passes, shadow_maps;
-    double upload_ms, camera_pass_ms, shadow_map_ms, method_ms;
-    int32_t trace_scene_builds, mesh_bvh_builds;
-} ss_cache_stats;
-SS_API ss_status ss_context_cache_stats(const ss_context* context, ss_cache_stats* out);
+/* What the context's caches did over its life, as named counters (for tests and the benchmark):
+   frames made (one per scene), meshes uploaded to the GPU, camera passes and shadow maps drawn
+   (and how many only where meshes moved), milliseconds spent in them and in GL methods, Embree
+   scenes and mesh BVHs built, and more. The counters are index 0 .. ss_cache_stat_count()-1:
+   ss_cache_stat_name gives each one's name ("mesh_uploads", "camera_pass_ms", ...) and
+   ss_cache_stat_doc what it counts (NULL for an index out of range); the list may grow between
+   versions, so a caller looks counters up by name (docs/contracts.md).
+   ss_context_cache_stat reads one by name into *out (counts are whole numbers); an unknown name
+   fails with SS_ERROR_INVALID_ARGUMENT naming the valid ones. Each call reads the counters
+   anew: read them while no render runs on the context for a consistent set. */
+SS_API int32_t ss_cache_stat_count(void);
+SS_API const char* ss_cache_stat_name(int32_t index);
+SS_API const char* ss_cache_stat_doc(int32_t index);
+SS_API ss_status ss_context_cache_stat(const ss_context* context, const char* name, double* out);
 /* Joins every render thread the library started. Call from the host before it exits. */
 SS_API void ss_shutdown(void);
 /* The methods this library has, by name ("auto" is not one): index 0 .. ss_method_count()-1;

@@ -1,8 +1,12 @@
 // How the C API creates, describes and shuts down GL contexts (the library's render threads).
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <string>
+#include <string_view>
+
 #include "capi/capi_internal.h"
 #include "core/libstdcxx_baseline.h"
 #include "gl/render_thread.h"
+#include "renderer/cache_stats.h"
 
 using namespace ss::capi;
 
@@ -72,23 +76,35 @@ SS_API ss_status ss_context_info(const ss_context* context, char* buffer, size_t
     });
 }
 
-SS_API ss_status ss_context_cache_stats(const ss_context* context, ss_cache_stats* out) {
+SS_API int32_t ss_cache_stat_count(void) { return int32_t(ss::kCacheStatCount); }
+
+SS_API const char* ss_cache_stat_name(int32_t index) {
+    if (index < 0 || size_t(index) >= ss::kCacheStatCount) return nullptr;
+    return ss::kCacheStats[index].name;
+}
+
+SS_API const char* ss_cache_stat_doc(int32_t index) {
+    if (index < 0 || size_t(index) >= ss::kCacheStatCount) return nullptr;
+    return ss::kCacheStats[index].doc;
+}
+
+SS_API ss_status ss_context_cache_stat(const ss_context* context, const char* name, double* out) {
     return guarded([&] {
-        require(context, "ss_context_cache_stats", "context");
-        require(out, "ss_context_cache_stats", "out");
-        refuseInsideProgressCallback("ss_context_cache_stats");
+        require(context, "ss_context_cache_stat", "context");
+        require(name, "ss_context_cache_stat", "name");
+        require(out, "ss_context_cache_stat", "out");
+        refuseInsideProgressCallback("ss_context_cache_stat");
+        const ss::CacheStatInfo* stat = nullptr;
+        std::string names;
+        for (const ss::CacheStatInfo& s : ss::kCacheStats) {
+            if (std::string_view(s.name) == name) stat = &s;
+            names += (names.empty() ? "" : ", ") + std::string(s.name);
+        }
+        if (!stat)
+            ss::fail(SS_ERROR_INVALID_ARGUMENT, std::string("ss_context_cache_stat: unknown cache stat '") + name +
+                                                    "'; the stats are " + names);
         ContextUse use(*const_cast<ss_context*>(context));
-        ss::Renderer::CacheStats s = context->renderer.cacheStats();
-        out->frames = s.frames;
-        out->mesh_uploads = s.meshUploads;
-        out->camera_passes = s.cameraPasses;
-        out->shadow_maps = s.shadowMaps;
-        out->upload_ms = s.uploadMs;
-        out->camera_pass_ms = s.cameraPassMs;
-        out->shadow_map_ms = s.shadowMapMs;
-        out->method_ms = s.methodMs;
-        out->trace_scene_builds = s.traceSceneBuilds;
-        out->mesh_bvh_builds = s.meshBvhBuilds;
+        *out = stat->value(context->renderer.cacheStats());
     });
 }
 

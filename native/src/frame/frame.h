@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "frame/cache_counters.h"
 #include "frame/covering_triangles.h"
 #include "frame/moved_region.h"
 #include "frame/see_through.h"
@@ -127,24 +128,10 @@ inline constexpr float kSceneFitSlack = 8.0f;
 // that region, so one outlier never spreads a map over its own extent. No GL needed.
 Bounds shadowFitBounds(const Light& light, const Bounds& scene, const Bounds& receivers);
 
+// What one frame cache drew and uploaded (frame/cache_counters.h says what each counts).
 struct FrameStats {
-    // meshUploads counts meshes uploaded (one per mesh shape: a move uploads nothing),
-    // shadowMaps and cameraPasses the passes drawn.
-    int meshUploads = 0, cameraPasses = 0, shadowMaps = 0, cameraReadbacks = 0;
-    int shadowMapsEvicted = 0;
-    size_t shadowMapBytes = 0, shadowMapBytesPeak = 0;  // held now / the most ever held
-    // Milliseconds spent in each shared pass, until the GL finished it (the benchmark's
-    // per-stage picture; the passes end with glFinish so their work is not billed to the next).
-    double uploadMs = 0.0, cameraPassMs = 0.0, shadowMapMs = 0.0;
-    // Of cameraPasses and shadowMaps: those redrawn only inside the screen rectangle that moved
-    // meshes touched (the rest of the pass kept).
-    int cameraPassesPatched = 0, shadowMapsPatched = 0;
-    // Triangles those patches drew (only the clusters that reach their rectangles), and those a
-    // method's own patches drew through drawMeshesWhere (occlusion_textures' slices).
-    size_t patchTriangles = 0;
-    // Triangles the camera passes drew, whole or patched: only those that may cover a pixel
-    // centre of the redrawn rectangle (CoveringTriangles).
-    size_t cameraPassTriangles = 0;
+    SS_FRAME_COUNTERS(SS_COUNTER_MEMBER)
+    size_t shadowMapBytes = 0;  // the cached shadow maps' bytes now (the budget's measure)
 };
 
 class Frame {

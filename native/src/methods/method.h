@@ -11,6 +11,7 @@
 #include "core/method_names.h"
 #include "core/scene.h"
 #include "core/settings.h"
+#include "frame/cache_counters.h"
 
 namespace ss {
 
@@ -25,7 +26,7 @@ enum class MethodDevice { Cpu, Gl };
 // Scene::lightGeometryKey and settings, or (occlusion_textures after moves) redrew it only where
 // the moved meshes were and are.
 struct MethodStats {
-    int lightWorkMade = 0, lightWorkKept = 0, lightWorkPatched = 0;
+    SS_METHOD_COUNTERS(SS_COUNTER_MEMBER)
 };
 
 class Method {

@@ -30,7 +30,6 @@ struct Renderer::Impl {
     std::mutex m;  // one render at a time per renderer: frames and methods are not thread-safe
     std::unique_ptr<gl::RenderThread> thread;
     std::string infoJson;
-    std::function<void()> cacheTakenHook;
 
     // The shared passes of a scene and the method objects with what they prepared, all kept
     // across its edits: the frame redraws only what an edit changed, and a method rebuilds its
@@ -54,25 +53,15 @@ struct Renderer::Impl {
     size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
 
     void count(const Cached& c, CacheStats& into) const {
+#define SS_ADD(type, member, name, combine, doc) into.member = combineCounter##combine(into.member, from.member);
         for (const auto& [name, method] : c.methods) {
-            into.lightWorkMade += method->stats().lightWorkMade;
-            into.lightWorkKept += method->stats().lightWorkKept;
-            into.lightWorkPatched += method->stats().lightWorkPatched;
+            const MethodStats& from = method->stats();
+            SS_METHOD_COUNTERS(SS_ADD)
         }
         const Frame& f = *c.frame;
-        into.meshUploads += f.stats().meshUploads;
-        into.cameraPasses += f.stats().cameraPasses;
-        into.cameraReadbacks += f.stats().cameraReadbacks;
-        into.shadowMaps += f.stats().shadowMaps;
-        into.shadowMapsEvicted += f.stats().shadowMapsEvicted;
-        into.shadowMapBytesPeak = std::max(into.shadowMapBytesPeak, f.stats().shadowMapBytesPeak);
-        into.cameraPassesPatched += f.stats().cameraPassesPatched;
-        into.shadowMapsPatched += f.stats().shadowMapsPatched;
-        into.patchTriangles += f.stats().patchTriangles;
-        into.cameraPassTriangles += f.stats().cameraPassTriangles;
-        into.uploadMs += f.stats().uploadMs;
-        into.cameraPassMs += f.stats().cameraPassMs;
-        into.shadowMapMs += f.stats().shadowMapMs;
+        const FrameStats& from = f.stats();
+        SS_FRAME_COUNTERS(SS_ADD)
+#undef SS_ADD
         into.traceSceneBuilds += f.traceScenes().builds();
         into.meshBvhBuilds += f.traceScenes().meshBvhBuilds();
     }
@@ -221,11 +210,6 @@ std::string Renderer::info() {
     return impl_->infoJson;
 }
 
-void Renderer::setCacheTakenHook(std::function<void()> hook) {
-    std::lock_guard lock(impl_->m);
-    impl_->cacheTakenHook = std::move(hook);
-}
-
 void Renderer::setShadowMapBudget(size_t bytes) {
     std::lock_guard lock(impl_->m);
     impl_->shadowMapBudget = bytes;
@@ -279,7 +263,6 @@ Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::str
                               const RenderSettings& settings) {
     Method& m = impl_->method(scene, name, settings);
     Frame& frame = *impl_->cacheFor(scene).frame;
-    if (impl_->cacheTakenHook) impl_->cacheTakenHook();
 
     Layers layers;
     if (!m.needsGl()) {

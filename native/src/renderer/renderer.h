@@ -9,6 +9,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "methods/method.h"
+#include "renderer/cache_stats.h"
 #include "renderer/refinement.h"
 #include "softshadow/softshadow.h"
 
@@ -61,29 +62,11 @@ public:
                   double* estimatedRmse = nullptr, AutoTrials* trials = nullptr,
                   std::vector<std::string>* warnings = nullptr, const RoundFn& rounds = {});
 
-    // How many frames were made (one per scene id) and how often their shared passes were
-    // drawn (meshUploads: meshes uploaded; traceSceneBuilds: Embree scenes built for the
-    // reference, refine=on and the sparse check together, meshBvhBuilds: the mesh BVHs they
-    // built, a moved mesh keeping its own), over the renderer's life (tests of the frame cache;
-    // the benchmark's stage counts).
-    struct CacheStats {
-        int frames = 0, meshUploads = 0, cameraPasses = 0, shadowMaps = 0, shadowMapsEvicted = 0;
-        int cameraPassesPatched = 0, shadowMapsPatched = 0;  // of those: redrawn where meshes moved only
-        int cameraReadbacks = 0;  // camera passes read back to the CPU (48 MB at 1024²)
-        size_t patchTriangles = 0;  // triangles those patches drew
-        size_t cameraPassTriangles = 0;  // triangles the camera passes drew (FrameStats)
-        int traceSceneBuilds = 0, meshBvhBuilds = 0;
-        int lightWorkMade = 0, lightWorkKept = 0, lightWorkPatched = 0;  // summed MethodStats
-        size_t shadowMapBytesPeak = 0;  // the most the cached shadow maps of one frame held
-        // Milliseconds: mesh uploads, camera passes and shadow maps drawn (until the GL finished
-        // them), and whole GL method runs (prepare + render, the shared passes they drew included).
-        double uploadMs = 0.0, cameraPassMs = 0.0, shadowMapMs = 0.0, methodMs = 0.0;
-    };
+    // What the caches did over the renderer's life (frame/cache_counters.h lists the counters;
+    // tests of the frame cache and the benchmark's stage counts read them).
+    using CacheStats = ss::CacheStats;
     CacheStats cacheStats() const;
 
-    // Tests only: runs inside render() once the cache entry and the method are taken and before
-    // GL work starts, so a test can shut the render threads down at exactly that point.
-    void setCacheTakenHook(std::function<void()> hook);
     // What the cached shadow maps may hold between renders (least recently used go first);
     // default Frame::kDefaultShadowMapBudget.
     void setShadowMapBudget(size_t bytes);
