@@ -228,14 +228,26 @@ void checkLayers(const Layers& layers, const Camera& camera, const std::string& 
 
 namespace {
 
-// Settings every GL method takes besides its own, read by the renderer.
-constexpr const char* kEstimateKey = "estimate_rmse";
+// Taken by every method besides its own settings, read by the renderer (a CPU method: ignored).
+constexpr SettingSpec kEstimateSetting =
+    flagSetting("estimate_rmse", false, "estimate the pass's RMSE against rays at sparse pixels");
 // `auto`'s own settings: how many pixels the sparse check traces (0: use the shape rule) and
 // with how many light samples each.
-const std::vector<std::string>& autoSettingKeys() {
-    static const std::vector<std::string> keys = {"check_pixels", "check_samples", kEstimateKey};
-    return keys;
+constexpr SettingSpec kCheckPixels = intSetting("check_pixels", 0, 0, 1 << 24,
+                                                "pixels the sparse check traces (default: by the image size; "
+                                                "0: choose by the light's shape)");
+constexpr SettingSpec kCheckSamples =
+    intSetting("check_samples", 0, 0, 1 << 16, "light samples per sparse-check pixel (0: the check's default)");
+
+}  // namespace
+
+SettingTable renderSettingTable(const std::string& method) {
+    const SettingTable own = method == "auto" ? SettingTable{kCheckPixels, kCheckSamples, kEstimateSetting}
+                                              : composed(createMethod(method)->settingTable(), {kEstimateSetting});
+    return composed(composed(own, refinementSettings()), {kMemoryLimitSetting});
 }
+
+namespace {
 
 // Two estimates this close are a tie, and the cheaper candidate wins: the check's own sampling
 // error is about this large at a few thousand pixels.
@@ -250,10 +262,6 @@ Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::str
     if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
     Method& m = *it->second;
     Frame& frame = *cached.frame;
-    std::vector<std::string> keys = m.settingKeys();
-    for (const std::string& k : refinementKeys())
-        if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
-    settings.requireKnownKeys(name, keys);
     const bool refine = refinementRequested(settings);  // a bad value fails before any work
     if (impl_->cacheTakenHook) impl_->cacheTakenHook();
 
@@ -310,13 +318,10 @@ Layers Renderer::render(const Scene& given, int lightIndex, const std::string& m
     std::string name = method;
     Layers layers;
     if (method == "auto") {
-        std::vector<std::string> keys = autoSettingKeys();
-        for (const std::string& k : refinementKeys()) keys.push_back(k);
-        settings.requireKnownKeys("auto", keys);
+        settings.requireKnownKeys("auto", renderSettingTable("auto"));
         const bool refine = refinementRequested(settings);  // refines the chosen method's result
-        const int pixels = settings.integer("check_pixels", sparseCheckDefaultPixels(camera.width, camera.height), 0,
-                                            1 << 24);
-        const int samples = settings.integer("check_samples", 0, 0, 1 << 16);
+        const int pixels = settings.integer(kCheckPixels, sparseCheckDefaultPixels(camera.width, camera.height));
+        const int samples = settings.integer(kCheckSamples);
         AutoTrials trials;
         RenderSettings candidateSettings = settings;  // each candidate with its own defaults
         candidateSettings.options.clear();
@@ -388,8 +393,9 @@ Layers Renderer::render(const Scene& given, int lightIndex, const std::string& m
         if (trialsOut) *trialsOut = std::move(trials);
     } else {
         RenderSettings own = settings;
-        const bool wantEstimate = own.flag(kEstimateKey, false);
-        own.options.erase(kEstimateKey);
+        own.requireKnownKeys(name, renderSettingTable(name));
+        const bool wantEstimate = own.flag(kEstimateSetting);
+        own.options.erase(kEstimateSetting.key);
         Refinement refined;
         layers = renderMethod(scene, lightIndex, name, own, &refined);
         SparseCheck check;
