@@ -86,7 +86,7 @@ TEST(Settings, TheTableGivesDefaultAndRangeAndEveryValueIsCheckedUpFront) {
     // A value out of range names the key, the value and the range, before any read.
     const SettingTable table{slices, filter, border, thin, kShadowMapSizeSetting};
     EXPECT_EQ(errorOf([&] { with("slices=17").requireKnownKeys("m", table); }), "setting 'slices' = '17' is out of range 1..16");
-    EXPECT_EQ(errorOf([&] { with("border=2").requireKnownKeys("m", table); }), "setting 'border' = '2' is out of range [0, 1]");
+    EXPECT_EQ(errorOf([&] { with("border=2").requireKnownKeys("m", table); }), "setting 'border' = '2' is out of range 0..1");
     EXPECT_EQ(errorOf([&] { with("filter=box").requireKnownKeys("m", table); }),
               "setting 'filter' = 'box' is not one of: sat, mipmap, nbuffer");
     EXPECT_EQ(errorOf([&] { with("shadow_map_size=8").requireKnownKeys("m", table); }),

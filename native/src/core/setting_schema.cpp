@@ -30,6 +30,7 @@ std::vector<std::string> SettingSpec::choiceList() const {
 }
 
 std::string SettingSpec::defaultText() const {
+    if (renderDefault) return renderDefault;
     switch (type) {
         case SettingType::Int:
         case SettingType::Float: return shown(fallback);

@@ -19,9 +19,11 @@ struct SettingSpec {
     const char* choices = "";   // Choice: the allowed words, "a|b|c"; its default is the first
     const char* doc = "";       // one line for the user; names a default that depends on the render
     bool zeroIsDefault = false;  // Int: 0 is accepted besides [lo, hi] and means "the default"
+    // A default the render decides (the reader is given it), as shown to users; null: `fallback`.
+    const char* renderDefault = nullptr;
 
     bool debug() const { return std::string(key).rfind("debug.", 0) == 0; }
-    // The default as a user writes it ("8", "off", "sat"); "" for Text.
+    // The default as a user writes it ("8", "off", "sat"), or renderDefault; "" for Text.
     std::string defaultText() const;
     // "1..16", "0..0.5", "on/off", "sat|mipmap|nbuffer", "0 or 16..8192", "" for Text.
     std::string rangeText() const;

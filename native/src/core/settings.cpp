@@ -62,8 +62,8 @@ float RenderSettings::number(const std::string& key, float fallback, float lo, f
     if (!std::isfinite(v) || errno == ERANGE)
         fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + text + "' is not a finite number");
     if (v < lo || v > hi)
-        fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + text + "' is out of range [" +
-                                            shown(lo) + ", " + shown(hi) + "]");
+        fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + text + "' is out of range " +
+                                            shown(lo) + ".." + shown(hi));
     return v;
 }
 

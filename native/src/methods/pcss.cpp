@@ -17,8 +17,11 @@ namespace ss {
 namespace {
 
 constexpr SettingSpec kBlockerSamples = intSetting("blocker_samples", 16, 1, 1024, "shadow-map taps of the blocker search");
-constexpr SettingSpec kPcfSamples =
-    intSetting("pcf_samples", 32, 1, 4096, "taps of the filter (default: the render's samples, or 32)");
+constexpr SettingSpec kPcfSamples = [] {
+    SettingSpec s = intSetting("pcf_samples", 32, 1, 4096, "taps of the filter");
+    s.renderDefault = "the render's samples, or 32";
+    return s;
+}();
 constexpr SettingSpec kMaxSearch =
     floatSetting("max_search", 0.25, 0.0, 1.0, "largest blocker search radius, a share of the shadow map");
 

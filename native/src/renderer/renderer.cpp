@@ -233,9 +233,12 @@ constexpr SettingSpec kEstimateSetting =
     flagSetting("estimate_rmse", false, "estimate the pass's RMSE against rays at sparse pixels");
 // `auto`'s own settings: how many pixels the sparse check traces (0: use the shape rule) and
 // with how many light samples each.
-constexpr SettingSpec kCheckPixels = intSetting("check_pixels", 0, 0, 1 << 24,
-                                                "pixels the sparse check traces (default: by the image size; "
-                                                "0: choose by the light's shape)");
+constexpr SettingSpec kCheckPixels = [] {
+    SettingSpec s = intSetting("check_pixels", 0, 0, 1 << 24,
+                               "pixels the sparse check traces (0: no check, choose by the light's shape)");
+    s.renderDefault = "1 in 16 pixels, 4096..65536";
+    return s;
+}();
 constexpr SettingSpec kCheckSamples =
     intSetting("check_samples", 0, 0, 1 << 16, "light samples per sparse-check pixel (0: the check's default)");
 
