@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "core/setting_schema.h"
 
+#include <iomanip>
 #include <sstream>
 
 namespace ss {
@@ -10,7 +11,7 @@ namespace {
 
 std::string shown(double v) {
     std::ostringstream s;
-    s << v;
+    s << std::setprecision(12) << v;  // 16777216 whole, 0.0001 as written
     return s.str();
 }
 
