@@ -23,10 +23,10 @@ void BM_DbufferStages(benchmark::State& state) {
     std::shared_ptr<const DbufferGeometry> geo = dbufferGeometry(scene, 0, scene.bounds());
     RenderSettings settings;
     settings.extraLayers = false;
-    settings.options = {{"finish_stages", "1"}};
+    settings.options = {{"debug.finish_stages", "1"}};
     // Shared passes and programs drawn once (a frame's other methods would share them).
     bench::sharedRenderer().render(scene, 0, "dbuffer", settings, nullptr);
-    // finish_stages: glFinish before each mark, so each span is that stage's GPU work. The light
+    // debug.finish_stages: glFinish before each mark, so each span is that stage's GPU work. The light
     // is edited before each render: the method keeps its D-buffer while the light and the
     // geometry stay as they were, and dbuffer_pass_ms is to time the pass.
     bench::timeStages(state, scene, "dbuffer", settings,

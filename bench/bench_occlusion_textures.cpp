@@ -22,7 +22,7 @@ void BM_OcclusionTexturesStages(benchmark::State& state) {
     settings.options = {{"slices", std::to_string(state.range(1))},
                         {"resolution", std::to_string(state.range(2))},
                         {"filter", filters[state.range(3)]},
-                        {"finish_stages", "1"}};
+                        {"debug.finish_stages", "1"}};
     bench::sharedRenderer().render(scene, 0, "occlusion_textures", settings, nullptr);  // warm: passes, programs
     // The light edited before each render: the method keeps its slices while the light and the
     // geometry stay as they were, and slicing_ms is to time the slicing pass.

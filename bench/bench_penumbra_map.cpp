@@ -32,7 +32,7 @@ void BM_PenumbraMapStages(benchmark::State& state) {
     const int m = int(state.range(1));
     Scene scene = benchScene(m, res);
     RenderSettings settings;
-    settings.options = {{"shadow_map_size", std::to_string(res)}, {"finish_stages", "1"}};
+    settings.options = {{"shadow_map_size", std::to_string(res)}, {"debug.finish_stages", "1"}};
 
     // CPU stage alone: silhouette from the light centre plus cones and sheets.
     ShadowMap fitted = fitShadowMap(scene.lights()[0], scene.bounds(), res);
@@ -41,7 +41,7 @@ void BM_PenumbraMapStages(benchmark::State& state) {
     double geometryMs = msSince(t0);
 
     // Shared passes (camera G-buffer + shadow map), drawn once for every method of the frame.
-    // shadow_map takes no finish_stages: only the map size is shared.
+    // shadow_map takes no debug.finish_stages: only the map size is shared.
     RenderSettings shared;
     shared.options = {{"shadow_map_size", std::to_string(res)}};
     t0 = Clock::now();
@@ -121,8 +121,8 @@ void BM_AssemblyRender(benchmark::State& state) {
     const int res = 1024;
     Scene scene = bench::assembly(int(state.range(1)), res);
     RenderSettings settings;
-    settings.options = {{"shadow_map_size", std::to_string(res)}, {"finish_stages", "1"}};
-    if (std::string(method) == "shadow_map") settings.options.erase("finish_stages");
+    settings.options = {{"shadow_map_size", std::to_string(res)}, {"debug.finish_stages", "1"}};
+    if (std::string(method) == "shadow_map") settings.options.erase("debug.finish_stages");
     bench::sharedRenderer().render(scene, 0, method, settings, nullptr);  // warm: shared passes, programs
     bench::StageClock clock;
     double pass2 = 0.0;

@@ -42,7 +42,7 @@ Scene assembly(int tessellation, int resolution);
 Renderer& sharedRenderer();
 
 // Progress marks of one render: `settings` with a progress callback that records when each
-// stage began (methods call glFinish before each mark with finish_stages=1).
+// stage began (methods call glFinish before each mark with debug.finish_stages=1).
 struct StageClock {
     using Clock = std::chrono::steady_clock;
     std::map<std::string, Clock::time_point> marks;

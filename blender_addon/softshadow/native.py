@@ -103,6 +103,11 @@ class _RenderOptions(ctypes.Structure):
     ]
 
 
+class _SettingInfo(ctypes.Structure):
+    _fields_ = [("key", ctypes.c_char_p), ("type", ctypes.c_char_p), ("default_value", ctypes.c_char_p),
+                ("range", ctypes.c_char_p), ("doc", ctypes.c_char_p)]
+
+
 _vp = ctypes.c_void_p
 _st = ctypes.c_int
 _SIGNATURES = {
@@ -116,6 +121,9 @@ _SIGNATURES = {
     "ss_shutdown": (None, []),
     "ss_method_count": (ctypes.c_int32, []),
     "ss_method_name": (ctypes.c_char_p, [ctypes.c_int32]),
+    "ss_method_setting_count": (ctypes.c_int32, [ctypes.c_char_p]),
+    "ss_method_setting_info": (_st, [ctypes.c_char_p, ctypes.c_int32, ctypes.POINTER(_SettingInfo)]),
+    "ss_settings_has": (_st, [ctypes.c_char_p, ctypes.c_char_p, ctypes.POINTER(ctypes.c_int32)]),
     "ss_scene_create": (_st, [ctypes.POINTER(_vp)]),
     "ss_scene_destroy": (None, [_vp]),
     "ss_scene_load": (_st, [ctypes.c_char_p, ctypes.POINTER(_vp)]),
@@ -258,6 +266,30 @@ def method_names():
     """The library's methods, in its order ("auto" is not one)."""
     loaded = lib()
     return tuple(loaded.ss_method_name(i).decode() for i in range(loaded.ss_method_count()))
+
+
+def method_settings(method):
+    """The settings `method` (or "auto") takes, as the library lists them for users:
+    (key, type, default, range, doc) each, the method's own first."""
+    loaded = lib()
+    count = loaded.ss_method_setting_count(_text(method))
+    if count < 0:
+        raise SoftShadowError(1, loaded.ss_last_error().decode("utf-8", "replace"))
+    out = []
+    for i in range(count):
+        info = _SettingInfo()
+        _check(loaded.ss_method_setting_info(_text(method), i, ctypes.byref(info)))
+        out.append(tuple(getattr(info, f).decode() for f, _t in _SettingInfo._fields_))
+    return out
+
+
+def settings_give(text, key):
+    """Whether the settings string `text` gives `key`, read by the library's own parser; a
+    malformed string gives nothing here (the render refuses it with the library's message)."""
+    found = ctypes.c_int32(0)
+    if lib().ss_settings_has(_text(text or ""), _text(key), ctypes.byref(found)) != 0:
+        return False
+    return bool(found.value)
 
 
 def pass_name(light_name, method, layer=None):

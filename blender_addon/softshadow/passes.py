@@ -272,8 +272,7 @@ def _settings_for(options, method, final):
     """The light's settings string; in a final render with Refine Final Renders on, plus
     refine=on (the reference is exact already; a refine the user typed stays as typed)."""
     text = options.get("settings") or ""
-    typed = [part.split("=", 1)[0].strip() for part in text.split(";") if part.strip()]
-    if final and options.get("refine_final") and method != "reference" and "refine" not in typed:
+    if final and options.get("refine_final") and method != "reference" and not native.settings_give(text, "refine"):
         text = "refine=on" + (";" + text if text.strip() else "")
     return text or None
 

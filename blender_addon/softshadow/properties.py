@@ -48,7 +48,8 @@ class SoftShadowLightSettings(bpy.types.PropertyGroup):
         description="Light samples for sampling methods (0: the method's default)")
     settings: bpy.props.StringProperty(
         name="Method Settings", default="",
-        description="Advanced method quality settings as key=value;key=value")
+        description="Advanced method quality settings as key=value;key=value; the ? button beside "
+                    "the field lists the valid keys of the light's method")
     refine_final: bpy.props.BoolProperty(
         name="Refine Final Renders", default=True,
         description="In final renders (F12, blender -b) ray trace the pixels the method cannot "

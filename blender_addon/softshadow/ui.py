@@ -48,6 +48,37 @@ def _wrap(text, width):
     return lines + ([line] if line else [])
 
 
+def method_settings_text(method):
+    """The settings the library lists for `method` (or "auto"), one line each: what the light's
+    Method Settings field accepts."""
+    try:
+        listed = native.method_settings(method)
+    except (native.LibraryUnavailable, native.SoftShadowError) as exc:
+        return "The library cannot list the settings: %s" % exc
+    lines = ["Settings of %s (key=value;key=value):" % method]
+    for key, _type, default, allowed, doc in listed:
+        facts = ", ".join(part for part in (("default " + default) if default else "", allowed) if part)
+        lines.append("%s (%s): %s" % (key, facts, doc) if facts else "%s: %s" % (key, doc))
+    return "\n".join(lines)
+
+
+class SOFTSHADOW_OT_method_settings(bpy.types.Operator):
+    """The valid Method Settings keys of the light's method"""
+    bl_idname = "softshadow.method_settings"
+    bl_label = "Method Settings Keys"
+    bl_options = {"INTERNAL"}
+
+    method: bpy.props.StringProperty(default="auto", options={"HIDDEN", "SKIP_SAVE"})
+
+    @classmethod
+    def description(cls, context, properties):
+        return method_settings_text(properties.method)
+
+    def execute(self, context):
+        self.report({"INFO"}, method_settings_text(self.method))
+        return {"FINISHED"}
+
+
 class _SettingsPanel:
     """A Properties-editor panel over the `softshadow` settings of one ID (`owner`), with their
     on/off switch in its header."""
@@ -86,7 +117,9 @@ class SOFTSHADOW_PT_light(_SettingsPanel, bpy.types.Panel):
             layout.label(text="Shadows are off for this light: no pass", icon="INFO")
         layout.prop(props, "method")
         layout.prop(props, "samples")
-        layout.prop(props, "settings")
+        row = layout.row(align=True)
+        row.prop(props, "settings")
+        row.operator(SOFTSHADOW_OT_method_settings.bl_idname, text="", icon="QUESTION").method = props.method
         layout.prop(props, "refine_final")
         chosen = handlers.last_report.get("chosen", {})
         obj = context.object
@@ -140,6 +173,6 @@ class SOFTSHADOW_PT_output(_SettingsPanel, bpy.types.Panel):
                 layout.label(text=plain(problem), icon="ERROR")
 
 
-CLASSES = (SoftShadowPreferences, SOFTSHADOW_PT_light, SOFTSHADOW_PT_output)
+CLASSES = (SoftShadowPreferences, SOFTSHADOW_OT_method_settings, SOFTSHADOW_PT_light, SOFTSHADOW_PT_output)
 
 register, unregister = bpy.utils.register_classes_factory(CLASSES)

@@ -15,7 +15,7 @@ uniform int uPaperFormula;   // eq. 3 as printed (branch condition and denominat
 layout(location = 0) out vec4 oResult;     // V, mask, umbra, penumbra
 layout(location = 1) out vec4 oDistances;  // |cx_o|, |cx_uv|, |cx_pv|, |cx_s| (the one used)
 // Before any clamping, so a NaN or infinity from eq. 2 or eq. 3 reaches the tests (read back
-// only with raw_layers=true): t of eq. 3, V of eq. 4, and the |cx_s| and volume distance used.
+// only with debug.raw_layers=true): t of eq. 3, V of eq. 4, and the |cx_s| and volume distance used.
 layout(location = 2) out vec4 oRaw;
 
 // t of eq. 3 for a point at distance d whose ray leaves the occluder's shadow through a volume

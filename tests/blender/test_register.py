@@ -20,7 +20,8 @@ def test_register_unregister_register():
     softshadow.register()
     sstest.check(hasattr(bpy.types.Scene, "softshadow") and hasattr(bpy.types.Light, "softshadow"),
                  "properties registered")
-    sstest.check(hasattr(bpy.ops.softshadow, "render_passes"), "operators registered")
+    sstest.check(hasattr(bpy.ops.softshadow, "render_passes") and hasattr(bpy.ops.softshadow, "method_settings"),
+                 "operators registered (the Method Settings keys' button too)")
     softshadow.unregister()
     sstest.check(not hasattr(bpy.types.Scene, "softshadow"), "scene properties removed")
     sstest.check(softshadow.handlers.on_render_pre not in bpy.app.handlers.render_pre, "handler removed")

@@ -211,6 +211,31 @@ def test_dbuffer_paper_formula_from_the_light_settings():
     sstest.check("'formula'" in problems and "paper" in problems, "problem names the setting: %s" % problems)
 
 
+def test_the_settings_tooltip_lists_the_chosen_methods_keys():
+    # The ? button beside Method Settings: its tooltip is the library's list for the light's method.
+    sstest.check(hasattr(bpy.ops.softshadow, "method_settings"), "the settings-keys operator is registered")
+    pcss = ss.ui.method_settings_text("pcss")
+    keys = [entry[0] for entry in ss.native.method_settings("pcss")]
+    sstest.check(keys[:4] == ["blocker_samples", "pcf_samples", "shadow_map_size", "max_search"] and "refine" in keys,
+                 "pcss's keys, its own first: %s" % keys)
+    sstest.check("blocker_samples (default 16, 1..1024)" in pcss and "refine (default off, on/off)" in pcss,
+                 "each key with default and range: %s" % pcss)
+    occlusion = ss.ui.method_settings_text("occlusion_textures")
+    sstest.check("filter (default sat, sat|mipmap|nbuffer)" in occlusion and "blocker_samples" not in occlusion,
+                 "another method, its own keys: %s" % occlusion)
+    sstest.check("debug." not in pcss + occlusion + ss.ui.method_settings_text("dbuffer"), "test switches not listed")
+    sstest.check("check_pixels" in ss.ui.method_settings_text("auto"), "auto's own keys")
+    tip = ss.ui.SOFTSHADOW_OT_method_settings.description(bpy.context, type("Props", (), {"method": "sweep"})())
+    sstest.check("fill (default smooth, smooth|steps|rings)" in tip, "sweep's tooltip: %s" % tip)
+    # Refine Final Renders asks the library's parser whether refine was typed.
+    sstest.check(ss.native.settings_give("fill=rings; refine =off", "refine") is False and
+                 ss.native.settings_give("fill=rings;refine=off", "refine") and
+                 not ss.native.settings_give("novalue", "refine"), "settings_give reads as the library parses")
+    sstest.check(ss.passes._settings_for({"settings": "refine=off", "refine_final": True}, "pcss", True) == "refine=off"
+                 and ss.passes._settings_for({"settings": "fill=rings", "refine_final": True}, "sweep", True)
+                 == "refine=on;fill=rings", "a typed refine wins, otherwise refine=on is added")
+
+
 def test_method_list_comes_from_the_library():
     names = ss.native.method_names()
     sstest.check(names[0] == "shadow_map" and names[-1] == "reference" and len(names) == 7, "%s" % (names,))

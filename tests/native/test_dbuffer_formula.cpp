@@ -38,7 +38,7 @@ RawCounts rawCounts(const Layers& l) {
 
 TEST(DbufferRaw, RawLayersAreFiniteOnTheSharedScenes) {
     for (const NamedScene& s : sharedScenes()) {
-        Layers l = renderWith(s.scene, "dbuffer", {{"raw_layers", "true"}});
+        Layers l = renderWith(s.scene, "dbuffer", {{"debug.raw_layers", "true"}});
         ASSERT_NE(l.find("raw_t"), nullptr);
         ASSERT_NE(l.find("raw_V"), nullptr);
         RawCounts c = rawCounts(l);
@@ -64,8 +64,8 @@ TEST(DbufferRaw, AnInfinityFromTheShadersShowsInTheRawLayerOnly) {
     scene.addMesh(makeBox({1.0f, -0.5f, 0.5f}, {1.6f, 0.5f, 4.0f}, SS_MESH_CAST | SS_MESH_RECEIVE));
     scene.addLight(makeDiskLight({0.0f, 0.0f, 4.0f}, 1.5f));
     scene.setCamera(makeTopCamera());
-    Layers paper = renderWith(scene, "dbuffer", {{"formula", "paper"}, {"raw_layers", "true"}});
-    Layers exact = renderWith(scene, "dbuffer", {{"raw_layers", "true"}});
+    Layers paper = renderWith(scene, "dbuffer", {{"formula", "paper"}, {"debug.raw_layers", "true"}});
+    Layers exact = renderWith(scene, "dbuffer", {{"debug.raw_layers", "true"}});
     RawCounts p = rawCounts(paper), e = rawCounts(exact);
     std::printf("[dbuffer] pillar to the light's plane: raw not finite: paper %zu, exact %zu\n", p.nonFinite,
                 e.nonFinite);
@@ -90,7 +90,7 @@ TEST(DbufferFormula, PaperFormulaAsPrintedGivesTheHardShadow) {
     for (const NamedScene& s : sharedScenes()) {
         Layers ref = renderReference(s.scene);
         Layers exact = renderWith(s.scene, "dbuffer");
-        Layers paper = renderWith(s.scene, "dbuffer", {{"formula", "paper"}, {"raw_layers", "true"}});
+        Layers paper = renderWith(s.scene, "dbuffer", {{"formula", "paper"}, {"debug.raw_layers", "true"}});
         Layers hard = renderWith(s.scene, "shadow_map");
         Metrics me = compareToReference(exact, ref), mp = compareToReference(paper, ref),
                 mh = compareToReference(hard, ref);

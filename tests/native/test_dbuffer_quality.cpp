@@ -78,7 +78,7 @@ TEST(DbufferQuality, SharedScenesMatchReferenceAndBeatShadowMap) {
     if (dump) params.width = 480, params.height = 360;
     for (auto& [name, scene] : test::sharedScenes(params)) {
         Layers ref = run(renderer, scene, "reference", referenceSamples());
-        Layers db = run(renderer, scene, "dbuffer", 0, {{"raw_layers", "true"}});
+        Layers db = run(renderer, scene, "dbuffer", 0, {{"debug.raw_layers", "true"}});
         Layers sm = run(renderer, scene, "shadow_map");
         expectSaneLayers(db, name);
         const Image* mask = ref.find("mask");
@@ -95,7 +95,7 @@ TEST(DbufferQuality, SharedScenesMatchReferenceAndBeatShadowMap) {
                 writePngPreview(std::string(dump) + "/" + name + "_db_" + ln + ".png", v);
             }
         }
-        Layers seg = run(renderer, scene, "dbuffer", 0, {{"profile", "segment"}, {"raw_layers", "true"}});
+        Layers seg = run(renderer, scene, "dbuffer", 0, {{"profile", "segment"}, {"debug.raw_layers", "true"}});
         expectSaneLayers(seg, name + " segment");
         Metrics mseg = compareVisibility(layer(seg, "V"), layer(ref, "V"), mask);
         std::printf("[dbuffer] %s dbuffer profile=segment: %s\n", name.c_str(), mseg.toString().c_str());
@@ -149,8 +149,8 @@ TEST(DbufferQuality, Figure1SameCentreSilhouetteDifferentShadows) {
     for (const SilhouetteEdge& e : sp.umbraEdges) EXPECT_NE(mp.objectPositions[e.a].z, 0.5f);
 
     Renderer renderer(SS_BACKEND_AUTO);
-    Layers dbP = run(renderer, plate, "dbuffer", 0, {{"raw_layers", "true"}});
-    Layers dbT = run(renderer, tall, "dbuffer", 0, {{"raw_layers", "true"}});
+    Layers dbP = run(renderer, plate, "dbuffer", 0, {{"debug.raw_layers", "true"}});
+    Layers dbT = run(renderer, tall, "dbuffer", 0, {{"debug.raw_layers", "true"}});
     Layers refP = run(renderer, plate, "reference", referenceSamples());
     Layers refT = run(renderer, tall, "reference", referenceSamples());
     Layers smP = run(renderer, plate, "shadow_map"), smT = run(renderer, tall, "shadow_map");

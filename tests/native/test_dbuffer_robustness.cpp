@@ -28,10 +28,10 @@ using test::run;
 int referenceSamples() { return test::quickTests() ? 64 : 256; }
 
 // No NaN or Inf in any layer, V in [0, 1].
-// Every layer finite, t and V before any clamping included (raw_layers=true: a NaN or infinity
+// Every layer finite, t and V before any clamping included (debug.raw_layers=true: a NaN or infinity
 // from the shaders would otherwise leave the camera pass as 0 or 1).
 void expectFinite(const Layers& l, const std::string& what) {
-    ASSERT_NE(l.find("raw_t"), nullptr) << what << ": render with raw_layers=true";
+    ASSERT_NE(l.find("raw_t"), nullptr) << what << ": render with debug.raw_layers=true";
     size_t bad = 0;
     for (auto& [name, img] : l.items)
         for (float v : img.pixels) bad += !std::isfinite(v) || (name == "V" && (v < 0.0f || v > 1.0f));
@@ -42,7 +42,7 @@ void expectFinite(const Layers& l, const std::string& what) {
 Metrics againstReference(Renderer& r, const Scene& scene, const std::string& what,
                          const std::map<std::string, std::string>& options = {}) {
     std::map<std::string, std::string> withRaw = options;
-    withRaw["raw_layers"] = "true";
+    withRaw["debug.raw_layers"] = "true";
     Layers db = run(r, scene, "dbuffer", 0, withRaw);
     Layers ref = run(r, scene, "reference", referenceSamples());
     expectFinite(db, what);
@@ -196,8 +196,8 @@ TEST(DbufferOptions, SmallOccluderProfileAndPaperUmbraRule) {
     Renderer r(SS_BACKEND_AUTO);
     Scene scene = test::sceneTorus();
     Layers base = run(r, scene, "dbuffer");
-    Layers root = run(r, scene, "dbuffer", 0, {{"small_occluders", "true"}, {"raw_layers", "true"}});
-    Layers paper = run(r, scene, "dbuffer", 0, {{"umbra_rule", "farthest"}, {"raw_layers", "true"}});
+    Layers root = run(r, scene, "dbuffer", 0, {{"small_occluders", "true"}, {"debug.raw_layers", "true"}});
+    Layers paper = run(r, scene, "dbuffer", 0, {{"umbra_rule", "farthest"}, {"debug.raw_layers", "true"}});
     expectFinite(root, "small_occluders");
     expectFinite(paper, "umbra_rule=farthest");
     // Same umbra and lit regions (t = 0 and t = 1 map to 0 and 1 either way); in the outer

@@ -198,7 +198,7 @@ TEST(DbufferVertexClosure, NoLeakInTheShadowAtMultiEdgeVertices) {
         DiskSilhouette s = diskSilhouette(sc.mesh, Disk{sc.light, {0, 0, -1}, 0.5f * sc.diameter});
         ASSERT_GE(std::max(maxEdges(s.umbraVertices), maxEdges(s.penumbraVertices)), 3u) << sc.name;
         Layers ref = test::renderReference(scene);
-        Layers dbuf = test::renderWith(scene, "dbuffer", {{"raw_layers", "true"}});
+        Layers dbuf = test::renderWith(scene, "dbuffer", {{"debug.raw_layers", "true"}});
         const Image& V = *dbuf.find("V");
         const Image& R = *ref.find("V");
         const Image& mask = *ref.find("mask");

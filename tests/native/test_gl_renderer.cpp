@@ -248,7 +248,8 @@ TEST(GlRendererSettings, AnUnknownKeyIsRefusedNamingItAndTheKnownKeys) {
         EXPECT_EQ(e.status(), SS_ERROR_INVALID_ARGUMENT);
         EXPECT_EQ(std::string(e.what()),
                   "method 'pcss' has no setting 'blocker_sample' (its settings: blocker_samples, pcf_samples, "
-                  "shadow_map_size, max_search, refine, refine_margin, refine_samples, refine_verify, error_target, guard_band)");
+                  "shadow_map_size, max_search, estimate_rmse, refine, refine_margin, refine_samples, refine_verify, "
+                  "error_target, guard_band, memory_limit_mb)");
     }
     // Every method refuses an unknown key, CPU and GL alike, and before any work.
     for (const std::string& method : methodNames()) {
@@ -259,15 +260,17 @@ TEST(GlRendererSettings, AnUnknownKeyIsRefusedNamingItAndTheKnownKeys) {
     }
 }
 
-TEST(GlRendererSettings, EveryMethodsKeysAreAccepted) {
-    // The declared keys are the keys the method reads: each is accepted with its default value.
+TEST(GlRendererSettings, EveryMethodsKeysAreAcceptedWithTheirDefaults) {
+    // Each entry of each table is accepted with its own default written out.
     for (const std::string& name : methodNames()) {
         auto m = createMethod(name);
         EXPECT_EQ(m->name(), name);
-        std::vector<std::string> keys = m->settingKeys();
+        const SettingTable table = renderSettingTable(name);
         RenderSettings s;
-        for (const std::string& k : keys) s.options[k] = "x";
-        EXPECT_NO_THROW(s.requireKnownKeys(name, keys)) << name;
+        for (const SettingSpec& spec : table)
+            if (spec.type != SettingType::Text && !spec.renderDefault) s.options[spec.key] = spec.defaultText();
+        EXPECT_NO_THROW(s.requireKnownKeys(name, table)) << name;
+        for (const SettingSpec& spec : m->settingTable()) EXPECT_NE(findSetting(table, spec.key), nullptr) << name;
     }
 }
 

@@ -101,7 +101,7 @@ TEST(OcclusionTextures, SkippingEmptySlicesChangesNothing) {
         SCOPED_TRACE(std::string(filter) + ", fade " + fade);
         std::map<std::string, std::string> options = {{"slices", slices}, {"fade", fade}, {"filter", filter}};
         Layers skipping = run(renderer(), scene, "occlusion_textures", 0, options);
-        options["skip_empty_slices"] = "0";
+        options["debug.skip_empty_slices"] = "0";
         Layers reading = run(renderer(), scene, "occlusion_textures", 0, options);
         for (const char* name : {"V", "mask", "slice_0", "slice_3"}) {
             const Image& a = layer(skipping, name);

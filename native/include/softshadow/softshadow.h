@@ -172,6 +172,23 @@ SS_API void ss_shutdown(void);
    NULL for an index out of range. */
 SS_API int32_t ss_method_count(void);
 SS_API const char* ss_method_name(int32_t index);
+/* The settings a method (a name above, or "auto") takes in ss_render_options.settings, as a user
+   sees them: index 0 .. ss_method_setting_count(method)-1, the method's own first, then the ones
+   every method takes (estimate_rmse, refine..., memory_limit_mb). Test switches ("debug." keys)
+   are accepted by ss_render but not listed. The count is -1 for an unknown method (ss_last_error
+   says why). The strings stay valid until the process exits. */
+typedef struct ss_setting_info {
+    const char* key;
+    const char* type;          /* "int", "float", "bool", "choice" or "text" */
+    const char* default_value; /* as written in settings ("8", "off", "sat"); "" where the render decides */
+    const char* range;         /* "1..16", "0 or 16..8192", "on/off", "sat|mipmap|nbuffer"; "" for text */
+    const char* doc;           /* one line */
+} ss_setting_info;
+SS_API int32_t ss_method_setting_count(const char* method);
+SS_API ss_status ss_method_setting_info(const char* method, int32_t index, ss_setting_info* out);
+/* Whether a settings string gives `key` (*out 1 or 0), parsed as ss_render parses it: a malformed
+   string fails as ss_render would. NULL settings: none given. */
+SS_API ss_status ss_settings_has(const char* settings, const char* key, int32_t* out);
 
 /* Scenes. */
 SS_API ss_status ss_scene_create(ss_scene** out);

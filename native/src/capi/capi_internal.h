@@ -100,6 +100,12 @@ struct ProgressCallbackScope {
 // Throws SS_ERROR_INVALID_ARGUMENT naming `function` when called from a progress callback.
 void refuseInsideProgressCallback(const char* function);
 
+// The one conversion of ss_render_options (null: the defaults) into RenderSettings: negative
+// samples refused naming `function`, the settings string parsed, progress wired (marking the
+// callback's thread), `cancel` (null: never) the flag the render checks.
+ss::RenderSettings renderSettingsFrom(const ss_render_options* options, const char* function,
+                                      const std::atomic<bool>* cancel);
+
 // Copies text (with its terminating zero) into a caller's buffer, or fails naming the size needed.
 void copyOut(const std::string& text, char* buffer, size_t bufferSize, const char* function);
 

@@ -7,30 +7,6 @@
 
 using namespace ss::capi;
 
-namespace {
-
-ss::RenderSettings toSettings(const ss_render_options& o) {
-    if (o.samples < 0)
-        ss::fail(SS_ERROR_INVALID_ARGUMENT, "ss_render: samples must not be negative (got " +
-                                                std::to_string(o.samples) + ")");
-    ss::RenderSettings s;
-    s.samples = o.samples;
-    s.seed = o.seed;
-    s.extraLayers = o.extra_layers != 0;
-    if (o.settings) s.options = ss::parseSettings(o.settings);
-    if (o.progress) {
-        ss_progress_fn fn = o.progress;
-        void* user = o.progress_user;
-        s.progress = [fn, user](float fraction, const char* stage) {
-            ProgressCallbackScope inside;
-            return fn(user, fraction, stage ? stage : "") == 0;
-        };
-    }
-    return s;
-}
-
-}  // namespace
-
 extern "C" {
 
 SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t light_index,
@@ -43,11 +19,8 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         require(scene, "ss_render", "scene");
         require(method, "ss_render", "method");
         const ss::Light& light = scene->scene.light(light_index, "ss_render");
-        ss_render_options defaults;
-        ss_render_options_default(&defaults);
-        ss::RenderSettings settings = toSettings(options ? *options : defaults);
+        ss::RenderSettings settings = renderSettingsFrom(options, "ss_render", &context->stopRenders);
         ContextUse use(*context);
-        settings.cancel = &context->stopRenders;
         auto result = std::make_unique<ss_result>();
         result->light = light.name;
         result->requested = method;

@@ -42,14 +42,11 @@ SS_API ss_status ss_sweep_shadow_mesh(const ss_scene* scene, int32_t light_index
         ss::capi::require(scene, "ss_sweep_shadow_mesh", "scene");
         ss::capi::require(out, "ss_sweep_shadow_mesh", "out");
         *out = nullptr;
-        ss::RenderSettings settings;
-        if (options) {
-            settings.samples = options->samples;
-            settings.seed = options->seed;
-            if (options->settings) settings.options = ss::parseSettings(options->settings);
-        }
-        settings.requireKnownKeys("sweep", ss::sweepSettingKeys());
+        const ss::RenderSettings settings = ss::capi::renderSettingsFrom(options, "ss_sweep_shadow_mesh", nullptr);
+        settings.requireKnownKeys("sweep", ss::sweepSettings());
+        settings.report(0.0f, "sweep: shadow mesh");
         ss::SweepShadow shadow = ss::computeSweepShadow(scene->scene, light_index, ss::sweepOptions(settings));
+        settings.report(1.0f, "sweep: done");
         auto mesh = std::make_unique<ss_sweep_mesh>();
         mesh->receiver = shadow.plane.mesh;
         mesh->samplesUsed = shadow.samplesUsed;

@@ -62,8 +62,8 @@ float RenderSettings::number(const std::string& key, float fallback, float lo, f
     if (!std::isfinite(v) || errno == ERANGE)
         fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + text + "' is not a finite number");
     if (v < lo || v > hi)
-        fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + text + "' is out of range [" +
-                                            shown(lo) + ", " + shown(hi) + "]");
+        fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + key + "' = '" + text + "' is out of range " +
+                                            shown(lo) + ".." + shown(hi));
     return v;
 }
 
@@ -89,38 +89,60 @@ bool RenderSettings::flag(const std::string& key, bool fallback) const {
 }
 
 std::string RenderSettings::choice(const std::string& key, const std::string& fallback,
-                                   std::initializer_list<const char*> allowed) const {
+                                   const std::vector<std::string>& allowed) const {
     auto it = options.find(key);
     if (it == options.end()) return fallback;
-    std::vector<std::string> names;
-    for (const char* a : allowed) {
+    for (const std::string& a : allowed)
         if (it->second == a) return it->second;
-        names.push_back(a);
-    }
     fail(SS_ERROR_INVALID_ARGUMENT,
-         "setting '" + key + "' = '" + it->second + "' is not one of: " + joined(names));
+         "setting '" + key + "' = '" + it->second + "' is not one of: " + joined(allowed));
 }
 
-std::string RenderSettings::text(const std::string& key, const std::string& fallback) const {
-    auto it = options.find(key);
-    return it == options.end() ? fallback : it->second;
+float RenderSettings::number(const SettingSpec& spec) const {
+    return number(spec.key, float(spec.fallback), float(spec.lo), float(spec.hi));
 }
 
-int shadowMapSizeSetting(const RenderSettings& settings) {
-    const float size = settings.number("shadow_map_size", 0.0f);  // refuses nan and inf first
-    if (size != std::floor(size) || !(size == 0.0f || (size >= 16.0f && size <= 8192.0f)))
-        fail(SS_ERROR_INVALID_ARGUMENT, "setting 'shadow_map_size' = '" + settings.text("shadow_map_size", "") +
-                                            "' is not 0 (the default) or a whole number in [16, 8192]");
-    return int(size);
+int RenderSettings::integer(const SettingSpec& spec) const { return integer(spec, int(spec.fallback)); }
+
+int RenderSettings::integer(const SettingSpec& spec, int fallback) const {
+    if (spec.zeroIsDefault) {
+        auto it = options.find(spec.key);
+        if (it == options.end()) return fallback;
+        const float v = number(spec.key, 0.0f);  // refuses nan and inf first
+        if (v != std::floor(v) || !(v == 0.0f || (v >= float(spec.lo) && v <= float(spec.hi))))
+            fail(SS_ERROR_INVALID_ARGUMENT, "setting '" + std::string(spec.key) + "' = '" + it->second +
+                                                "' is out of range " + spec.rangeText());
+        return int(v);
+    }
+    return integer(spec.key, fallback, int(spec.lo), int(spec.hi));
 }
 
-void RenderSettings::requireKnownKeys(const std::string& method, const std::vector<std::string>& known) const {
+bool RenderSettings::flag(const SettingSpec& spec) const { return flag(spec.key, spec.fallback != 0.0); }
+
+std::string RenderSettings::choice(const SettingSpec& spec) const {
+    return choice(spec.key, spec.defaultText(), spec.choiceList());
+}
+
+std::string RenderSettings::text(const SettingSpec& spec) const {
+    auto it = options.find(spec.key);
+    return it == options.end() ? std::string() : it->second;
+}
+
+int shadowMapSizeSetting(const RenderSettings& settings) { return settings.integer(kShadowMapSizeSetting); }
+
+void RenderSettings::requireKnownKeys(const std::string& method, const SettingTable& table) const {
     for (const auto& [key, value] : options) {
-        bool found = false;
-        for (const std::string& k : known) found = found || k == key;
-        if (!found)
+        const SettingSpec* spec = findSetting(table, key);
+        if (!spec)
             fail(SS_ERROR_INVALID_ARGUMENT, "method '" + method + "' has no setting '" + key +
-                                                "' (its settings: " + joined(known) + ")");
+                                                "' (its settings: " + joined(userKeys(table)) + ")");
+        switch (spec->type) {
+            case SettingType::Int: (void)integer(*spec); break;
+            case SettingType::Float: (void)number(*spec); break;
+            case SettingType::Bool: (void)flag(*spec); break;
+            case SettingType::Choice: (void)choice(*spec); break;
+            case SettingType::Text: break;
+        }
     }
 }
 

@@ -5,11 +5,12 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
-#include <initializer_list>
 #include <limits>
 #include <map>
 #include <string>
 #include <vector>
+
+#include "core/setting_schema.h"
 
 namespace ss {
 
@@ -25,8 +26,18 @@ struct RenderSettings {
     // Set by the owner of the render (ss_context_destroy) to stop it at the next check; null: never.
     const std::atomic<bool>* cancel = nullptr;
 
-    // Typed look-ups of `options` with a default. A value that is malformed, not finite or out
-    // of [lo, hi] throws ss::Error(SS_ERROR_INVALID_ARGUMENT) naming the key.
+    // Reads `spec.key` from `options` as the table entry says: its default when absent; a
+    // malformed, non-finite or out-of-range value throws ss::Error(SS_ERROR_INVALID_ARGUMENT)
+    // naming the key, the value and the range. The second integer form takes a default that
+    // depends on the render (the entry's doc names it).
+    float number(const SettingSpec& spec) const;
+    int integer(const SettingSpec& spec) const;
+    int integer(const SettingSpec& spec, int fallback) const;
+    bool flag(const SettingSpec& spec) const;
+    std::string choice(const SettingSpec& spec) const;
+    std::string text(const SettingSpec& spec) const;
+
+    // The parsing under the readers above, for a key without an entry.
     float number(const std::string& key, float fallback,
                  float lo = -std::numeric_limits<float>::max(),
                  float hi = std::numeric_limits<float>::max()) const;
@@ -34,12 +45,12 @@ struct RenderSettings {
     bool flag(const std::string& key, bool fallback) const;
     // One of `allowed`.
     std::string choice(const std::string& key, const std::string& fallback,
-                       std::initializer_list<const char*> allowed) const;
-    std::string text(const std::string& key, const std::string& fallback) const;
+                       const std::vector<std::string>& allowed) const;
 
     // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) naming the first key of `options` that is not
-    // in `known`, and listing `known`: a typo must not render the default silently.
-    void requireKnownKeys(const std::string& method, const std::vector<std::string>& known) const;
+    // in `table`, listing the table's user keys (a typo must not render the default silently),
+    // or the first value its entry refuses: every given value is checked before any work.
+    void requireKnownKeys(const std::string& method, const SettingTable& table) const;
 
     // Calls progress; throws ss::Error(SS_ERROR_CANCELLED) when it asks to stop.
     void report(float fraction, const char* stage) const;
@@ -48,7 +59,7 @@ struct RenderSettings {
     void checkCancelled(const char* stage) const;
 };
 
-// The shared shadow map's size setting "shadow_map_size": 0 (the frame's default) or 16..8192.
+// The shared shadow map's size (kShadowMapSizeSetting).
 int shadowMapSizeSetting(const RenderSettings& settings);
 
 // Parses "key=value;key=value" (the C API's settings string).

@@ -31,15 +31,15 @@ struct MethodStats {
 
 class Method {
 public:
-    // `name`: the contract name (core/method_names.h). `settingKeys`: every key of
-    // RenderSettings::options the method reads; any other key is refused before the method runs
-    // (RenderSettings::requireKnownKeys).
-    Method(std::string name, MethodDevice device, std::vector<std::string> settingKeys)
-        : name_(std::move(name)), device_(device), settingKeys_(std::move(settingKeys)) {}
+    // `name`: the contract name (core/method_names.h). `settings`: every key of
+    // RenderSettings::options the method reads, with its type, default and range; any other key
+    // or a value its entry refuses fails before the method runs (RenderSettings::requireKnownKeys).
+    Method(std::string name, MethodDevice device, SettingTable settings)
+        : name_(std::move(name)), device_(device), settings_(std::move(settings)) {}
     virtual ~Method() = default;
     const char* name() const { return name_.c_str(); }
     bool needsGl() const { return device_ == MethodDevice::Gl; }
-    const std::vector<std::string>& settingKeys() const { return settingKeys_; }
+    const SettingTable& settingTable() const { return settings_; }
     // CPU geometry that depends only on the scene and the light. Default: nothing.
     virtual void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) {
         (void)frame, (void)lightIndex, (void)settings;
@@ -56,7 +56,7 @@ protected:
 private:
     std::string name_;
     MethodDevice device_;
-    std::vector<std::string> settingKeys_;
+    SettingTable settings_;
 };
 
 // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) for an unknown name; "auto" is not accepted here.

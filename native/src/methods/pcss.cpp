@@ -16,20 +16,28 @@ namespace ss {
 
 namespace {
 
+constexpr SettingSpec kBlockerSamples = intSetting("blocker_samples", 16, 1, 1024, "shadow-map taps of the blocker search");
+constexpr SettingSpec kPcfSamples = [] {
+    SettingSpec s = intSetting("pcf_samples", 32, 1, 4096, "taps of the filter");
+    s.renderDefault = "the render's samples, or 32";
+    return s;
+}();
+constexpr SettingSpec kMaxSearch =
+    floatSetting("max_search", 0.25, 0.0, 1.0, "largest blocker search radius, a share of the shadow map");
+
 class PcssMethod final : public Method {
 public:
     PcssMethod()
-        : Method("pcss", MethodDevice::Gl,
-                 {"blocker_samples", "pcf_samples", "shadow_map_size", "max_search"}) {}
+        : Method("pcss", MethodDevice::Gl, {kBlockerSamples, kPcfSamples, kShadowMapSizeSetting, kMaxSearch}) {}
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
         if (settings.samples > 4096)
             fail(SS_ERROR_INVALID_ARGUMENT, "pcss: samples must be in 1..4096 (got " + std::to_string(settings.samples) + ")");
-        const int blockerSamples = settings.integer("blocker_samples", 16, 1, 1024);
-        const int pcfSamples = settings.integer("pcf_samples", settings.samples > 0 ? settings.samples : 32, 1, 4096);
+        const int blockerSamples = settings.integer(kBlockerSamples);
+        const int pcfSamples = settings.integer(kPcfSamples, settings.samples > 0 ? settings.samples : 32);
         const int mapSize = shadowMapSizeSetting(settings);
-        const float maxSearch = settings.number("max_search", 0.25f, 0.0f, 1.0f);
+        const float maxSearch = settings.number(kMaxSearch);
 
         const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
         frame.cameraPass();  // the shared pass drawn (or found) before the filter stage begins

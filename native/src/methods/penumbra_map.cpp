@@ -41,9 +41,18 @@ ConesSheets buildPenumbraGeometry(const Scene& scene, int lightIndex, const Shad
     return all;
 }
 
+namespace {
+
+constexpr SettingSpec kConeSegments = intSetting("cone_segments", 16, 3, 256, "segments of each vertex's penumbra cone");
+constexpr SettingSpec kIntensity =
+    choiceSetting("intensity", "coverage|paper", "penumbra intensity: the light's covered share, or the paper's ramp");
+// The benchmark: wait for each pass so progress reports time the stages.
+constexpr SettingSpec kFinishStages = flagSetting("debug.finish_stages", false, "glFinish at each pass");
+
+}  // namespace
+
 PenumbraIntensity intensityRule(const RenderSettings& settings) {
-    return settings.choice("intensity", "coverage", {"coverage", "paper"}) == "coverage" ? PenumbraIntensity::Coverage
-                                                                                         : PenumbraIntensity::Paper;
+    return settings.choice(kIntensity) == "coverage" ? PenumbraIntensity::Coverage : PenumbraIntensity::Paper;
 }
 
 namespace {
@@ -65,7 +74,7 @@ class PenumbraMapMethod final : public Method {
 public:
     PenumbraMapMethod()
         : Method("penumbra_map", MethodDevice::Gl,
-                 {"shadow_map_size", "cone_segments", "intensity", "finish_stages"}) {}
+                 {kShadowMapSizeSetting, kConeSegments, kIntensity, kFinishStages}) {}
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);
@@ -74,7 +83,7 @@ public:
                                            "' is a sun; penumbra maps need a light centre (use pcss)");
         const int mapSize = shadowMapSizeSetting(settings);
         ConeSheetSettings cs;
-        cs.coneSegments = settings.integer("cone_segments", 16, 3, 256);
+        cs.coneSegments = settings.integer(kConeSegments);
         (void)intensityRule(settings);  // a bad value fails before any GL work
         const float radius = penumbraMapLightRadius(light);
         GpuConesSheets& g = geometry_;
@@ -112,8 +121,7 @@ public:
         const gl::Functions& api = frame.gl();
         const ShadowMap& map = frame.shadowMap(lightIndex, geometry_.mapSize);
         frame.cameraPass();  // the shared pass drawn (or found) before the stages are timed
-        // For the benchmark: wait for each pass so progress reports time the stages.
-        const bool finishStages = settings.flag("finish_stages", false);
+        const bool finishStages = settings.flag(kFinishStages);
 
         // Pass 2: the penumbra map, cleared to lit; darkest fragment wins through LESS.
         settings.report(0.3f, "penumbra_map pass 2");

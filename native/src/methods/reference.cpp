@@ -14,7 +14,7 @@ namespace {
 // rendering every light of an unchanged scene builds the BVH once.
 class ReferenceMethod final : public Method {
 public:
-    ReferenceMethod() : Method("reference", MethodDevice::Cpu, referenceSettingKeys()) {}
+    ReferenceMethod() : Method("reference", MethodDevice::Cpu, referenceSettings()) {}
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         return renderReference(frame.scene(), lightIndex, settings, &frame.traceScenes());
     }

@@ -19,12 +19,12 @@ namespace {
 // The shader also looks up from the normal-offset point (shadowLookupPoint): the slope term sees
 // the receiver's own face, not the steeper neighbouring facet a terminator texel holds.
 // Settings "bias" and "slope_bias" override both; "shadow_map_size" the map (default 2048).
-constexpr float kConstantBias = 1.0f;
-constexpr float kSlopeBias = 1.0f;
+constexpr SettingSpec kConstantBias = floatSetting("bias", 1.0, 0.0, 1000.0, "constant depth bias in texels");
+constexpr SettingSpec kSlopeBias = floatSetting("slope_bias", 1.0, 0.0, 1000.0, "depth bias per unit of tan(slope), in texels");
 
 class ShadowMapMethod final : public Method {
 public:
-    ShadowMapMethod() : Method("shadow_map", MethodDevice::Gl, {"shadow_map_size", "bias", "slope_bias"}) {}
+    ShadowMapMethod() : Method("shadow_map", MethodDevice::Gl, {kShadowMapSizeSetting, kConstantBias, kSlopeBias}) {}
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const gl::Functions& g = frame.gl();
@@ -41,8 +41,8 @@ public:
         int unit = frame.bindCameraPass(p);
         frame.bindShadowMap(p, map, unit);
         frame.setLightUniforms(p, lightIndex);
-        p.set("uConstantBias", settings.number("bias", kConstantBias, 0.0f, 1000.0f));
-        p.set("uSlopeBias", settings.number("slope_bias", kSlopeBias, 0.0f, 1000.0f));
+        p.set("uConstantBias", settings.number(kConstantBias));
+        p.set("uSlopeBias", settings.number(kSlopeBias));
         frame.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("resolving the shadow map");

@@ -105,14 +105,26 @@ void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, cons
     continueRounds(add, sampling, sampling.errorTarget, 0, sums);
 }
 
-std::vector<std::string> adaptiveSamplingKeys() { return {"error_target", "guard_band"}; }
+namespace {
+
+constexpr SettingSpec kErrorTarget =
+    floatSetting("error_target", 0.01, 1e-4, 0.5, "RMS error of V the adaptive rounds aim at over the image");
+constexpr SettingSpec kGuardBand =
+    intSetting("guard_band", 2, 0, 16, "pixels around an undecided one that are sampled further too");
+
+}  // namespace
+
+const SettingTable& adaptiveSamplingSettings() {
+    static const SettingTable table{kErrorTarget, kGuardBand};
+    return table;
+}
 
 AdaptiveSampling adaptiveSampling(const RenderSettings& settings, int maxSamples) {
     AdaptiveSampling a;
     a.maxSamples = maxSamples;
     a.minSamples = std::min(a.minSamples, maxSamples);
-    a.errorTarget = settings.number("error_target", a.errorTarget, 1e-4f, 0.5f);
-    a.guardBand = settings.integer("guard_band", a.guardBand, 0, 16);
+    a.errorTarget = settings.number(kErrorTarget);
+    a.guardBand = settings.integer(kGuardBand);
     return a;
 }
 

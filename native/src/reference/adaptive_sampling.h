@@ -67,9 +67,9 @@ void sampleAdaptively(const TraceScene& trace, const LightSampler& sampler, cons
                       const SampleSequence& sequence, bool castShadows, const AdaptiveSampling& sampling,
                       SampleSums* sums);
 
-// The keys the adaptive sampling reads: "error_target" (0.0001..0.5, default 0.01) and
-// "guard_band" (pixels, 0..16, default 2); `maxSamples` is the render's sample count.
-std::vector<std::string> adaptiveSamplingKeys();
+// The settings the adaptive sampling reads ("error_target", "guard_band"); `maxSamples` is the
+// render's sample count.
+const SettingTable& adaptiveSamplingSettings();
 AdaptiveSampling adaptiveSampling(const RenderSettings& settings, int maxSamples);
 
 // Which pixels traceAdaptive traces: those where `select` is non-zero (every pixel when null),

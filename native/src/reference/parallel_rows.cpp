@@ -17,7 +17,7 @@ namespace ss {
 namespace {
 
 int threadCount(const RenderSettings& settings, int rows) {
-    int n = settings.integer("threads", 0, 0, 1024);
+    int n = settings.integer(kThreadsSetting);
     if (n <= 0) n = int(std::max(1u, std::thread::hardware_concurrency()));
     return std::clamp(n, 1, std::max(1, rows));
 }

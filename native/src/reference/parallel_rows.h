@@ -7,6 +7,9 @@
 
 namespace ss {
 
+inline constexpr SettingSpec kThreadsSetting =
+    intSetting("threads", 0, 0, 1024, "worker threads (0: all cores); changes speed only");
+
 // Runs rowFn(y) for every y in [0, rows) on the option "threads" workers (default: all cores).
 // The calling thread only reports progress (`stage`, fraction in [progressFrom, progressTo]),
 // so the progress callback (which may be Python) is never called from a worker; a cancel or a

@@ -13,17 +13,23 @@
 
 namespace ss {
 
-std::vector<std::string> referenceSettingKeys() {
-    std::vector<std::string> keys{"threads", "adaptive"};
-    for (const std::string& k : adaptiveSamplingKeys()) keys.push_back(k);
-    return keys;
+namespace {
+
+constexpr SettingSpec kAdaptive =
+    flagSetting("adaptive", false, "sample in rounds until the error target (samples: the cap per pixel, default 1024)");
+
+}  // namespace
+
+const SettingTable& referenceSettings() {
+    static const SettingTable table = composed({kThreadsSetting, kAdaptive}, adaptiveSamplingSettings());
+    return table;
 }
 
 Layers renderReference(const Scene& scene, int lightIndex, const RenderSettings& settings,
                        TraceSceneCache* cache) {
     const Light& light = scene.light(lightIndex);
     const Camera& camera = scene.camera();
-    const bool adaptive = settings.flag("adaptive", false);
+    const bool adaptive = settings.flag(kAdaptive);
     const int samples = settings.samples > 0 ? settings.samples
                         : adaptive        ? kReferenceAdaptiveDefaultSamples
                                           : kReferenceDefaultSamples;

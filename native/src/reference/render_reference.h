@@ -15,8 +15,8 @@ constexpr int kReferenceDefaultSamples = 256;
 // With "adaptive=on" the sample count is a cap per pixel, most pixels stop far below it.
 constexpr int kReferenceAdaptiveDefaultSamples = 1024;
 
-// Every option key renderReference reads.
-std::vector<std::string> referenceSettingKeys();
+// Every setting renderReference reads.
+const SettingTable& referenceSettings();
 
 // For the surface point seen through each pixel centre: V and mask per the visibility contract
 // (the renderer adds the class layers, core/visibility_classes.h). Samples per pixel: settings.samples, or 256. Option "threads" (default:

@@ -11,13 +11,27 @@
 
 namespace ss {
 
-std::vector<std::string> refinementKeys() {
-    std::vector<std::string> keys{"refine", "refine_margin", "refine_samples", "refine_verify", "refine_rounds"};
-    for (const std::string& k : adaptiveSamplingKeys()) keys.push_back(k);
-    return keys;
+namespace {
+
+constexpr SettingSpec kRefine = flagSetting("refine", false, "re-trace the GL pass's uncertain pixels with rays");
+constexpr SettingSpec kRefineMargin =
+    intSetting("refine_margin", 3, 0, 32, "pixels around the uncertain ones that are re-traced too");
+constexpr SettingSpec kRefineSamples =
+    intSetting("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16, "cap of samples per re-traced pixel");
+constexpr SettingSpec kRefineVerify = intSetting("refine_verify", kRefineDefaultVerifyRays, 0, 1024,
+                                                 "rays that check each pixel the pass called certain (0: no check)");
+constexpr SettingSpec kRefineRounds = intSetting("refine_rounds", 1, 1, 64,
+                                                  "shares the uncertain pixels are traced in, each but the last handed out as it lands");
+
+}  // namespace
+
+const SettingTable& refinementSettings() {
+    static const SettingTable table =
+        composed({kRefine, kRefineMargin, kRefineSamples, kRefineVerify, kRefineRounds}, adaptiveSamplingSettings());
+    return table;
 }
 
-bool refinementRequested(const RenderSettings& settings) { return settings.flag("refine", false); }
+bool refinementRequested(const RenderSettings& settings) { return settings.flag(kRefine); }
 
 namespace {
 
@@ -86,11 +100,11 @@ Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSetti
 
 Refinement refineUncertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
                                  TraceSceneCache& cache, Layers& layers, const RefinementRoundFn& landed) {
-    const int margin = settings.integer("refine_margin", 3, 0, 32);
-    const int samples = settings.integer("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16);
-    const int verify = settings.integer("refine_verify", kRefineDefaultVerifyRays, 0, 1024);
+    const int margin = settings.integer(kRefineMargin);
+    const int samples = settings.integer(kRefineSamples);
+    const int verify = settings.integer(kRefineVerify);
     AdaptiveShares shares;
-    shares.count = settings.integer("refine_rounds", 1, 1, 64);
+    shares.count = settings.integer(kRefineRounds);
     AdaptiveSampling sampling = adaptiveSampling(settings, samples);
     Image *visibility = nullptr, *mask = nullptr;
     for (auto& [name, image] : layers.items) {

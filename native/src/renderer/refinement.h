@@ -13,15 +13,13 @@
 
 namespace ss {
 
-// The keys every method accepts for refinement: "refine" (on/off, default off),
-// "refine_margin" (pixels around the uncertain ones, 0..32, default 3), "refine_samples" (the
-// cap of samples per traced pixel, default 1024), "refine_verify" (rays that check each pixel
-// the pass called certain, 0..1024, 0 = no check, default kRefineDefaultVerifyRays),
-// "refine_rounds" (the shares the uncertain pixels are traced in, 1..64, default 1: each share but
-// the last is handed out as it lands, RefinementRound) and the adaptive sampling's keys
-// (reference/adaptive_sampling.h).
+// The settings every method accepts for refinement: "refine", "refine_margin",
+// "refine_samples", "refine_verify", "refine_rounds" (the shares the uncertain pixels are traced
+// in: each share but the last is handed out as it lands, RefinementRound) and the adaptive
+// sampling's (reference/adaptive_sampling.h).
 constexpr int kRefineDefaultVerifyRays = 8;
-std::vector<std::string> refinementKeys();
+const SettingTable& refinementSettings();
+// The one reader of "refine" (on/off, default off).
 bool refinementRequested(const RenderSettings& settings);
 
 // Where the pass is uncertain: inside the mask, 0 < V < 1 or V = 0 beside V = 1 (a hard

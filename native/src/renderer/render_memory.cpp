@@ -12,8 +12,8 @@
 namespace ss {
 
 void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& method, RenderSettings& settings) {
-    const int limitMib = settings.integer(kMemoryLimitKey, 0, 0, 1 << 24);
-    settings.options.erase(kMemoryLimitKey);
+    const int limitMib = settings.integer(kMemoryLimitSetting);
+    settings.options.erase(kMemoryLimitSetting.key);
     const double limit = limitMib > 0 ? double(limitMib) * double(1 << 20) : physicalMemoryBytes();
     if (!(limit > 0.0)) return;
     const BudgetKind kind = method == "reference"                                     ? BudgetKind::Cpu
@@ -23,7 +23,7 @@ void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& me
     const int64_t pixels = int64_t(camera.width) * camera.height;
     int64_t triangles = 0;
     for (const Mesh& m : scene.meshes()) triangles += int64_t(m.triangles.size());
-    const int mapSize = settings.options.count("shadow_map_size") ? shadowMapSizeSetting(settings) : 0;
+    const int mapSize = shadowMapSizeSetting(settings);
     const double need = renderPeakBytes(kind, pixels, triangles, mapSize > 0 ? mapSize : Frame::kDefaultShadowMapSize);
     if (need <= limit) return;
     const double perPixel = kind == BudgetKind::Auto ? kBudgetBytesPerPixelAuto

@@ -10,9 +10,10 @@ namespace ss {
 
 // The setting every method (and auto) takes: the memory a render may need, in MiB; 0 (the
 // default): the machine's physical memory.
-inline constexpr const char* kMemoryLimitKey = "memory_limit_mb";
+inline constexpr SettingSpec kMemoryLimitSetting = intSetting(
+    "memory_limit_mb", 0, 0, 1 << 24, "memory a render may need, in MiB (0: the machine's physical memory)");
 
-// Takes kMemoryLimitKey out of `settings` and throws ss::Error(SS_ERROR_INVALID_ARGUMENT) when
+// Takes kMemoryLimitSetting out of `settings` and throws ss::Error(SS_ERROR_INVALID_ARGUMENT) when
 // the render's budget (renderPeakBytes) is over the limit, with both figures in the message.
 void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& method, RenderSettings& settings);
 

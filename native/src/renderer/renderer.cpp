@@ -111,17 +111,12 @@ struct Renderer::Impl {
         destroyOnGlThread(oldest);
     }
 
-    // The scene's method object of that name, made once, after its setting keys (its own and
-    // the refinement's) and the refine flag are checked: a bad one fails before any work.
-    Method& method(const Scene& scene, const std::string& name, const RenderSettings& settings) {
+    // The scene's method object of that name, made once (its settings were checked against
+    // renderSettingTable before any work).
+    Method& method(const Scene& scene, const std::string& name) {
         auto& cached = cacheFor(scene);
         auto it = cached.methods.find(name);
         if (it == cached.methods.end()) it = cached.methods.emplace(name, createMethod(name)).first;
-        std::vector<std::string> keys = it->second->settingKeys();
-        for (const std::string& k : refinementKeys())
-            if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
-        settings.requireKnownKeys(name, keys);
-        (void)refinementRequested(settings);
         return *it->second;
     }
 
@@ -244,14 +239,29 @@ void checkLayers(const Layers& layers, const Camera& camera, const std::string& 
 
 namespace {
 
-// Settings every GL method takes besides its own, read by the renderer.
-constexpr const char* kEstimateKey = "estimate_rmse";
+// Taken by every method besides its own settings, read by the renderer (a CPU method: ignored).
+constexpr SettingSpec kEstimateSetting =
+    flagSetting("estimate_rmse", false, "estimate the pass's RMSE against rays at sparse pixels");
 // `auto`'s own settings: how many pixels the sparse check traces (0: use the shape rule) and
 // with how many light samples each.
-const std::vector<std::string>& autoSettingKeys() {
-    static const std::vector<std::string> keys = {"check_pixels", "check_samples", kEstimateKey};
-    return keys;
+constexpr SettingSpec kCheckPixels = [] {
+    SettingSpec s = intSetting("check_pixels", 0, 0, 1 << 24,
+                               "pixels the sparse check traces (0: no check, choose by the light's shape)");
+    s.renderDefault = "1 in 16 pixels, 4096..65536";
+    return s;
+}();
+constexpr SettingSpec kCheckSamples =
+    intSetting("check_samples", 0, 0, 1 << 16, "light samples per sparse-check pixel (0: the check's default)");
+
+}  // namespace
+
+SettingTable renderSettingTable(const std::string& method) {
+    const SettingTable own = method == "auto" ? SettingTable{kCheckPixels, kCheckSamples, kEstimateSetting}
+                                              : composed(createMethod(method)->settingTable(), {kEstimateSetting});
+    return composed(composed(own, refinementSettings()), {kMemoryLimitSetting});
 }
+
+namespace {
 
 // Two estimates this close are a tie, and the cheaper candidate wins: the check's own sampling
 // error is about this large at a few thousand pixels.
@@ -261,7 +271,7 @@ bool clearlyBetter(double a, double b) { return a < b * 0.97 - 0.0005; }
 
 Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::string& name,
                               const RenderSettings& settings) {
-    Method& m = impl_->method(scene, name, settings);
+    Method& m = impl_->method(scene, name);
     Frame& frame = *impl_->cacheFor(scene).frame;
 
     Layers layers;
@@ -311,13 +321,10 @@ Layers Renderer::render(const Scene& given, int lightIndex, const std::string& m
     std::string name = method;
     Layers layers;
     if (method == "auto") {
-        std::vector<std::string> keys = autoSettingKeys();
-        for (const std::string& k : refinementKeys()) keys.push_back(k);
-        settings.requireKnownKeys("auto", keys);
+        settings.requireKnownKeys("auto", renderSettingTable("auto"));
         const bool refine = refinementRequested(settings);  // refines the chosen method's result
-        const int pixels = settings.integer("check_pixels", sparseCheckDefaultPixels(camera.width, camera.height), 0,
-                                            1 << 24);
-        const int samples = settings.integer("check_samples", 0, 0, 1 << 16);
+        const int pixels = settings.integer(kCheckPixels, sparseCheckDefaultPixels(camera.width, camera.height));
+        const int samples = settings.integer(kCheckSamples);
         AutoTrials trials;
         RenderSettings candidateSettings = settings;  // each candidate with its own defaults
         candidateSettings.options.clear();
@@ -391,9 +398,10 @@ Layers Renderer::render(const Scene& given, int lightIndex, const std::string& m
         if (trialsOut) *trialsOut = std::move(trials);
     } else {
         RenderSettings own = settings;
-        const bool wantEstimate = own.flag(kEstimateKey, false);
-        own.options.erase(kEstimateKey);
-        const bool gl = impl_->method(scene, name, own).needsGl();
+        own.requireKnownKeys(name, renderSettingTable(name));
+        const bool wantEstimate = own.flag(kEstimateSetting);
+        own.options.erase(kEstimateSetting.key);
+        const bool gl = impl_->method(scene, name).needsGl();
         SparseCheck check;
         // Made before the rounds, whose results carry the estimate too.
         const bool checked = wantEstimate && gl &&

@@ -22,6 +22,11 @@ namespace ss {
 // CPU-only methods (reference) never start GL.
 struct SparseCheck;  // methods/sparse_check.h
 
+// Every setting render() accepts for `method` ("auto" included): the method's table, then
+// estimate_rmse, refinement's (renderer/refinement.h) and memory_limit_mb. Throws
+// ss::Error(SS_ERROR_INVALID_ARGUMENT) for an unknown method.
+SettingTable renderSettingTable(const std::string& method);
+
 class Renderer {
 public:
     explicit Renderer(ss_backend backend);

@@ -171,12 +171,24 @@ std::vector<PartLayer> partLayers(const DbufferGeometry& geo, const ShadowMap& m
     return layers;
 }
 
+constexpr SettingSpec kUmbraRule = choiceSetting("umbra_rule", "first_exit|farthest", "which exit depth bounds the umbra");
+constexpr SettingSpec kSmallOccluders =
+    flagSetting("small_occluders", false, "the small-occluder correction of the paper");
+constexpr SettingSpec kProfile = choiceSetting("profile", "smoothstep|segment", "visibility profile across the penumbra");
+constexpr SettingSpec kBiasTexels = floatSetting("bias_texels", 1.5, 0.0, 1000.0, "depth bias in shadow-map texels");
+// formula=paper: eq. 2 and eq. 3 as printed (docs/methods/dbuffer.md names the repairs).
+constexpr SettingSpec kFormula = choiceSetting("formula", "exact|paper", "exact, or eq. 2 and 3 as printed");
+// Tests: t and V before any clamping, so a NaN or infinity stays visible.
+constexpr SettingSpec kRawLayers = flagSetting("debug.raw_layers", false, "unclamped t and V layers");
+// The benchmark: glFinish at each stage so the progress marks time the GPU.
+constexpr SettingSpec kFinishStages = flagSetting("debug.finish_stages", false, "glFinish at each stage");
+
 class DbufferMethod final : public Method {
 public:
     DbufferMethod()
         : Method("dbuffer", MethodDevice::Gl,
-                 {"shadow_map_size", "umbra_rule", "small_occluders", "profile", "bias_texels", "formula",
-                  "raw_layers", "finish_stages"}) {}
+                 {kShadowMapSizeSetting, kUmbraRule, kSmallOccluders, kProfile, kBiasTexels, kFormula, kRawLayers,
+                  kFinishStages}) {}
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         settings.report(0.0f, "silhouettes and volumes");
@@ -188,16 +200,13 @@ public:
         geometry_ = dbufferGeometry(frame.scene(), lightIndex, frame.shadowFitBounds(lightIndex), settings.cancel);
         const DbufferGeometry& geo = *geometry_;
         const gl::Functions& g = frame.gl();
-        // finish_stages (benchmark): glFinish at each stage so the progress marks time the GPU.
-        const bool finishStages = settings.flag("finish_stages", false);
+        const bool finishStages = settings.flag(kFinishStages);
         auto finishStage = [&] {
             if (finishStages) g.Finish();
         };
         finishStage();
-        // formula=paper: eq. 2 and eq. 3 as printed (docs/methods/dbuffer.md names the repairs).
-        const bool paper = settings.choice("formula", "exact", {"exact", "paper"}) == "paper";
-        // raw_layers (tests): t and V before any clamping, so a NaN or infinity stays visible.
-        const bool raw = settings.flag("raw_layers", false);
+        const bool paper = settings.choice(kFormula) == "paper";
+        const bool raw = settings.flag(kRawLayers);
         const CameraPass& cam = frame.cameraPass();
         finishStage();
         const ShadowMap& map = frame.shadowMap(lightIndex, shadowMapSizeSetting(settings));
@@ -205,7 +214,7 @@ public:
 
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
         settings.report(0.3f, "D-buffer pass");
-        const bool firstExit = settings.choice("umbra_rule", "first_exit", {"first_exit", "farthest"}) == "first_exit";
+        const bool firstExit = settings.choice(kUmbraRule) == "first_exit";
         const DbufferKey key{frame.scene().lightGeometryKey(lightIndex), map.size, firstExit, paper, map.worldToClip()};
         if (dbufferKey_ && *dbufferKey_ == key) {
             ++stats_.lightWorkKept;
@@ -231,10 +240,10 @@ public:
         shade.setTexture("uDBuffer", unit++, dbuffer_.id());
         frame.setLightUniforms(shade, lightIndex);
         shade.set("uCentre", geo.disk.centre);
-        shade.set("uSmallOccluders", settings.flag("small_occluders", false) ? 1 : 0);
-        std::string profile = settings.choice("profile", "smoothstep", {"smoothstep", "segment"});
+        shade.set("uSmallOccluders", settings.flag(kSmallOccluders) ? 1 : 0);
+        std::string profile = settings.choice(kProfile);
         shade.set("uSegmentProfile", profile == "segment" ? 1 : 0);
-        shade.set("uBiasTexels", settings.number("bias_texels", 1.5f, 0.0f, 1000.0f));
+        shade.set("uBiasTexels", settings.number(kBiasTexels));
         shade.set("uPaperFormula", paper ? 1 : 0);
         frame.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -17,34 +17,38 @@ namespace ss {
 
 namespace {
 
+constexpr SettingSpec kSlices = intSetting("slices", 8, 1, 16, "slices the occluders are cut into");
+constexpr SettingSpec kResolution =
+    intSetting("resolution", 512, 16, 4096, "long side of the occlusion textures in texels");
+constexpr SettingSpec kFilter = choiceSetting(
+    "filter", "sat|mipmap|nbuffer", "pre-filter of the slices (sat: exact, and the fastest on llvmpipe)");
+constexpr SettingSpec kThinFix =
+    flagSetting("thin_fix", false, "thin-object fix on every mesh (off: only meshes flagged thin)");
+constexpr SettingSpec kFade = choiceSetting("fade", "below|paper", "how a slice's occlusion fades with depth");
+constexpr SettingSpec kSlicing = choiceSetting(
+    "slicing", "perspective|orthographic", "slice projection (orthographic: the paper's figure 4's worse one)");
+// Tests only: shade every slice, to show that skipping the empty ones changes nothing.
+constexpr SettingSpec kSkipEmptySlices = flagSetting("debug.skip_empty_slices", true, "skip empty slices");
+// The benchmark's per-stage times: wait for the GPU at each stage boundary.
+constexpr SettingSpec kFinishStages = flagSetting("debug.finish_stages", false, "glFinish at each stage");
+
 class OcclusionTexturesMethod final : public Method {
 public:
     OcclusionTexturesMethod()
         : Method("occlusion_textures", MethodDevice::Gl,
-                 {"slices", "resolution", "filter", "thin_fix", "fade", "finish_stages", "skip_empty_slices",
-                  "slicing"}) {}
+                 {kSlices, kResolution, kFilter, kThinFix, kFade, kSlicing, kSkipEmptySlices, kFinishStages}) {}
 
-    // Settings: slices (1..16, default 8), resolution (long side of the occlusion textures,
-    // default 512), filter (mipmap | nbuffer | sat, default sat: exact and the fastest on llvmpipe), thin_fix (on: every
-    // mesh; default off: only meshes flagged SS_MESH_THIN), fade (below | paper),
-    // slicing (perspective, the paper's | orthographic, its figure 4's worse alternative),
-    // finish_stages (benchmark: glFinish at each stage so the progress marks time the GPU),
-    // skip_empty_slices (default on; off only for the test that shows it is exact).
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        int sliceCount = settings.integer("slices", 8, 1, 16);
-        int resolution = settings.integer("resolution", 512, 16, 4096);
-        occlusion::Filter filter = occlusion::parseFilter(settings.text("filter", "sat"));
-        occlusion::Fade fade =
-            settings.choice("fade", "below", {"below", "paper"}) == "below" ? occlusion::Fade::Below : occlusion::Fade::Paper;
-        bool thinFixAll = settings.flag("thin_fix", false);
-        occlusion::Projection projection =
-            settings.choice("slicing", "perspective", {"perspective", "orthographic"}) == "perspective"
-                ? occlusion::Projection::Perspective
-                : occlusion::Projection::Orthographic;
-        // Tests only: shade every slice, to show that skipping the empty ones changes nothing.
-        bool skipEmptySlices = settings.flag("skip_empty_slices", true);
-        // The benchmark's per-stage times: wait for the GPU at each stage boundary.
-        bool finishStages = settings.flag("finish_stages", false);
+        int sliceCount = settings.integer(kSlices);
+        int resolution = settings.integer(kResolution);
+        occlusion::Filter filter = occlusion::parseFilter(settings.choice(kFilter));
+        occlusion::Fade fade = settings.choice(kFade) == "below" ? occlusion::Fade::Below : occlusion::Fade::Paper;
+        bool thinFixAll = settings.flag(kThinFix);
+        occlusion::Projection projection = settings.choice(kSlicing) == "perspective"
+                                               ? occlusion::Projection::Perspective
+                                               : occlusion::Projection::Orthographic;
+        bool skipEmptySlices = settings.flag(kSkipEmptySlices);
+        bool finishStages = settings.flag(kFinishStages);
         auto stage = [&](float fraction, const char* name) {
             if (finishStages) frame.gl().Finish();
             settings.report(fraction, name);

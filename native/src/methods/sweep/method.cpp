@@ -54,7 +54,7 @@ Layers lookUpSweepShadow(const CameraImages& cam, const Light& light, const Swee
 class SweepMethod final : public Method {
 public:
     // GL for the shared camera pass and for drawing the shadow mesh; the mesh is CPU geometry.
-    SweepMethod() : Method("sweep", MethodDevice::Gl, sweepSettingKeys()) {}
+    SweepMethod() : Method("sweep", MethodDevice::Gl, sweepSettings()) {}
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         shadowFor(frame.scene(), lightIndex, settings);
@@ -62,10 +62,7 @@ public:
 
     Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const SweepShadow& shadow = shadowFor(frame.scene(), lightIndex, settings);
-        // raster=gl (default): the shadow triangles drawn with the camera's matrices and resolved
-        // on the GPU; raster=cpu: the same triangles looked up per pixel over the camera pass
-        // read back (no GL draw of the mesh; a cross-check).
-        std::string raster = settings.choice("raster", "gl", {"gl", "cpu"});
+        std::string raster = settings.choice(kSweepRaster);
         settings.report(0.5f, "sweep: camera pass");
         Layers layers = raster == "gl" ? drawSweepShadow(frame, shadow, lightIndex)
                                        : lookUpSweepShadow(frame.cameraImages(), frame.light(lightIndex), shadow);

@@ -17,7 +17,27 @@
 namespace ss {
 
 
-std::vector<std::string> sweepSettingKeys() { return {"receiver", "fill", "border", "clusters", "passes", "weights", "raster"}; }
+namespace {
+
+constexpr SettingSpec kReceiver =
+    textSetting("receiver", "name of the planar receiver mesh (default: the one the shadow falls on)");
+constexpr SettingSpec kFill = choiceSetting("fill", "smooth|steps|rings", "how the penumbra between sample outlines is filled");
+constexpr SettingSpec kBorder = floatSetting("border", 0.25, 0.0, 1.0, "share of the light samples on the light's border");
+constexpr SettingSpec kClusters =
+    intSetting("clusters", 1, 1, 64, "strips a square or rectangle light is split into, each swept on its own");
+// How many sets of light samples are swept and averaged; auto: from the widest penumbra on
+// screen (sweepPassesFor), at most kSweepMaxPasses.
+constexpr SettingSpec kPasses = choiceSetting("passes", "auto|1|2|3|4|5|6|7|8|9|10|11|12|13|14|15|16",
+                                              "sets of light samples swept and averaged (auto: by the penumbra's width on screen)");
+constexpr SettingSpec kWeights =
+    choiceSetting("weights", "irradiance|equal", "sample weights: by irradiance, or equal (the paper)");
+
+}  // namespace
+
+const SettingTable& sweepSettings() {
+    static const SettingTable table{kReceiver, kFill, kBorder, kClusters, kPasses, kWeights, kSweepRaster};
+    return table;
+}
 
 SweepOptions sweepOptions(const RenderSettings& settings) {
     SweepOptions o;
@@ -26,13 +46,14 @@ SweepOptions sweepOptions(const RenderSettings& settings) {
     if (o.samples > 4096) fail(SS_ERROR_INVALID_ARGUMENT, "sweep: at most 4096 samples (got " + std::to_string(o.samples) + ")");
     o.seed = settings.seed;
     o.cancel = settings.cancel;
-    o.receiver = settings.text("receiver", "");
-    const std::string fill = settings.choice("fill", "smooth", {"smooth", "steps", "rings"});
+    o.receiver = settings.text(kReceiver);
+    const std::string fill = settings.choice(kFill);
     o.fill = fill == "smooth" ? planar::FillMode::Smooth : fill == "steps" ? planar::FillMode::Steps : planar::FillMode::Rings;
-    o.borderShare = settings.number("border", 0.25f, 0.0f, 1.0f);
-    o.clusters = settings.integer("clusters", 1, 1, 64);
-    o.passes = settings.text("passes", "auto") == "auto" ? 0 : settings.integer("passes", 1, 1, 16);
-    o.irradianceWeights = settings.choice("weights", "irradiance", {"irradiance", "equal"}) == "irradiance";
+    o.borderShare = settings.number(kBorder);
+    o.clusters = settings.integer(kClusters);
+    const std::string passes = settings.choice(kPasses);
+    o.passes = passes == "auto" ? 0 : std::stoi(passes);
+    o.irradianceWeights = settings.choice(kWeights) == "irradiance";
     return o;
 }
 

@@ -39,12 +39,17 @@ struct SweepOptions {
     const std::atomic<bool>* cancel = nullptr;
 };
 
-// The keys of RenderSettings::options the sweep reads (its shadow mesh and its camera pass).
-std::vector<std::string> sweepSettingKeys();
+// raster=gl: the shadow triangles drawn with the camera's matrices and resolved on the GPU;
+// raster=cpu: the same triangles looked up per pixel over the camera pass read back (a cross-check).
+inline constexpr SettingSpec kSweepRaster =
+    choiceSetting("raster", "gl|cpu", "gl: draw the shadow mesh; cpu: look it up per pixel (a cross-check)");
+// The settings the sweep reads (its shadow mesh and its camera pass).
+const SettingTable& sweepSettings();
 // Reads RenderSettings: samples (0 = 16), seed, options "receiver", "fill" (smooth|steps|rings),
 // "border" (share of samples on the light's border, 0..1), "clusters" (1..64), "passes"
-// (1..16 | auto, default auto), "weights" (irradiance|equal). Throws ss::Error on a bad value; unknown keys are the caller's check
-// (the renderer: the method's keys and refinement's; the C API: sweepSettingKeys()).
+// (auto|1..16, default auto), "weights" (irradiance|equal). Throws ss::Error on a bad value;
+// unknown keys are the caller's check (the renderer: the method's table and refinement's; the
+// C API: sweepSettings()).
 SweepOptions sweepOptions(const RenderSettings& settings);
 
 struct SweepTimings {
