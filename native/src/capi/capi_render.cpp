@@ -26,6 +26,8 @@ SS_API ss_status ss_render(ss_context* context, const ss_scene* scene, int32_t l
         result->requested = method;
         ss::Renderer::AutoTrials trials;
         std::vector<std::string> warnings;
+        ss_render_options defaults;
+        ss_render_options_default(&defaults);
         const ss_render_options& given = options ? *options : defaults;
         ss::Renderer::RoundFn rounds;
         if (given.round)
