@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -24,12 +25,18 @@
 namespace ss {
 namespace {
 
-// An L prism (asymmetric in x and y, so a mirror shows) in object space, outward wound.
+// An L prism (asymmetric in x and y, so a mirror shows) and a small box beside it, one mesh of
+// two closed pieces (dbuffer takes its silhouettes per piece), in object space, outward wound.
 Mesh lPrism() {
     const std::vector<glm::vec2> l = {{-0.8f, -0.8f}, {0.8f, -0.8f}, {0.8f, -0.2f},
                                       {-0.2f, -0.2f}, {-0.2f, 0.8f}, {-0.8f, 0.8f}};
     Mesh m = test::makePrism(l, 3, 0.9f, 1.2f, SS_MESH_CAST);
+    const Mesh box = test::makeBox({0.3f, 0.3f, 1.3f}, {0.7f, 0.6f, 1.5f}, SS_MESH_CAST);
+    const uint32_t base = uint32_t(m.objectPositions.size());
+    m.objectPositions.insert(m.objectPositions.end(), box.objectPositions.begin(), box.objectPositions.end());
+    for (const glm::uvec3& t : box.triangles) m.triangles.push_back(t + glm::uvec3(base));
     m.name = "L";
+    m.finalize();
     return m;
 }
 
@@ -128,20 +135,28 @@ Scene sceneWith(Mesh occluder) {
 }
 
 struct MethodBounds {
-    double twinMaxAbs;    // the mirrored mesh against its twin, every pixel
-    double referenceRmse; // the mirrored mesh against the reference of its twin
+    size_t twinPixels;     // pixels where the mirrored mesh and its twin differ by over 1e-3
+    double referenceRmse;  // the mirrored mesh against the reference of its twin
 };
 
-// Measured (Release, 96 x 72, reference 256 samples; SS_TEST_QUICK 64): the mirrored and the
-// twin renders are the same pixels for every method (GL ones up to the rasterisation of the
-// two float placements: a vertex moved by the matrix or given moved may round differently);
-// rmse against the reference is each method's own error on the L (see the quality tests).
+// The CPU methods see bit-identical world data (the same products, a cross product negated), so
+// their renders are the same pixels. The GL ones place the mirrored mesh with its matrix on the
+// GPU and the twin as given, which may round a vertex differently: a pixel whose centre lies on
+// an edge may change side. rmse against the reference: each method's own error on the L
+// (measured, Release, 96 x 72, reference 256 samples; see the quality tests), with room for
+// the quick run's 64 reference samples.
 const std::map<std::string, MethodBounds>& bounds() {
     static const std::map<std::string, MethodBounds> b = {
-        {"reference", {1e-3, 0.0}},   {"sweep", {1e-3, 0.03}},        {"dbuffer", {0.05, 0.04}},
-        {"auto", {0.05, 0.04}},       {"penumbra_map", {0.05, 0.08}}, {"pcss", {0.05, 0.08}},
-        {"shadow_map", {0.05, 0.15}}, {"occlusion_textures", {0.05, 0.08}}};
+        {"reference", {0, 0.0}},      {"sweep", {0, 0.03}},          {"dbuffer", {4, 0.04}},
+        {"auto", {4, 0.04}},          {"penumbra_map", {4, 0.08}},   {"pcss", {4, 0.08}},
+        {"shadow_map", {4, 0.15}},    {"occlusion_textures", {4, 0.08}}};
     return b;
+}
+
+size_t pixelsApart(const Image& a, const Image& b) {
+    size_t n = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) n += std::abs(a.pixels[i] - b.pixels[i]) > 1e-3f ? 1 : 0;
+    return n;
 }
 
 TEST(MirroredMeshes, EveryMethodShadowsAMirroredMeshLikeItsTwin) {
@@ -156,13 +171,14 @@ TEST(MirroredMeshes, EveryMethodShadowsAMirroredMeshLikeItsTwin) {
             const Layers a = test::run(renderer, mirrored, method, s);
             const Layers b = test::run(renderer, twin, method, s);
             const Metrics same = compareVisibility(test::layer(a, "V"), test::layer(b, "V"));
-            EXPECT_LE(same.maxAbs, bound.twinMaxAbs) << mirror.name << " " << method << ": " << same.toString();
-            EXPECT_LE(same.meanAbs, 1e-4) << mirror.name << " " << method << ": " << same.toString();
+            const size_t apart = pixelsApart(test::layer(a, "V"), test::layer(b, "V"));
+            EXPECT_LE(apart, bound.twinPixels) << mirror.name << " " << method << ": " << same.toString();
+            EXPECT_LE(same.meanAbs, 1e-3) << mirror.name << " " << method << ": " << same.toString();
             const Metrics vsTruth = compareVisibility(test::layer(a, "V"), test::layer(truth, "V"));
             if (method != "reference")
                 EXPECT_LE(vsTruth.rmse, bound.referenceRmse) << mirror.name << " " << method << ": " << vsTruth.toString();
-            std::printf("%s %-18s twin %s | reference rmse %.4f\n", mirror.name.c_str(), method.c_str(),
-                        same.toString().c_str(), vsTruth.rmse);
+            std::printf("%s %-18s twin: %zu pixels apart, %s | reference rmse %.4f\n", mirror.name.c_str(),
+                        method.c_str(), apart, same.toString().c_str(), vsTruth.rmse);
         }
     }
 }
