@@ -210,6 +210,7 @@ TEST(IoSceneFile, AMirroringScaleIsOutwardAndSavedAsGiven) {
     EXPECT_EQ(b.meshes()[0].objectToWorld, m.objectToWorld);
     EXPECT_TRUE(b.meshes()[0].mirrored);
     EXPECT_EQ(b.meshes()[0].faceNormals, m.faceNormals);
+    fs::remove_all(dir);
 }
 
 TEST(IoSceneFile, PrimitiveTransformInFile) {
