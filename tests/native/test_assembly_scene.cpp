@@ -16,9 +16,14 @@ namespace ss::test {
 
 namespace {
 
+// Rigid placements only: the winding stays outward.
+void place(TriangleSoup& s, const glm::mat4& m) {
+    for (glm::vec3& p : s.positions) p = glm::vec3(m * glm::vec4(p, 1.0f));
+}
+
 TriangleSoup boxSoup(const glm::vec3& lo, const glm::vec3& hi) {
     TriangleSoup s = ss::makeBox(hi - lo, 1);
-    transformSoup(s, glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)));
+    place(s, glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)));
     return s;
 }
 
@@ -40,7 +45,7 @@ TriangleSoup cylinderSoup(const glm::vec3& a, const glm::vec3& b, float radius, 
     glm::mat4 m = glm::translate(glm::mat4(1.0f), 0.5f * (a + b));
     const glm::vec3 turn = glm::cross(z, dir);
     if (glm::length(turn) > 1e-6f) m = glm::rotate(m, std::acos(glm::dot(z, dir)), glm::normalize(turn));
-    transformSoup(s, m);
+    place(s, m);
     return s;
 }
 
@@ -176,7 +181,7 @@ std::vector<std::pair<std::string, TriangleSoup>> parts(int fine) {
 Mesh meshOf(const std::string& name, const TriangleSoup& s, uint32_t flags) {
     Mesh m;
     m.name = name;
-    m.positions = s.positions;
+    m.objectPositions = s.positions;
     m.triangles = s.triangles;
     m.flags = flags;
     m.finalize();

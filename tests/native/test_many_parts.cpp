@@ -161,9 +161,9 @@ Mesh readBinaryStl(const std::string& path, const glm::mat4& placed) {
         }
         float v[9];
         std::memcpy(v, record + 12, sizeof v);
-        const uint32_t base = uint32_t(m.positions.size());
+        const uint32_t base = uint32_t(m.objectPositions.size());
         for (int k = 0; k < 3; ++k)
-            m.positions.push_back(glm::vec3(placed * glm::vec4(v[3 * k], v[3 * k + 1], v[3 * k + 2], 1.0f)));
+            m.objectPositions.push_back(glm::vec3(placed * glm::vec4(v[3 * k], v[3 * k + 1], v[3 * k + 2], 1.0f)));
         m.triangles.push_back({base, base + 1, base + 2});
     }
     std::fclose(f);

@@ -24,7 +24,7 @@ Mesh finalized(const Mesh& from, std::vector<glm::vec3> positions, std::vector<g
     Mesh m;
     m.name = from.name;
     m.flags = from.flags;
-    m.objectPositions = std::move(positions);  // world positions, placed by the identity
+    m.objectPositions = std::move(positions);  // world positions: the part's matrix is the identity
     m.triangles = std::move(triangles);
     m.finalize();
     return m;
