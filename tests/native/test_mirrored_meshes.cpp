@@ -142,14 +142,15 @@ struct MethodBounds {
 // The CPU methods see bit-identical world data (the same products, a cross product negated), so
 // their renders are the same pixels. The GL ones place the mirrored mesh with its matrix on the
 // GPU and the twin as given, which may round a vertex differently: a pixel whose centre lies on
-// an edge may change side. rmse against the reference: each method's own error on the L
-// (measured, Release, 96 x 72, reference 256 samples; see the quality tests), with room for
-// the quick run's 64 reference samples.
+// an edge may change side (measured: none does). rmse against the reference, measured (Release,
+// 96 x 72, 256 reference samples; x / xyz), with room for the quick run's 64 samples:
+//   reference 0 / 0, sweep 0.014 / 0.012, dbuffer 0.023 / 0.021, pcss and auto (pcss) 0.008 /
+//   0.009, occlusion_textures 0.038 / 0.030, penumbra_map 0.063 / 0.048, shadow_map 0.077 / 0.065.
 const std::map<std::string, MethodBounds>& bounds() {
     static const std::map<std::string, MethodBounds> b = {
-        {"reference", {0, 0.0}},      {"sweep", {0, 0.03}},          {"dbuffer", {4, 0.04}},
-        {"auto", {4, 0.04}},          {"penumbra_map", {4, 0.08}},   {"pcss", {4, 0.08}},
-        {"shadow_map", {4, 0.15}},    {"occlusion_textures", {4, 0.08}}};
+        {"reference", {0, 0.0}},      {"sweep", {0, 0.025}},         {"dbuffer", {4, 0.035}},
+        {"auto", {4, 0.035}},         {"penumbra_map", {4, 0.08}},   {"pcss", {4, 0.02}},
+        {"shadow_map", {4, 0.10}},    {"occlusion_textures", {4, 0.055}}};
     return b;
 }
 
