@@ -187,6 +187,32 @@ TEST(IoSceneFile, SaveKeepsTheTransform) {
     fs::remove_all(dir);
 }
 
+// A negative scale mirrors the mesh as Blender does (its outside stays outside); saving keeps
+// its triangles in their given order and the matrix, so it loads as the same mirrored mesh.
+TEST(IoSceneFile, AMirroringScaleIsOutwardAndSavedAsGiven) {
+    fs::path dir = tempDir("mirror");
+    std::string text = R"({"format":"softshadow-scene","version":1,"meshes":[
+        {"name":"Mirrored","primitive":{"type":"uv_sphere","segments":7,"rings":5},"scale":[-0.5,0.3,0.4],
+         "translate":[0.1,0.7,-2.9]}]})";
+    Scene a = parseSceneText(text, ".", "t.json");
+    const Mesh& m = a.meshes()[0];
+    ASSERT_TRUE(m.mirrored);
+    const glm::vec3 centre(0.1f, 0.7f, -2.9f);
+    for (size_t f = 0; f < m.triangles.size(); ++f) {
+        if (m.faceNormals[f] == glm::vec3(0.0f)) continue;
+        const glm::uvec3& t = m.triangles[f];
+        const glm::vec3 middle = (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0f;
+        EXPECT_GT(glm::dot(m.faceNormals[f], middle - centre), 0.0f) << "face " << f << " points inward";
+    }
+    saveSceneFile(a, (dir / "s.json").string());
+    Scene b = loadSceneFile((dir / "s.json").string());
+    EXPECT_EQ(b.meshes()[0].triangles, m.triangles);
+    EXPECT_EQ(b.meshes()[0].objectToWorld, m.objectToWorld);
+    EXPECT_TRUE(b.meshes()[0].mirrored);
+    EXPECT_EQ(b.meshes()[0].faceNormals, m.faceNormals);
+    fs::remove_all(dir);
+}
+
 TEST(IoSceneFile, PrimitiveTransformInFile) {
     std::string text = R"({"format":"softshadow-scene","version":1,"meshes":[
         {"name":"B","primitive":{"type":"box","size":1},"translate":[0,0,5],"rotate_deg":[0,0,90],"scale":2}]})";

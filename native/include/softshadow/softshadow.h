@@ -198,7 +198,8 @@ SS_API ss_status ss_scene_save(const ss_scene* scene, const char* path);
 /* A mesh: `xyz` its vertices in object space, `triangles` 0-based vertex indices, placed in the
    world by `object_to_world` (column-major, affine: last row 0 0 0 1; NULL = the identity, for
    vertices given in world space). The library derives the world vertices and normals from the
-   three (ss_scene_set_mesh_transform moves it later). A non-finite or non-affine matrix, or one
+   three (ss_scene_set_mesh_transform moves it later); a mirroring matrix (negative determinant)
+   keeps the surface's outside outside, as Blender does. A non-finite or non-affine matrix, or one
    that sends a vertex to infinity, fails with SS_ERROR_INVALID_ARGUMENT naming the mesh; NaN
    coordinates and indices out of range with SS_ERROR_INVALID_SCENE. */
 SS_API ss_status ss_scene_add_mesh(ss_scene* scene, const char* name, const float* xyz,

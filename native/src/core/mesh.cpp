@@ -70,10 +70,17 @@ void Mesh::place(const glm::mat4& transform) {
                 fail(SS_ERROR_INVALID_ARGUMENT, "mesh '" + name + "': the transform moves vertex " +
                                                     std::to_string(i) + " to a non-finite point");
         }
+    const bool mirrors = glm::determinant(glm::mat3(transform)) < 0.0f;
     std::vector<glm::vec3> normals = identity ? objectFaceNormals : faceNormalsOf(world, triangles);
+    // The cross product of mirrored edges is the mirrored normal negated: turned back outward.
+    if (mirrors)
+        for (glm::vec3& n : normals) n = -n;
+    if (mirrors != mirrored)
+        for (Edge& e : adjacency.edges) e.forward.flip();
     positions = std::move(world);
     faceNormals = std::move(normals);
     objectToWorld = transform;
+    mirrored = mirrors;
     report.degenerateFaces = size_t(std::count(faceNormals.begin(), faceNormals.end(), glm::vec3(0.0f)));
 }
 
@@ -96,6 +103,7 @@ void Mesh::finalize() {
             }
 
     adjacency = buildEdgeAdjacency(triangles);
+    mirrored = false;  // the adjacency was just built in the triangles' order
     report = MeshReport{};
     objectFaceNormals = faceNormalsOf(objectPositions, triangles);
     for (const Edge& e : adjacency.edges) {

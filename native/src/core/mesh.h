@@ -17,7 +17,8 @@ namespace ss {
 struct Edge {
     uint32_t v0 = 0, v1 = 0;
     std::vector<uint32_t> faces;
-    // For each entry of `faces`: true when that face walks the edge v0 -> v1.
+    // For each entry of `faces`: true when that face walks the edge v0 -> v1 in the world
+    // winding (Mesh::worldTriangle: reversed under a mirroring placement, set by Mesh::place()).
     std::vector<bool> forward;
 
     bool isOpen() const { return faces.size() == 1; }
@@ -68,9 +69,13 @@ struct Mesh {
     MeshReport report;
     std::vector<glm::vec3> objectFaceNormals;  // unit, zero for degenerate faces: what the GPU and
                                                // the ray tracer keep across moves
-    // Of the placement (finalize() and place()): what the methods read.
+    // Of the placement (finalize() and place()): what the methods read. A mirroring matrix
+    // (negative determinant, Blender's negative scale) turns the surface the way Blender does:
+    // the same side stays outside, so the world winding is the triangles' order reversed.
     std::vector<glm::vec3> positions;    // objectToWorld applied to objectPositions
-    std::vector<glm::vec3> faceNormals;  // of `positions`: unit, zero for degenerate faces
+    std::vector<glm::vec3> faceNormals;  // of `positions` in the world winding: unit, zero for
+                                         // degenerate faces; outward on a closed outward mesh
+    bool mirrored = false;               // det(objectToWorld) < 0
 
     bool casts() const;
     bool receives() const;
@@ -78,13 +83,20 @@ struct Mesh {
     bool seeThrough() const { return alpha != nullptr; }
     // objectToWorld is not the identity.
     bool transformed() const { return objectToWorld != glm::mat4(1.0f); }
+    // Triangle f as the world sees it: its order, or reversed where the placement mirrors. What
+    // tells a face's side from its vertex order reads this, not `triangles`.
+    glm::uvec3 worldTriangle(size_t f) const {
+        const glm::uvec3& t = triangles[f];
+        return mirrored ? glm::uvec3(t[0], t[2], t[1]) : t;
+    }
 
     // Validates (throws ss::Error on NaN/Inf coordinates, out-of-range indices or a bad
     // objectToWorld) and builds the adjacency, the normals, the report and the world positions.
     void finalize();
     // Moves the finalized mesh to `transform` (finite and affine, else ss::Error and the mesh is
     // left as it was): world positions, world normals and the degenerate-face count are made
-    // again; the adjacency and the object-space normals stay.
+    // again; the adjacency and the object-space normals stay, but for the edges' `forward` flags,
+    // which turn over when the placement starts or stops mirroring.
     void place(const glm::mat4& transform);
 };
 

@@ -52,8 +52,10 @@ std::vector<Mesh> meshParts(const Mesh& mesh, size_t maxParts) {
         if (positions.size() < mesh.positions.size()) {
             std::vector<glm::uvec3> triangles;
             triangles.reserve(mesh.triangles.size());
-            for (const glm::uvec3& t : mesh.triangles)
+            for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+                const glm::uvec3 t = mesh.worldTriangle(f);
                 triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+            }
             welded = finalized(mesh, std::move(positions), std::move(triangles));
             source = &welded;
         }
@@ -90,7 +92,7 @@ std::vector<Mesh> meshParts(const Mesh& mesh, size_t maxParts) {
         const uint32_t p = piece[f];
         glm::uvec3 t;
         for (int k = 0; k < 3; ++k) {
-            const uint32_t v = source->triangles[f][k];
+            const uint32_t v = source->worldTriangle(f)[k];
             if (localPiece[v] != p) {
                 localPiece[v] = p;
                 local[v] = uint32_t(positions[p].size());

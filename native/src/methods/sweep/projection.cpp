@@ -89,13 +89,13 @@ void projectMeshSample(const Mesh& m, const ReceiverPlane& plane, const planar::
             }
     std::vector<char> front(m.triangles.size(), 0);
     for (size_t f = 0; f < m.triangles.size(); ++f) {
-        const glm::uvec3& t = m.triangles[f];
+        const glm::uvec3 t = m.worldTriangle(f);
         front[f] = pr.facing(pos(t[0]), pos(t[1]), pos(t[2])) > 0;
     }
     if (!silhouettes) {
         for (size_t f = 0; f < m.triangles.size(); ++f)
             if (front[f]) {
-                const glm::uvec3& t = m.triangles[f];
+                const glm::uvec3 t = m.worldTriangle(f);
                 addTriangle(pr, snap, pos(t[0]), pos(t[1]), pos(t[2]), maxHeight, out);
                 if (stats) ++stats->fallbackTriangles;
             }
