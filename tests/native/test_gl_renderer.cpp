@@ -249,7 +249,7 @@ TEST(GlRendererSettings, AnUnknownKeyIsRefusedNamingItAndTheKnownKeys) {
         EXPECT_EQ(std::string(e.what()),
                   "method 'pcss' has no setting 'blocker_sample' (its settings: blocker_samples, pcf_samples, "
                   "shadow_map_size, max_search, estimate_rmse, refine, refine_margin, refine_samples, refine_verify, "
-                  "error_target, guard_band, memory_limit_mb)");
+                  "refine_rounds, error_target, guard_band, memory_limit_mb)");
     }
     // Every method refuses an unknown key, CPU and GL alike, and before any work.
     for (const std::string& method : methodNames()) {
