@@ -77,4 +77,12 @@ bool unseenCentreBlocked(vec3 P, vec3 N, bool needed) {
     return blocked;
 }
 
+// Whether P's light centre is below its horizon, where the march decides P alone: `visible` is
+// then 0 (blocked) or 1. Called by every fragment (the march is a loop, see above).
+bool belowHorizonDecides(vec3 P, vec3 N, vec3 toCentre, out float visible) {
+    bool seesCentre = centreAboveHorizon(N, toCentre);
+    visible = unseenCentreBlocked(P, N, !seesCentre) ? 0.0 : 1.0;
+    return !seesCentre;
+}
+
 #endif

@@ -51,11 +51,10 @@ void main() {
     vec3 toC = normalize(uCentre - s.position);
     // Seen from behind P's plane, the map and the D-buffer hold P's own mesh: the march towards
     // the light P sees decides, lit or umbra.
-    bool seesCentre = centreAboveHorizon(s.normal, toC);
-    bool unseenBlocked = unseenCentreBlocked(s.position, s.normal, !seesCentre);
-    if (!seesCentre) {
-        oResult.x = unseenBlocked ? 0.0 : 1.0;
-        oResult.z = unseenBlocked ? 1.0 : 0.0;
+    float visible;
+    if (belowHorizonDecides(s.position, s.normal, toC, visible)) {
+        oResult.x = visible;
+        oResult.z = 1.0 - visible;  // umbra
         return;
     }
     vec3 lookup = shadowLookupPoint(s.position, s.normal, toC);

@@ -48,11 +48,10 @@ void main() {
     vec2 uvP;
     // The map's texels at P hold P's own mesh seen from behind P's plane, and the penumbra map's
     // value is that surface's, not P's: the march towards the light P sees decides, lit or not.
-    bool seesCentre = centreAboveHorizon(s.normal, toLight);
-    bool unseenBlocked = unseenCentreBlocked(s.position, s.normal, !seesCentre);
-    if (!seesCentre) {
-        oResult.x = unseenBlocked ? 0.0 : 1.0;
-        oResult.z = unseenBlocked ? 1.0 : 0.0;
+    float visible;
+    if (belowHorizonDecides(s.position, s.normal, toLight, visible)) {
+        oResult.x = visible;
+        oResult.z = 1.0 - visible;  // hard shadow
         return;
     }
     if (!inMap || !shadowMapUv(P, uvP)) return;

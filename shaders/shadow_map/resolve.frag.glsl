@@ -18,13 +18,12 @@ void main() {
         oResult = vec4(1.0, 0.0, d, 0.0);
         return;
     }
-    float V = 1.0;
+    float V;
     vec2 uv;
     vec3 toLight = uShadowOrthographic != 0 ? -uShadowAxis : normalize(uShadowOrigin - s.position);
     vec3 P = shadowLookupPoint(s.position, s.normal, toLight);
-    bool seesCentre = centreAboveHorizon(s.normal, toLight);
-    if (unseenCentreBlocked(s.position, s.normal, !seesCentre)) V = 0.0;
-    if (seesCentre && shadowMapUv(P, uv)) {
+    bool belowHorizon = belowHorizonDecides(s.position, s.normal, toLight, V);
+    if (!belowHorizon && shadowMapUv(P, uv)) {
         ivec2 texel = clamp(ivec2(uv * uShadowSize), ivec2(0), ivec2(int(uShadowSize) - 1));
         float stored = texelFetch(uShadowDistance, texel, 0).r;
         d = shadowDistanceOf(P);
