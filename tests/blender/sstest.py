@@ -161,27 +161,27 @@ def clear_scene():
     return bpy.context.scene
 
 
-def add_plane(name, size, location, faces=True):
-    h = size / 2
-    mesh = bpy.data.meshes.new(name)
-    verts = [(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)]
-    mesh.from_pydata(verts, [], [(0, 1, 2, 3)] if faces else [])
-    obj = bpy.data.objects.new(name, mesh)
-    obj.location = location
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
-
-
-def add_box(name, size, location):
-    h = size / 2
-    verts = [(x, y, z) for z in (-h, h) for y in (-h, h) for x in (-h, h)]
-    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+def add_mesh(name, verts, faces, location):
+    """A mesh object of these vertices and faces at `location`, in the scene's collection."""
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata(verts, [], faces)
     obj = bpy.data.objects.new(name, mesh)
     obj.location = location
     bpy.context.scene.collection.objects.link(obj)
     return obj
+
+
+def add_plane(name, size, location, faces=True):
+    h = size / 2
+    verts = [(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)]
+    return add_mesh(name, verts, [(0, 1, 2, 3)] if faces else [], location)
+
+
+def add_box(name, size, location):
+    h = size / 2
+    verts = [(x, y, z) for z in (-h, h) for y in (-h, h) for x in (-h, h)]
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    return add_mesh(name, verts, faces, location)
 
 
 def add_light(name, kind="AREA", location=(0, 0, 4), shape="DISK", size=0.5, energy=500):

@@ -38,12 +38,7 @@ def add_l_prism(name, location, mirrored_data=False):
     if mirrored_data:
         verts = [(-x, y, z) for x, y, z in verts]
         faces = [(a, c, b) for a, b, c in faces]
-    mesh = bpy.data.meshes.new(name)
-    mesh.from_pydata(verts, [], faces)
-    obj = bpy.data.objects.new(name, mesh)
-    obj.location = location
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
+    return sstest.add_mesh(name, verts, faces, location)
 
 
 def signed_volume(mesh):
