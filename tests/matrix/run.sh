@@ -24,8 +24,8 @@ ROOT=$(cd "$HERE/../.." && pwd)
 . "$HERE/bpy.sh"
 SUITES=${SOFTSHADOW_MATRIX_SUITES:-trixie sid}
 # Every Blender test but those about the source tree itself (SOFTSHADOW_LIB, package.sh, the
-# add-on's modules imported from the source tree, the bench's scripts).
-SOURCE_ONLY=" test_register test_package test_scene_export_pure test_framing_pure test_error_regions "
+# add-on's modules imported from the source tree, the CLI beside the library, the bench's scripts).
+SOURCE_ONLY=" test_register test_package test_scene_export_pure test_framing_pure test_cli_export_parity test_error_regions "
 # SOFTSHADOW_MATRIX_TESTS (test names) runs only those, everywhere.
 TESTS=()
 for t in "$ROOT"/tests/blender/test_*.py; do
