@@ -55,7 +55,8 @@ SparseCheck runSparseCheck(const TraceScene& trace, const Scene& scene, int ligh
     return check;
 }
 
-double checkedLowerBound(const SparseCheck& check, const std::function<double(const PixelVisibility&)>& leastError) {
+double checkedLowerBound(const SparseCheck& check,
+                         const std::function<double(const PixelVisibility&)>& leastError) {
     double sum = 0.0;
     size_t n = 0;
     for (const PixelVisibility& p : check.truth) {

@@ -37,7 +37,8 @@ SparseCheck runSparseCheck(const TraceScene& trace, const Scene& scene, int ligh
 
 // The RMSE over the check's mask of `leastError` at each checked pixel: what a method whose
 // output is constrained is off by at least there (Method::errorLowerBound). 0 for an empty mask.
-double checkedLowerBound(const SparseCheck& check, const std::function<double(const PixelVisibility&)>& leastError);
+double checkedLowerBound(const SparseCheck& check,
+                         const std::function<double(const PixelVisibility&)>& leastError);
 
 // The RMSE of layers' V against the check over every checked pixel the light reaches (the
 // check's mask), whatever the method's own mask: outside it a method's V is 1 by the contract,

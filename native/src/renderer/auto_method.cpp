@@ -140,9 +140,12 @@ AutoChoice chooseAutoMethod(const Scene& scene, int lightIndex, const RenderSett
     const std::vector<std::string> candidates = autoCandidates(scene, lightIndex);
     std::vector<std::string> first, bounded;
     for (const std::string& candidate : candidates) {
-        if (!autoPriorKeeps(scene, lightIndex, candidate)) trials.skippedByPrior.push_back(candidate);
-        else if (methods.method(candidate).errorLowerBound(*check, scene, lightIndex) > 0.0) bounded.push_back(candidate);
-        else first.push_back(candidate);
+        if (!autoPriorKeeps(scene, lightIndex, candidate))
+            trials.skippedByPrior.push_back(candidate);
+        else if (methods.method(candidate).errorLowerBound(*check, scene, lightIndex) > 0.0)
+            bounded.push_back(candidate);
+        else
+            first.push_back(candidate);
     }
     std::map<std::string, std::pair<double, Layers>> scored;
     double best = std::numeric_limits<double>::infinity();
@@ -186,7 +189,8 @@ AutoChoice chooseAutoMethod(const Scene& scene, int lightIndex, const RenderSett
             choice.method = candidate, estimate = it->second.first;
     }
     if (choice.method.empty())
-        fail(SS_ERROR_UNSUPPORTED, "auto: no method can render light '" + scene.light(lightIndex).name + "' in this scene");
+        fail(SS_ERROR_UNSUPPORTED,
+             "auto: no method can render light '" + scene.light(lightIndex).name + "' in this scene");
     choice.layers = std::move(scored.at(choice.method).second);
     return choice;
 }

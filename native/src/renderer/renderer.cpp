@@ -314,23 +314,26 @@ Layers Renderer::render(const Scene& given, int lightIndex, const std::string& m
             [&](const std::string& candidate, const RenderSettings& own) {
                 return renderMethod(scene, lightIndex, candidate, own);
             }};
-        AutoChoice choice = chooseAutoMethod(scene, lightIndex, settings, checked ? &check : nullptr, methods, trials);
+        AutoChoice choice =
+            chooseAutoMethod(scene, lightIndex, settings, checked ? &check : nullptr, methods, trials);
         name = std::move(choice.method), layers = std::move(choice.layers);
     } else {
         name = method;
         RenderSettings own = settings;
         own.options.erase(kEstimateSetting.key);
         // Made before the rounds, whose results carry the estimate too; a CPU method is exact.
+        const Camera& camera = scene.camera();
         checked = settings.flag(kEstimateSetting) && impl_->method(scene, name).needsGl() &&
-                  sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(scene.camera().width, scene.camera().height),
-                              0, settings.seed, &check);
+                  sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(camera.width, camera.height), 0,
+                              settings.seed, &check);
         layers = renderMethod(scene, lightIndex, name, own);
     }
     double estimate = std::numeric_limits<double>::quiet_NaN();
     // Refinement traces on the caller's thread (progress and rounds may call Python); the
     // reference is exact already, so it has nothing to refine.
     if (refinementRequested(settings) && impl_->method(scene, name).needsGl()) {
-        const Refinement r = impl_->refine(scene, lightIndex, name, settings, layers, checked ? &check : nullptr, rounds);
+        const Refinement r =
+            impl_->refine(scene, lightIndex, name, settings, layers, checked ? &check : nullptr, rounds);
         if (checked) estimate = estimatedRmse(check, layers, &r.traced, r.errorTarget);
     } else if (checked) {
         estimate = estimatedRmse(check, layers);
