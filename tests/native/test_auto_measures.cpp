@@ -16,6 +16,7 @@
 #include "methods/sparse_check.h"
 #include "reference/render_reference.h"
 #include "reference/trace_pixels.h"
+#include "renderer/auto_method.h"
 #include "renderer/renderer.h"
 #include "test_pcss_support.h"
 #include "test_scenes.h"
@@ -304,7 +305,7 @@ TEST(AutoMeasures, SweepsBoundCountsTheSurfacesOffItsPlane) {
     TraceScene trace(scene);
     const SparseCheck check =
         runSparseCheck(trace, scene, 0, sparseCheckDefaultPixels(cam.width, cam.height), 0, RenderSettings{}.seed);
-    const double bound = errorLowerBound(check, "sweep", scene, 0);
+    const double bound = createMethod("sweep")->errorLowerBound(check, scene, 0);
     Renderer renderer(SS_BACKEND_AUTO);
     RenderSettings withEstimate;
     withEstimate.options["estimate_rmse"] = "1";
@@ -335,11 +336,11 @@ TEST(AutoMeasures, RendersAtMostThreeCandidatesAndTheBoundsHold) {
             withEstimate.options["estimate_rmse"] = "1";
             double estimate = 0.0;
             renderer.render(c.scene, 0, bounded, withEstimate, nullptr, &estimate);
-            const double bound = errorLowerBound(check, bounded, c.scene, 0);
+            const double bound = createMethod(bounded)->errorLowerBound(check, c.scene, 0);
             EXPECT_GT(bound, 0.0) << c.name << " " << bounded;
             EXPECT_LE(bound, estimate * 1.02 + 0.001) << c.name << " " << bounded;
         }
-        EXPECT_EQ(errorLowerBound(check, "pcss", c.scene, 0), 0.0);
+        EXPECT_EQ(createMethod("pcss")->errorLowerBound(check, c.scene, 0), 0.0);
         Renderer fresh(SS_BACKEND_AUTO);
         std::string used;
         Renderer::AutoTrials trials;

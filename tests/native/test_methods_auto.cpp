@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "methods/method.h"
+#include "renderer/auto_method.h"
 #include "renderer/renderer.h"
 #include "test_scenes.h"
 

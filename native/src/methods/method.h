@@ -16,6 +16,7 @@
 namespace ss {
 
 class Frame;  // frame/frame.h: the scene plus the GL passes shared by every method
+struct SparseCheck;  // methods/sparse_check.h
 
 // Where a method's render() runs: on the caller's thread, or on the library's GL render thread.
 enum class MethodDevice { Cpu, Gl };
@@ -48,6 +49,14 @@ public:
     // (never "umbra"/"penumbra": the renderer adds those, core/visibility_classes.h). Every
     // layer: camera resolution, row 0 = top.
     virtual Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) = 0;
+    // What the sparse check says about this method's estimate at its default settings before it
+    // renders: a lower bound where its output is constrained (checkedLowerBound). Over the check's
+    // own mask; the GL passes and the traced rays may disagree along hard and silhouette edges,
+    // so a bound is exact up to that thin band. Default: 0, no bound.
+    virtual double errorLowerBound(const SparseCheck& check, const Scene& scene, int lightIndex) const {
+        (void)check, (void)scene, (void)lightIndex;
+        return 0.0;
+    }
     const MethodStats& stats() const { return stats_; }
 
 protected:
@@ -61,16 +70,5 @@ private:
 
 // Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) for an unknown name; "auto" is not accepted here.
 std::unique_ptr<Method> createMethod(const std::string& name);
-// The methods `auto` renders and scores against the sparse check (methods/sparse_check.h), in
-// the order of their cost (cheapest first): the GL methods whose assumptions the scene keeps.
-std::vector<std::string> autoCandidates(const Scene& scene, int lightIndex);
-// `auto`'s prior, which of the candidates are worth rendering at all: the general methods, and the
-// one whose paper models the light's shape (dbuffer for disk, ellipse, point and spot lights,
-// occlusion_textures for square and rectangular ones); each of the two is left out under the
-// other shapes, where it models a light it is not given (docs/methods/README.md).
-bool autoPriorKeeps(const Scene& scene, int lightIndex, const std::string& method);
-// `auto`'s fallback where the sparse check cannot run: a method by the light's shape
-// (docs/methods/README.md).
-std::string chooseAutoMethodByShape(const Scene& scene, int lightIndex);
 
 }  // namespace ss

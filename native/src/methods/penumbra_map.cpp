@@ -14,6 +14,7 @@
 #include "methods/method.h"
 #include "methods/penumbra_map.h"
 #include "methods/receiver_plane.h"
+#include "methods/sparse_check.h"
 #include "frame/frame.h"
 
 namespace ss {
@@ -75,6 +76,16 @@ public:
     PenumbraMapMethod()
         : Method("penumbra_map", MethodDevice::Gl,
                  {kShadowMapSizeSetting, kConeSegments, kIntensity, kFinishStages}) {}
+
+    // V is 0 wherever the light centre is hidden (the umbra is the centre's hard shadow): off by
+    // the truth's V there.
+    double errorLowerBound(const SparseCheck& check, const Scene& scene, int lightIndex) const override {
+        (void)scene, (void)lightIndex;
+        return checkedLowerBound(check, [](const PixelVisibility& p) {
+            const double v = p.visibility;
+            return p.centreVisible ? 0.0 : v;
+        });
+    }
 
     void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
         const Light& light = frame.light(lightIndex);

@@ -1,9 +1,12 @@
 // How the hard shadow from the light centre is resolved over the camera pass (the baseline method).
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+
 #include "core/error.h"
 #include "gl/render_state.h"
 #include "gl/scratch_targets.h"
 #include "methods/method.h"
+#include "methods/sparse_check.h"
 #include "frame/frame.h"
 
 namespace ss {
@@ -54,6 +57,15 @@ public:
         if (settings.extraLayers) layers.add("light_distance", std::move(ch[2]));
         settings.report(1.0f, "done");
         return layers;
+    }
+
+    // V is 0 or 1: each checked pixel is off by at least min(V, 1 - V) of the truth.
+    double errorLowerBound(const SparseCheck& check, const Scene& scene, int lightIndex) const override {
+        (void)scene, (void)lightIndex;
+        return checkedLowerBound(check, [](const PixelVisibility& p) {
+            const double v = p.visibility;
+            return std::min(v, 1.0 - v);
+        });
     }
 };
 

@@ -6,8 +6,6 @@
 #include <cmath>
 #include <limits>
 
-#include "core/error.h"
-#include "methods/sweep/receiver.h"
 #include "reference/adaptive_sampling.h"
 #include "reference/render_reference.h"
 #include "reference/sample_sequence.h"
@@ -57,27 +55,14 @@ SparseCheck runSparseCheck(const TraceScene& trace, const Scene& scene, int ligh
     return check;
 }
 
-double errorLowerBound(const SparseCheck& check, const std::string& method, const Scene& scene, int lightIndex) {
-    const bool binary = method == "shadow_map", centreUmbra = method == "penumbra_map";
-    int sweepPlane = -1;
-    if (method == "sweep") {
-        try {
-            sweepPlane = findReceiverPlane(scene, scene.light(lightIndex), "").mesh;
-        } catch (const Error& e) {
-            if (e.status() != SS_ERROR_UNSUPPORTED) throw;
-            return 0.0;  // no plane to shade: the render says so, not the bound
-        }
-    }
-    if (!binary && !centreUmbra && sweepPlane < 0) return 0.0;
+double checkedLowerBound(const SparseCheck& check,
+                         const std::function<double(const PixelVisibility&)>& leastError) {
     double sum = 0.0;
     size_t n = 0;
     for (const PixelVisibility& p : check.truth) {
         if (!p.inMask) continue;
         ++n;
-        const double v = p.visibility;
-        const double d = binary ? std::min(v, 1.0 - v)
-                         : centreUmbra ? (p.centreVisible ? 0.0 : v)
-                                       : (p.mesh == sweepPlane ? 0.0 : 1.0 - v);
+        const double d = leastError(p);
         sum += d * d;
     }
     return n ? std::sqrt(sum / double(n)) : 0.0;

@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,15 +35,10 @@ std::vector<std::pair<int, int>> sparseCheckPixels(int width, int height, int pi
 SparseCheck runSparseCheck(const TraceScene& trace, const Scene& scene, int lightIndex, int pixelCount,
                            int samples, uint32_t seed);
 
-// What the check says about a method's estimate before it renders: a lower bound for the three
-// methods whose output is constrained, 0 for the others. shadow_map's V is 0 or 1, so each
-// checked pixel is off by at least min(V, 1 - V) of the truth; penumbra_map's V is 0 wherever the
-// light centre is hidden (its umbra is the centre's hard shadow), so it is off by the truth's V
-// there; sweep's V is 1 on every surface but its receiver plane's mesh (at its default
-// settings), so it is off by 1 - V there. Over the check's own mask; the GL passes and the
-// traced rays may disagree along hard and silhouette edges, so the bound is exact up to that
-// thin band.
-double errorLowerBound(const SparseCheck& check, const std::string& method, const Scene& scene, int lightIndex);
+// The RMSE over the check's mask of `leastError` at each checked pixel: what a method whose
+// output is constrained is off by at least there (Method::errorLowerBound). 0 for an empty mask.
+double checkedLowerBound(const SparseCheck& check,
+                         const std::function<double(const PixelVisibility&)>& leastError);
 
 // The RMSE of layers' V against the check over every checked pixel the light reaches (the
 // check's mask), whatever the method's own mask: outside it a method's V is 1 by the contract,

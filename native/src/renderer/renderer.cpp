@@ -18,6 +18,7 @@
 #include "gl/scratch_targets.h"
 #include "frame/frame.h"
 #include "methods/sparse_check.h"
+#include "renderer/auto_method.h"
 #include "renderer/refinement.h"
 #include "renderer/render_memory.h"
 #include "renderer/scene_in_range.h"
@@ -242,32 +243,14 @@ namespace {
 // Taken by every method besides its own settings, read by the renderer (a CPU method: ignored).
 constexpr SettingSpec kEstimateSetting =
     flagSetting("estimate_rmse", false, "estimate the pass's RMSE against rays at sparse pixels");
-// `auto`'s own settings: how many pixels the sparse check traces (0: use the shape rule) and
-// with how many light samples each.
-constexpr SettingSpec kCheckPixels = [] {
-    SettingSpec s = intSetting("check_pixels", 0, 0, 1 << 24,
-                               "pixels the sparse check traces (0: no check, choose by the light's shape)");
-    s.renderDefault = "1 in 16 pixels, 4096..65536";
-    return s;
-}();
-constexpr SettingSpec kCheckSamples =
-    intSetting("check_samples", 0, 0, 1 << 16, "light samples per sparse-check pixel (0: the check's default)");
 
 }  // namespace
 
 SettingTable renderSettingTable(const std::string& method) {
-    const SettingTable own = method == "auto" ? SettingTable{kCheckPixels, kCheckSamples, kEstimateSetting}
+    const SettingTable own = method == "auto" ? composed(autoSettingTable(), {kEstimateSetting})
                                               : composed(createMethod(method)->settingTable(), {kEstimateSetting});
     return composed(composed(own, refinementSettings()), {kMemoryLimitSetting});
 }
-
-namespace {
-
-// Two estimates this close are a tie, and the cheaper candidate wins: the check's own sampling
-// error is about this large at a few thousand pixels.
-bool clearlyBetter(double a, double b) { return a < b * 0.97 - 0.0005; }
-
-}  // namespace
 
 Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::string& name,
                               const RenderSettings& settings) {
@@ -315,109 +298,50 @@ Layers Renderer::render(const Scene& given, int lightIndex, const std::string& m
     RenderSettings settings = givenSettings;
     checkRenderMemory(given, lightIndex, method, settings);  // takes its own setting out
     const Scene& scene = impl_->inRange.forRender(given, lightIndex, warnings);
-    const Camera& camera = scene.camera();
     impl_->forgetStoppedThread();
-    double estimate = std::numeric_limits<double>::quiet_NaN();
-    std::string name = method;
+    settings.requireKnownKeys(method, renderSettingTable(method));
+    SparseCheck check;
+    bool checked = false;
+    std::string name;
     Layers layers;
+    AutoTrials trials;
     if (method == "auto") {
-        settings.requireKnownKeys("auto", renderSettingTable("auto"));
-        const bool refine = refinementRequested(settings);  // refines the chosen method's result
-        const int pixels = settings.integer(kCheckPixels, sparseCheckDefaultPixels(camera.width, camera.height));
-        const int samples = settings.integer(kCheckSamples);
-        AutoTrials trials;
-        RenderSettings candidateSettings = settings;  // each candidate with its own defaults
-        candidateSettings.options.clear();
-        SparseCheck check;
+        const AutoCheckSize size = autoCheckSize(settings, scene.camera());
         settings.report(0.0f, "auto: tracing the sparse check");
-        if (!sparseCheck(scene, lightIndex, pixels, samples, settings.seed, &check)) {
-            name = chooseAutoMethodByShape(scene, lightIndex);
-            layers = renderMethod(scene, lightIndex, name, candidateSettings);
-            trials.rendered.push_back(name);
-        } else {
-            // The candidates the prior keeps render first; a method whose lower bound on the
-            // check is above zero waits until the others set the score it must beat.
-            const std::vector<std::string> candidates = autoCandidates(scene, lightIndex);
-            std::vector<std::string> first, bounded;
-            for (const std::string& candidate : candidates) {
-                if (!autoPriorKeeps(scene, lightIndex, candidate)) trials.skippedByPrior.push_back(candidate);
-                else if (errorLowerBound(check, candidate, scene, lightIndex) > 0.0) bounded.push_back(candidate);
-                else first.push_back(candidate);
-            }
-            std::map<std::string, std::pair<double, Layers>> scored;
-            double best = std::numeric_limits<double>::infinity();
-            auto attempt = [&](const std::string& candidate) {
-                settings.report(0.0f, ("auto: trying " + candidate).c_str());
-                Layers tried;
-                try {
-                    tried = renderMethod(scene, lightIndex, candidate, candidateSettings);
-                } catch (const Error& e) {
-                    // A method that cannot take this scene (sweep without a planar receiver,
-                    // penumbra_map with the light on the receiver) is not a candidate here.
-                    if (e.status() == SS_ERROR_UNSUPPORTED) return;
-                    throw;
-                }
-                trials.rendered.push_back(candidate);
-                const double e = estimatedRmse(check, tried);
-                if (!std::isfinite(e)) return;
-                best = std::min(best, e);
-                scored.emplace(candidate, std::make_pair(e, std::move(tried)));
-                // A result the best so far is clearly better than can never be chosen (the
-                // choice below only ever moves to a clearly better one): its layers go now, so
-                // auto holds about one result, not one per candidate.
-                for (auto& [other, score] : scored)
-                    if (clearlyBetter(best, score.first)) score.second = Layers();
-            };
-            for (const std::string& candidate : first) attempt(candidate);
-            for (const std::string& candidate : bounded) {
-                // It could still win: its score may be at the bound, and a cheaper candidate
-                // keeps a tie (clearlyBetter).
-                if (!std::isfinite(best) || !clearlyBetter(best, errorLowerBound(check, candidate, scene, lightIndex)))
-                    attempt(candidate);
-                else trials.skippedByBound.push_back(candidate);
-            }
-            // The choice over what rendered, in the candidates' order of cost: the lowest
-            // estimate, the cheaper on a tie.
-            name.clear();
-            for (const std::string& candidate : candidates) {
-                auto it = scored.find(candidate);
-                if (it == scored.end()) continue;
-                if (name.empty() || clearlyBetter(it->second.first, estimate)) name = candidate, estimate = it->second.first;
-            }
-            if (!name.empty()) layers = std::move(scored.at(name).second);
-            if (name.empty()) fail(SS_ERROR_UNSUPPORTED, "auto: no method can render light '" +
-                                                             scene.light(lightIndex).name + "' in this scene");
-        }
-        // Refinement traces on the caller's thread (progress and rounds may call Python); the
-        // reference is exact already, so it has nothing to refine.
-        if (refine && impl_->cacheFor(scene).methods.at(name)->needsGl()) {
-            const bool checked = std::isfinite(estimate);
-            const Refinement r = impl_->refine(scene, lightIndex, name, settings, layers, checked ? &check : nullptr, rounds);
-            if (checked) estimate = estimatedRmse(check, layers, &r.traced, r.errorTarget);
-        }
-        if (trialsOut) *trialsOut = std::move(trials);
+        checked = sparseCheck(scene, lightIndex, size.pixels, size.samples, settings.seed, &check);
+        const AutoMethods methods{
+            [&](const std::string& candidate) -> const Method& { return impl_->method(scene, candidate); },
+            [&](const std::string& candidate, const RenderSettings& own) {
+                return renderMethod(scene, lightIndex, candidate, own);
+            }};
+        AutoChoice choice =
+            chooseAutoMethod(scene, lightIndex, settings, checked ? &check : nullptr, methods, trials);
+        name = std::move(choice.method), layers = std::move(choice.layers);
     } else {
+        name = method;
         RenderSettings own = settings;
-        own.requireKnownKeys(name, renderSettingTable(name));
-        const bool wantEstimate = own.flag(kEstimateSetting);
         own.options.erase(kEstimateSetting.key);
-        const bool gl = impl_->method(scene, name).needsGl();
-        SparseCheck check;
-        // Made before the rounds, whose results carry the estimate too.
-        const bool checked = wantEstimate && gl &&
-                             sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(camera.width, camera.height), 0,
-                                         settings.seed, &check);
+        // Made before the rounds, whose results carry the estimate too; a CPU method is exact.
+        const Camera& camera = scene.camera();
+        checked = settings.flag(kEstimateSetting) && impl_->method(scene, name).needsGl() &&
+                  sparseCheck(scene, lightIndex, sparseCheckDefaultPixels(camera.width, camera.height), 0,
+                              settings.seed, &check);
         layers = renderMethod(scene, lightIndex, name, own);
-        if (refinementRequested(own) && gl) {
-            const Refinement r = impl_->refine(scene, lightIndex, name, own, layers, checked ? &check : nullptr, rounds);
-            if (checked) estimate = estimatedRmse(check, layers, &r.traced, r.errorTarget);
-        } else if (checked) {
-            estimate = estimatedRmse(check, layers);
-        }
+    }
+    double estimate = std::numeric_limits<double>::quiet_NaN();
+    // Refinement traces on the caller's thread (progress and rounds may call Python); the
+    // reference is exact already, so it has nothing to refine.
+    if (refinementRequested(settings) && impl_->method(scene, name).needsGl()) {
+        const Refinement r =
+            impl_->refine(scene, lightIndex, name, settings, layers, checked ? &check : nullptr, rounds);
+        if (checked) estimate = estimatedRmse(check, layers, &r.traced, r.errorTarget);
+    } else if (checked) {
+        estimate = estimatedRmse(check, layers);
     }
     if (settings.extraLayers) addClassLayers(layers);
     if (methodUsed) *methodUsed = name;
     if (estimateOut) *estimateOut = estimate;
+    if (trialsOut) *trialsOut = std::move(trials);
     return layers;
 }
 

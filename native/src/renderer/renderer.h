@@ -1,4 +1,4 @@
-// How one (light, method) render is run: the GL render thread, the shared frame passes, "auto".
+// How one (light, method) render is run: the GL render thread, the shared frame passes, the checks.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <functional>
@@ -9,24 +9,23 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "methods/method.h"
+#include "renderer/auto_method.h"
 #include "renderer/cache_stats.h"
 #include "renderer/refinement.h"
 #include "softshadow/softshadow.h"
 
 namespace ss {
 
+// Every setting render() accepts for `method` ("auto" included): the method's table (auto's:
+// autoSettingTable), then estimate_rmse, refinement's (renderer/refinement.h) and
+// memory_limit_mb. Throws ss::Error(SS_ERROR_INVALID_ARGUMENT) for an unknown method.
+SettingTable renderSettingTable(const std::string& method);
+
 // Owns (lazily) the GL context on the library's own render thread and the per-scene cache of
 // shared passes (mesh buffers, the camera pass, one light-centre shadow map per light), so that
 // a series of render() calls on the same scene draws each shared pass once and, after an edit,
 // redraws only what the edit changed (see Frame).
 // CPU-only methods (reference) never start GL.
-struct SparseCheck;  // methods/sparse_check.h
-
-// Every setting render() accepts for `method` ("auto" included): the method's table, then
-// estimate_rmse, refinement's (renderer/refinement.h) and memory_limit_mb. Throws
-// ss::Error(SS_ERROR_INVALID_ARGUMENT) for an unknown method.
-SettingTable renderSettingTable(const std::string& method);
-
 class Renderer {
 public:
     explicit Renderer(ss_backend backend);
@@ -36,19 +35,14 @@ public:
     // JSON: {"backend", "renderer", "vendor", "version", "limits": {...}}.
     std::string info();
 
-    // What `auto` did for one render: the candidates it rendered (each at full size, in the order
-    // rendered), those its prior left out (autoPriorKeeps) and those whose lower bound on the
-    // check (errorLowerBound) already lost to a rendered one. Empty for any other method.
-    struct AutoTrials {
-        std::vector<std::string> rendered, skippedByPrior, skippedByBound;
-    };
+    // What `auto` did for one render (renderer/auto_method.h). Empty for any other method.
+    using AutoTrials = ss::AutoTrials;
 
     // `method` may be "auto"; *methodUsed receives the method that ran. *estimatedRmse (may be
     // null) receives the result's expected RMSE against the reference from the sparse exact
     // check (methods/sparse_check.h), or NaN where none was made: `auto` always makes one, any
     // other GL method when the setting "estimate_rmse=1" asks for it (a CPU method: never).
-    // "auto" renders the candidates its prior keeps, then those whose lower bound leaves them a
-    // chance, and keeps the one whose estimate is lowest (the cheaper on a tie).
+    // "auto" chooses as chooseAutoMethod (renderer/auto_method.h) says.
     // Meshes beyond the scene range (core/scene_range.h) are left out, one message each in
     // *warnings (may be null); a light or camera beyond it, or a render past the memory budget
     // (renderer/render_memory.h), fails before any work.

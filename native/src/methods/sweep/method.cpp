@@ -9,6 +9,8 @@
 
 #include "core/error.h"
 #include "methods/method.h"
+#include "methods/sparse_check.h"
+#include "methods/sweep/receiver.h"
 #include "methods/sweep/lookup.h"
 #include "methods/sweep/raster.h"
 #include "methods/sweep/shadow.h"
@@ -68,6 +70,23 @@ public:
                                        : lookUpSweepShadow(frame.cameraImages(), frame.light(lightIndex), shadow);
         settings.report(1.0f, "sweep: done");
         return layers;
+    }
+
+    // V is 1 on every surface but its receiver plane's mesh (at the default settings): off by
+    // 1 - V there.
+    double errorLowerBound(const SparseCheck& check, const Scene& scene, int lightIndex) const override {
+        int plane = -1;
+        try {
+            plane = findReceiverPlane(scene, scene.light(lightIndex), "").mesh;
+        } catch (const Error& e) {
+            if (e.status() != SS_ERROR_UNSUPPORTED) throw;
+            return 0.0;  // no plane to shade: the render says so, not the bound
+        }
+        if (plane < 0) return 0.0;
+        return checkedLowerBound(check, [plane](const PixelVisibility& p) {
+            const double v = p.visibility;
+            return p.mesh == plane ? 0.0 : 1.0 - v;
+        });
     }
 
 private:
