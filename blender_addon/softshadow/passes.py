@@ -85,18 +85,17 @@ class LiveScene:
         self.lights.append(light)
 
     def _try_add_mesh(self, mesh):
-        try:
-            self._add_mesh(mesh)
-            self._forget_refusal(mesh["name"])
-        except native.SoftShadowError as exc:
-            self._refuse(mesh, "object '%s' skipped: %s" % (mesh["name"], exc))
+        self._try_add(self._add_mesh, mesh, "object '%s' skipped: %s")
 
     def _try_add_light(self, light):
+        self._try_add(self._add_light, light, "light '%s' gets no pass: %s")
+
+    def _try_add(self, add, item, problem):
         try:
-            self._add_light(light)
-            self._forget_refusal(light["name"])
+            add(item)
+            self._forget_refusal(item["name"])
         except native.SoftShadowError as exc:
-            self._refuse(light, "light '%s' gets no pass: %s" % (light["name"], exc))
+            self._refuse(item, problem % (item["name"], exc))
 
     def _refuse(self, item, problem):
         self._forget_refusal(item["name"])
