@@ -56,7 +56,7 @@ for target in 0.005 0.02; do
 done
 t=$(render pcss pcss --no-extra)
 echo "| pcss | $t | 0 | $(rmse "$WORK/pcss.exr") |"
-t=$(render pcss_refine pcss --set refine=on)
+t=$(render pcss_refine pcss --refine)
 rays=$(layer_mean "$WORK/pcss_refine.exr" "_pcss_rays")
 refined=$(layer_mean "$WORK/pcss_refine.exr" "_pcss_refined")
 per=$(python3 -c "print('%.1f' % ($rays / $mask))")

@@ -102,7 +102,7 @@ for size in 512 1024; do
       row "$dir" "$size" "$truth_samples" "reference adaptive, error_target $target" "$t" "$f" \
         "$(ratio "$(layer_mean "$f" _rays --subc 16.5 --clamp:min=0 --mulc 1000 --clamp:max=1)" "$mask")" \
         "$(ratio "$(layer_mean "$f" _rays)" "$mask")" >> "$ROWS"
-      t=$(render "$dir" "refine_$target" pcss --set refine=on --set error_target="$target")
+      t=$(render "$dir" "refine_$target" pcss --refine --set error_target="$target")
       f="$dir/refine_$target.exr"
       row "$dir" "$size" "$truth_samples" "pcss refine=on, error_target $target" "$t" "$f" \
         "$(ratio "$(layer_mean "$f" _refined)" "$mask")" "$(ratio "$(layer_mean "$f" _rays)" "$mask")" >> "$ROWS"

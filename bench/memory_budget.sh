@@ -39,7 +39,7 @@ for side in $SIDES; do
       *) per=$PER_GL ;;
     esac
     set -- -m "${method%%+*}"
-    [ "$method" != "${method%+refine}" ] && set -- "$@" --set refine=on
+    [ "$method" != "${method%+refine}" ] && set -- "$@" --refine
     /usr/bin/time -v "$CLI" render "$SCENE" "$@" --width "$side" --height "$side" \
       -o "$WORK/memory_$side.exr" > "$WORK/memory_$side.txt" 2> "$WORK/memory_$side.time" ||
       { echo "| $method | ${side}² | failed: $(grep -m1 error "$WORK/memory_$side.time") | | |"; continue; }

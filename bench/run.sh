@@ -93,10 +93,10 @@ for dir in "$WORK"/scenes/*/; do
     > "$WORK/ours/$name/reference-adaptive.txt" || echo "adaptive reference failed on $name"
   # auto as a final render gets it (the add-on's Refine Final Renders, on by default), and the
   # method it took refined alone, for the time ratio.
-  "$CLI" render "$dir/scene.json" -m auto --set refine=on -o "$WORK/ours/$name/auto-refine.exr" \
+  "$CLI" render "$dir/scene.json" -m auto --refine -o "$WORK/ours/$name/auto-refine.exr" \
     > "$WORK/ours/$name/auto-refine.txt" || echo "auto refine=on failed on $name"
   used=$(awk '$2 == "auto" {print $3}' "$WORK/ours/$name/auto-refine.txt")
-  [ -n "$used" ] && "$CLI" render "$dir/scene.json" -m "$used" --set refine=on --no-extra \
+  [ -n "$used" ] && "$CLI" render "$dir/scene.json" -m "$used" --refine --no-extra \
     -o "$WORK/ours/$name/picked-refine.exr" > "$WORK/ours/$name/picked-refine.txt" &&
     rm -f "$WORK/ours/$name/picked-refine.exr"
   python3 "$HERE/traced_share.py" "$WORK/ours/$name" > "$WORK/ours/$name/traced.json" || echo "traced share failed on $name"

@@ -217,7 +217,8 @@ def refine_rays(scenes):
     light = full.lights[0]
     method = light.get("options", {}).get("method", "auto")
     result = full.scene.render(full.light_indices()[light["name"]], method, extra_layers=True,
-                               settings=preview._stage_settings(method, False, True))
+                               settings=preview._stage_settings(method, False), refine=True,
+                               refine_rounds=preview.REFINE_ROUNDS)
     try:
         return float(result.layers()["rays"].sum())
     finally:
@@ -232,7 +233,7 @@ def final_frame(scene, mover, live, moved=True):
     t0 = time.perf_counter()
     live.sync(exported)
     before = native.cache_stats()
-    result = live.scene.render(live.light_indices()[exported.lights[0]["name"]], "auto", settings="refine=on")
+    result = live.scene.render(live.light_indices()[exported.lights[0]["name"]], "auto", refine=True)
     try:
         result.layers()
     finally:

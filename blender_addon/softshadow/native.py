@@ -86,6 +86,7 @@ class _CameraDesc(ctypes.Structure):
     ]
 
 
+_REFINE_OFF, _REFINE_ON = 0, 1  # ss_refine
 _PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_float, ctypes.c_char_p)
 _ROUND_FN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int32, ctypes.c_int32)
 
@@ -100,6 +101,8 @@ class _RenderOptions(ctypes.Structure):
         ("settings", ctypes.c_char_p),
         ("round", _ROUND_FN),
         ("round_user", ctypes.c_void_p),
+        ("refine", ctypes.c_int32),
+        ("refine_rounds", ctypes.c_int32),
     ]
 
 
@@ -123,7 +126,6 @@ _SIGNATURES = {
     "ss_method_name": (ctypes.c_char_p, [ctypes.c_int32]),
     "ss_method_setting_count": (ctypes.c_int32, [ctypes.c_char_p]),
     "ss_method_setting_info": (_st, [ctypes.c_char_p, ctypes.c_int32, ctypes.POINTER(_SettingInfo)]),
-    "ss_settings_has": (_st, [ctypes.c_char_p, ctypes.c_char_p, ctypes.POINTER(ctypes.c_int32)]),
     "ss_scene_create": (_st, [ctypes.POINTER(_vp)]),
     "ss_scene_destroy": (None, [_vp]),
     "ss_scene_load": (_st, [ctypes.c_char_p, ctypes.POINTER(_vp)]),
@@ -281,15 +283,6 @@ def method_settings(method):
         _check(loaded.ss_method_setting_info(_text(method), i, ctypes.byref(info)))
         out.append(tuple(getattr(info, f).decode() for f, _t in _SettingInfo._fields_))
     return out
-
-
-def settings_give(text, key):
-    """Whether the settings string `text` gives `key`, read by the library's own parser; a
-    malformed string gives nothing here (the render refuses it with the library's message)."""
-    found = ctypes.c_int32(0)
-    if lib().ss_settings_has(_text(text or ""), _text(key), ctypes.byref(found)) != 0:
-        return False
-    return bool(found.value)
 
 
 def pass_name(light_name, method, layer=None):
@@ -584,13 +577,14 @@ class Scene(_Owned):
         return lib().ss_scene_mesh_count(self.handle)
 
     def render(self, light_index, method="auto", samples=0, seed=1, extra_layers=False,
-               settings=None, progress=None, rounds=None):
+               settings=None, progress=None, refine=False, refine_rounds=0, rounds=None):
         """Renders one light with one method on the shared context. Returns a Result.
 
         progress(fraction, stage) -> True to cancel; it is called from the library's thread.
-        rounds(partial, round, count) -> True to cancel: with "refine=on;refine_rounds=N" it hears
-        each refinement round but the last (the returned Result) on this thread; `partial` reads
-        like a Result until the call returns.
+        refine: re-trace a GL method's uncertain pixels with rays, in refine_rounds shares (0: 1).
+        rounds(partial, round, count) -> True to cancel: with refine and refine_rounds N > 1 it
+        hears each refinement round but the last (the returned Result) on this thread; `partial`
+        reads like a Result until the call returns.
         """
         library = lib()
         ctx = context()
@@ -599,6 +593,8 @@ class Scene(_Owned):
         options.samples = int(samples)
         options.seed = int(seed)
         options.extra_layers = 1 if extra_layers else 0
+        options.refine = _REFINE_ON if refine else _REFINE_OFF
+        options.refine_rounds = int(refine_rounds)
         callback = None
         if progress is not None:
             def _call(_user, fraction, stage):

@@ -267,13 +267,10 @@ def _wanted(exported, lights, methods, only_enabled):
     return chosen
 
 
-def _settings_for(options, method, final):
-    """The light's settings string; in a final render with Refine Final Renders on, plus
-    refine=on (the reference is exact already; a refine the user typed stays as typed)."""
-    text = options.get("settings") or ""
-    if final and options.get("refine_final") and method != "reference" and not native.settings_give(text, "refine"):
-        text = "refine=on" + (";" + text if text.strip() else "")
-    return text or None
+def _refines(options, final):
+    """Whether the light's pass is refined: in a final render with its Refine Final Renders on
+    (the library leaves the exact reference as it is)."""
+    return bool(final and options.get("refine_final"))
 
 
 # render_passes' scene, kept between calls: the next frame of an animation sends only what moved.
@@ -313,7 +310,8 @@ def compute(exported, lights=None, methods=None, extra_layers=False, only_enable
 
             try:
                 result = scene.render(indices[light["name"]], method, samples=options.get("samples", 0),
-                                      extra_layers=extra_layers, settings=_settings_for(options, method, final),
+                                      extra_layers=extra_layers, settings=options.get("settings") or None,
+                                      refine=_refines(options, final),
                                       progress=step if progress else None)
             except native.SoftShadowError as exc:
                 if exc.cancelled:

@@ -10,10 +10,10 @@ rendered twice, progressively: a coarse image (COARSE_DIVISOR times fewer pixels
 the viewport draws scaled up at once, then the full one that replaces it. The two sizes are two
 native scenes fed the same edits, so each keeps its own camera pass and neither is redrawn whole
 for the other's resolution. While the scene and the view stay as they are, the full image is then
-refined: the same GL pass with `refine=on`, whose rays re-trace the pixels the pass is unsure of
+refined: the same GL pass with refinement on, whose rays re-trace the pixels the pass is unsure of
 in REFINE_ROUNDS rounds, each drawn as it lands (deterministic sampling, the largest corrections
 first, so the image only gets closer to the truth; the last round is the final render's
-refine=on). A newer request cancels the running render, coarse, full or refined, through the
+refined pass). A newer request cancels the running render, coarse, full or refined, through the
 progress and round callbacks (within 50 ms: the library polls them while it traces). A viewport
 always draws the last image it received until a newer one lands (an edit, a new view or a failed
 render never blanks it), and says in its corner what the preview is doing. Images are drawn with the `gpu`
@@ -43,9 +43,8 @@ RECORD_LENGTH = 64    # entries kept in _State.delivered and _State.cancelled
 # The stages of one request, in the order they are delivered: each image is closer to the truth.
 STAGES = ("coarse", "full", "refined")
 # The refined image comes in rounds, each a further share of the uncertain pixels traced (the
-# largest corrections first), drawn as it lands; the last is the final render's refine=on.
+# largest corrections first), drawn as it lands; the last is the final render's refined pass.
 REFINE_ROUNDS = 4
-REFINE_SETTINGS = "refine=on;refine_rounds=%d"
 
 
 def fast_methods():
@@ -143,7 +142,7 @@ def _render_lights(live, edits, camera, cancelled, coarse=False, refine=False, p
             measure = method == "auto" and refine and choices is not None
             if method == "auto" and choices is not None and light["name"] in choices.methods:
                 method, measure = choices.methods[light["name"]], False
-            settings = _stage_settings(method, coarse, refine, measure)
+            settings = _stage_settings(method, coarse, measure)
 
             def heard(fraction, _stage, done=done):
                 if progress is not None and not refine:
@@ -163,6 +162,7 @@ def _render_lights(live, edits, camera, cancelled, coarse=False, refine=False, p
             if refine and progress is not None:
                 progress(done / len(lights))
             result = scene.render(indices[light["name"]], method, settings=settings, progress=heard,
+                                  refine=refine, refine_rounds=REFINE_ROUNDS if refine else 0,
                                   rounds=round_landed if refine else None)
             try:
                 v = result.layers().get("V")
@@ -187,7 +187,7 @@ def overlay(vs, camera):
     return np.ascontiguousarray(np.flipud(rgba))  # textures start at the bottom row
 
 
-def _stage_settings(method, coarse, refine, measure=False):
+def _stage_settings(method, coarse, measure=False):
     """The settings string of one light's render in a stage. The coarse and full images cannot
     wait for auto to render every candidate: without a measured choice (measure, the refined
     stage's) auto takes its rule by the light's shape (docs/methods/README.md)."""
@@ -195,8 +195,6 @@ def _stage_settings(method, coarse, refine, measure=False):
         parts = [] if measure else ["check_pixels=0"]
     else:
         parts = [COARSE_SETTINGS[method]] if coarse and method in COARSE_SETTINGS else []
-    if refine:
-        parts.append(REFINE_SETTINGS % REFINE_ROUNDS)
     return ";".join(parts) or None
 
 

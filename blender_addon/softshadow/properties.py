@@ -54,8 +54,8 @@ class SoftShadowLightSettings(bpy.types.PropertyGroup):
         name="Refine Final Renders", default=True,
         description="In final renders (F12, blender -b) ray trace the pixels the method cannot "
                     "decide, its penumbra and a margin, after checking the rest with a few rays "
-                    "(the method's setting refine=on): shadows as close to Cycles as EEVEE's "
-                    "best, in seconds. The viewport preview stays fast")
+                    "(Method Settings' refine_margin, refine_samples, ... tune it): shadows as close "
+                    "to Cycles as EEVEE's best, in seconds. The viewport preview stays fast")
     replaces_shadow: bpy.props.BoolProperty(
         name="Pass Replaces the Shadow", default=False, options={"HIDDEN"},
         description="Set by the Replace composite: the renderer's shadow of this light is off "

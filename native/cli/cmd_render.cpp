@@ -95,7 +95,7 @@ void preparePreviewFolder(const std::string& dir) {
 int runRender(const std::vector<std::string>& argv) {
     Args args(argv, {"-m", "--method", "-l", "--light", "--width", "--height", "--samples", "--seed",
                      "--set", "--backend", "--png-dir", "-o", "--output"},
-              {"--no-extra"});
+              {"--no-extra", "--refine"});
     if (args.positional().size() != 1) throw CliError("render needs exactly one SCENE file");
     if (args.has("-o") && args.has("--output")) throw CliError("give -o or --output, not both");
     std::string out = args.value("-o", args.value("--output"));
@@ -123,6 +123,7 @@ int runRender(const std::vector<std::string>& argv) {
     options.samples = args.integer("--samples", 0, 0, 1 << 24);
     if (args.has("--seed")) options.seed = uint32_t(args.integer("--seed", 1, 0, 2147483647));
     options.extra_layers = args.flag("--no-extra") ? 0 : 1;
+    options.refine = args.flag("--refine") ? SS_REFINE_ON : SS_REFINE_OFF;
     std::string settings;
     for (const std::string& kv : args.values("--set")) {
         if (kv.find('=') == std::string::npos) throw CliError("--set needs key=value, got '" + kv + "'");

@@ -140,11 +140,17 @@ def test_final_renders_refine_by_default_and_only_final_renders():
     certain = refined == 0
     sstest.check(np.array_equal(v_final[certain], v_plain[certain]), "untouched where pcss is certain")
     sstest.check(not np.array_equal(v_final[~certain], v_plain[~certain]), "traced where it is not")
-    # A refine typed in the light's settings is kept as typed, not given twice.
-    key.settings = "refine=off"
+    # Refine Final Renders off: the final render writes the fast pass.
+    key.refine_final = False
     path, problems, _ = ss.api.render_frame(scene)
     sstest.check(problems == [] and path, "written: %s" % problems)
-    sstest.check("ViewLayer.Key_pcss_refined.V" not in sstest.exr_channels(path), "refine=off typed wins")
+    sstest.check("ViewLayer.Key_pcss_refined.V" not in sstest.exr_channels(path), "Refine Final Renders off")
+    v_off = sstest.exr_channel(path, "ViewLayer.Key_pcss.V")
+    sstest.check(np.array_equal(v_off, v_plain), "the fast pass, as render_passes(final=False)")
+    # Refinement is the checkbox: typed as a setting it is an unknown key, named.
+    key.settings = "refine=on"
+    _path, problems, _ = ss.api.render_frame(scene)
+    sstest.check(any("'refine'" in p for p in problems), "refine as a setting is refused: %s" % problems)
 
 
 if __name__ == "__main__":

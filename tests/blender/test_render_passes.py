@@ -173,9 +173,9 @@ def test_the_settings_tooltip_lists_the_chosen_methods_keys():
     sstest.check(hasattr(bpy.ops.softshadow, "method_settings"), "the settings-keys operator is registered")
     pcss = ss.ui.method_settings_text("pcss")
     keys = [entry[0] for entry in ss.native.method_settings("pcss")]
-    sstest.check(keys[:4] == ["blocker_samples", "pcf_samples", "shadow_map_size", "max_search"] and "refine" in keys,
-                 "pcss's keys, its own first: %s" % keys)
-    sstest.check("blocker_samples (default 16, 1..1024)" in pcss and "refine (default off, on/off)" in pcss,
+    sstest.check(keys[:4] == ["blocker_samples", "pcf_samples", "shadow_map_size", "max_search"]
+                 and "refine_margin" in keys, "pcss's keys, its own first: %s" % keys)
+    sstest.check("blocker_samples (default 16, 1..1024)" in pcss and "refine_margin (default 3, 0..32)" in pcss,
                  "each key with default and range: %s" % pcss)
     occlusion = ss.ui.method_settings_text("occlusion_textures")
     sstest.check("filter (default sat, sat|mipmap|nbuffer)" in occlusion and "blocker_samples" not in occlusion,
@@ -184,13 +184,8 @@ def test_the_settings_tooltip_lists_the_chosen_methods_keys():
     sstest.check("check_pixels" in ss.ui.method_settings_text("auto"), "auto's own keys")
     tip = ss.ui.SOFTSHADOW_OT_method_settings.description(bpy.context, type("Props", (), {"method": "sweep"})())
     sstest.check("fill (default smooth, smooth|steps|rings)" in tip, "sweep's tooltip: %s" % tip)
-    # Refine Final Renders asks the library's parser whether refine was typed.
-    sstest.check(ss.native.settings_give("fill=rings; refine =off", "refine") is False and
-                 ss.native.settings_give("fill=rings;refine=off", "refine") and
-                 not ss.native.settings_give("novalue", "refine"), "settings_give reads as the library parses")
-    sstest.check(ss.passes._settings_for({"settings": "refine=off", "refine_final": True}, "pcss", True) == "refine=off"
-                 and ss.passes._settings_for({"settings": "fill=rings", "refine_final": True}, "sweep", True)
-                 == "refine=on;fill=rings", "a typed refine wins, otherwise refine=on is added")
+    # Refinement is a render option (Refine Final Renders), not a key of any method.
+    sstest.check("refine" not in keys and "refine_rounds" not in keys, "no refine key: %s" % keys)
 
 
 def test_method_list_comes_from_the_library():

@@ -172,7 +172,7 @@ def test_the_refined_image_comes_in_rounds_whose_error_falls_to_the_final_render
         live = scenes["full"]
         index = live.light_indices()["Key"]
         results = [live.scene.render(index, "reference", samples=4096, extra_layers=True),
-                   live.scene.render(index, "pcss", settings="refine=on")]
+                   live.scene.render(index, "pcss", refine=True)]
         try:
             reference = results[0].layers()
             truth, mask, once = reference["V"], reference["mask"], results[1].layers()["V"]
@@ -192,7 +192,7 @@ def test_the_refined_image_comes_in_rounds_whose_error_falls_to_the_final_render
     sstest.check(errors[1] < 0.75 * errors[0], "the first round corrects the most: %s" % errors)
     sstest.check(errors[-1] <= 0.01, "the last round meets the final render's error target: %.4f" % errors[-1])
     expected = preview.overlay({"Key": once}, camera)
-    sstest.check(np.array_equal(images[-1][1], expected), "the last round is the final render's refine=on")
+    sstest.check(np.array_equal(images[-1][1], expected), "the last round is the final render's refined pass")
     refining = [text for text in statuses if "refining" in text]
     percents = [int(text.split()[-2]) for text in refining]
     sstest.check(percents == sorted(percents) and set(percents) >= {25, 50, 75},

@@ -35,6 +35,16 @@ inline Layers renderWith(const Scene& scene, const std::string& method,
     return sharedRenderer().render(scene, light, method, s, nullptr);
 }
 
+// renderWith, refined (RenderSettings::refine: what a final render asks for).
+inline Layers refinedWith(const Scene& scene, const std::string& method,
+                          const std::map<std::string, std::string>& options = {}, int samples = 0) {
+    RenderSettings s;
+    s.options = options;
+    s.samples = samples;
+    s.refine = true;
+    return sharedRenderer().render(scene, 0, method, s, nullptr);
+}
+
 // Expects rendering `method` with `options` to fail with SS_ERROR_INVALID_ARGUMENT and a message
 // naming `setting`.
 inline void expectSettingRefused(const Scene& scene, const std::string& method,

@@ -1,4 +1,4 @@
-// Checks "refine=on" for the GL methods: untouched where the pass is certain, closer to the truth elsewhere.
+// Checks refinement (RenderSettings::refine): untouched where the pass is certain, closer to the truth elsewhere.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
@@ -30,7 +30,7 @@ TEST(Refinement, IdenticalToTheGlResultWhereThePassIsCertain) {
     Scene scene = test::sceneBox(smallSoftScene());
     for (const char* method : {"pcss", "shadow_map", "penumbra_map"}) {
         const Layers gl = test::renderWith(scene, method);
-        const Layers refined = test::renderWith(scene, method, {{"refine", "on"}});
+        const Layers refined = test::refinedWith(scene, method);
         const Image &vGl = layer(gl, "V"), &vRef = layer(refined, "V"), &traced = layer(refined, "refined"),
                     &rays = layer(refined, "rays"), &mask = layer(gl, "mask");
         const Image uncertain = uncertainPixels(vGl, mask, 3);
@@ -72,7 +72,7 @@ TEST(Refinement, CloserToA4096SampleReferenceThanTheGlMethodAlone) {
     const Layers truth = test::renderWith(scene, "reference", {}, 4096);
     for (const char* method : {"pcss", "shadow_map"}) {
         const Layers gl = test::renderWith(scene, method);
-        const Layers refined = test::renderWith(scene, method, {{"refine", "on"}});
+        const Layers refined = test::refinedWith(scene, method);
         const Metrics a = test::compareToReference(gl, truth), b = test::compareToReference(refined, truth);
         double traced = 0.0;
         for (float v : layer(refined, "refined").pixels) traced += v;
@@ -92,7 +92,8 @@ TEST(Refinement, TheEstimateOfARefinedResultBoundsItsErrorWithinTheTarget) {
     const Layers truth = test::renderWith(scene, "reference", {}, 4096);
     for (const char* target : {"0.005", "0.01"}) {
         RenderSettings s;
-        s.options = {{"refine", "on"}, {"error_target", target}, {"estimate_rmse", "1"}};
+        s.options = {{"error_target", target}, {"estimate_rmse", "1"}};
+        s.refine = true;
         double estimate = -1.0;
         const Layers refined = test::sharedRenderer().render(scene, 0, "pcss", s, nullptr, &estimate);
         const double measured =
@@ -116,7 +117,7 @@ TEST(Refinement, RecoversFromAGlPassThatIsWronglyCertain) {
         layers.add("V", std::move(v));
         layers.add("mask", mask);
         RenderSettings s;
-        s.options = {{"refine", "on"}, {"refine_verify", verify}};
+        s.options = {{"refine_verify", verify}};
         TraceSceneCache cache;
         refineUncertainPixels(scene, 0, s, cache, layers);
         return layers;
@@ -152,7 +153,7 @@ TEST(Refinement, AnswersEveryPixelTheLightReachesNotOnlyTheMethodsMask) {
     scene.addMesh(platform);
     const Layers reference = test::renderWith(scene, "reference", {}, 1024);
     const Layers plain = test::renderWith(scene, "sweep");
-    const Layers refined = test::renderWith(scene, "sweep", {{"refine", "on"}});
+    const Layers refined = test::refinedWith(scene, "sweep");
     const Image& truthMask = layer(reference, "mask");
     auto rmse = [&](const Layers& l) { return compareVisibility(layer(l, "V"), layer(reference, "V"), &truthMask).rmse; };
     size_t outsidePlain = 0, outsideRefined = 0;
@@ -167,19 +168,28 @@ TEST(Refinement, AnswersEveryPixelTheLightReachesNotOnlyTheMethodsMask) {
     EXPECT_LT(rmse(refined), 0.01) << "sweep alone " << rmse(plain);
 }
 
-TEST(Refinement, EveryMethodAcceptsTheKeyAndRefusesABadValue) {
+TEST(Refinement, EveryMethodTakesTheOptionAndItsTuningKeys) {
     Scene scene = test::sceneBox(smallSoftScene());
     for (const std::string& method : methodNames()) {
-        test::expectSettingRefused(scene, method, {{"refine", "maybe"}}, "refine");
-        // Final renders add refine=on to whatever method a light has: every one must take it.
-        const Layers refined = test::renderWith(scene, method, {{"refine", "on"}}, 16);
+        // Whether to refine is a render option, never a method's key.
+        test::expectSettingRefused(scene, method, {{"refine", "on"}}, "'refine'");
+        // Final renders refine whatever method a light has: every one must take it.
+        const Layers refined = test::refinedWith(scene, method, {}, 16);
         for (float v : layer(refined, "V").pixels) ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << method;
     }
-    test::expectSettingRefused(scene, "pcss", {{"refine", "on"}, {"refine_margin", "-1"}}, "refine_margin");
-    test::expectSettingRefused(scene, "pcss", {{"refine", "on"}, {"refine_verify", "-1"}}, "refine_verify");
+    test::expectSettingRefused(scene, "pcss", {{"refine_rounds", "2"}}, "'refine_rounds'");
+    for (const char* key : {"refine_margin", "refine_verify"}) {
+        try {
+            test::refinedWith(scene, "pcss", {{key, "-1"}});
+            ADD_FAILURE() << "a bad " << key << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.status(), SS_ERROR_INVALID_ARGUMENT);
+            EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+        }
+    }
     // The reference is exact already: refine changes nothing there.
     const Layers a = test::renderWith(scene, "reference", {}, 16);
-    const Layers b = test::renderWith(scene, "reference", {{"refine", "on"}}, 16);
+    const Layers b = test::refinedWith(scene, "reference", {}, 16);
     EXPECT_EQ(layer(a, "V").pixels, layer(b, "V").pixels);
 }
 

@@ -77,11 +77,17 @@ int hear(void* user, const ss_result* partial, int32_t round, int32_t rounds) {
     return 0;
 }
 
-ss_status render(Fixture& f, const char* method, const char* settings, int samples, Heard* heard, ss_result** out) {
+// refineRounds: -1 for no refinement, else SS_REFINE_ON in that many rounds (0: the default, 1).
+ss_status render(Fixture& f, const char* method, int32_t refineRounds, int samples, Heard* heard, ss_result** out,
+                 const char* settings = nullptr) {
     ss_render_options o;
     ss_render_options_default(&o);
     o.samples = samples;
     o.settings = settings;
+    if (refineRounds >= 0) {
+        o.refine = SS_REFINE_ON;
+        o.refine_rounds = refineRounds;
+    }
     if (heard) {
         o.round = hear;
         o.round_user = heard;
@@ -110,16 +116,15 @@ double share(const std::vector<float>& traced) {
 TEST(RefinementRounds, TheErrorFallsRoundByRoundToTheTargetAndTheOneRoundResult) {
     Fixture f;
     ss_result* reference = nullptr;
-    ASSERT_EQ(render(f, "reference", nullptr, 4096, nullptr, &reference), SS_OK) << ss_last_error();
+    ASSERT_EQ(render(f, "reference", -1, 4096, nullptr, &reference), SS_OK) << ss_last_error();
     const std::vector<float> truth = layerOf(reference, "V"), mask = layerOf(reference, "mask");
     ss_result_destroy(reference);
-    const std::string rounds = "refine=on;refine_rounds=" + std::to_string(kRounds);
     for (const char* method : {"pcss", "shadow_map"}) {
         ss_result *gl = nullptr, *once = nullptr, *last = nullptr;
-        ASSERT_EQ(render(f, method, nullptr, 0, nullptr, &gl), SS_OK) << ss_last_error();
-        ASSERT_EQ(render(f, method, "refine=on", 0, nullptr, &once), SS_OK) << ss_last_error();
+        ASSERT_EQ(render(f, method, -1, 0, nullptr, &gl), SS_OK) << ss_last_error();
+        ASSERT_EQ(render(f, method, 0, 0, nullptr, &once), SS_OK) << ss_last_error();
         Heard heard;
-        ASSERT_EQ(render(f, method, rounds.c_str(), 0, &heard, &last), SS_OK) << ss_last_error();
+        ASSERT_EQ(render(f, method, kRounds, 0, &heard, &last), SS_OK) << ss_last_error();
         ASSERT_EQ(heard.rounds.size(), size_t(kRounds - 1)) << method;
         std::vector<double> errors{rmse(layerOf(gl, "V"), truth, mask)};
         std::printf("%s: GL %.4f", method, errors.back());
@@ -154,7 +159,7 @@ TEST(RefinementRounds, AutoHandsOutItsChoiceAndAnEstimateThatFalls) {
     Fixture f;
     Heard heard;
     ss_result* result = nullptr;
-    ASSERT_EQ(render(f, "auto", "refine=on;refine_rounds=3", 0, &heard, &result), SS_OK) << ss_last_error();
+    ASSERT_EQ(render(f, "auto", 3, 0, &heard, &result), SS_OK) << ss_last_error();
     ASSERT_EQ(heard.rounds.size(), 2u);
     double before = INFINITY;
     for (const Round& r : heard.rounds) {
@@ -180,25 +185,54 @@ TEST(RefinementRounds, ARoundCancelsTheRenderAndTheContextGoesOn) {
         heard.reenter = f.context;
         heard.scene = f.scene;
         ss_result* result = nullptr;
-        EXPECT_EQ(render(f, "pcss", "refine=on;refine_rounds=5", 0, &heard, &result), SS_ERROR_CANCELLED)
+        EXPECT_EQ(render(f, "pcss", 5, 0, &heard, &result), SS_ERROR_CANCELLED)
             << (byContext ? "ss_context_cancel_renders" : "a non-zero return");
         EXPECT_EQ(result, nullptr);
         EXPECT_EQ(heard.rounds.size(), 2u) << "no round after the cancel";
         EXPECT_EQ(heard.reentered, SS_ERROR_INVALID_ARGUMENT);
         EXPECT_NE(heard.reenterError.find("called from a progress callback"), std::string::npos) << heard.reenterError;
-        ASSERT_EQ(render(f, "pcss", "refine=on", 0, nullptr, &result), SS_OK) << ss_last_error();
+        ASSERT_EQ(render(f, "pcss", 1, 0, nullptr, &result), SS_OK) << ss_last_error();
         ss_result_destroy(result);
     }
-    // Without a callback the rounds change nothing; a bad count is refused naming the key.
+    // Without a callback the rounds change nothing.
     ss_result *one = nullptr, *three = nullptr;
-    ASSERT_EQ(render(f, "shadow_map", "refine=on", 0, nullptr, &one), SS_OK);
-    ASSERT_EQ(render(f, "shadow_map", "refine=on;refine_rounds=3", 0, nullptr, &three), SS_OK);
+    ASSERT_EQ(render(f, "shadow_map", 0, 0, nullptr, &one), SS_OK);
+    ASSERT_EQ(render(f, "shadow_map", 3, 0, nullptr, &three), SS_OK);
     EXPECT_EQ(layerOf(one, "V"), layerOf(three, "V"));
     ss_result_destroy(one);
     ss_result_destroy(three);
+}
+
+// Refinement is the option's: a count or a refine value out of range is refused naming the
+// field, and "refine" or "refine_rounds" in the settings string are keys no method has.
+TEST(RefinementRounds, TheOptionIsCheckedAndTheSettingsKeysAreGone) {
+    Fixture f;
+    for (int32_t rounds : {-2, 65}) {
+        ss_result* bad = nullptr;
+        ss_render_options o;
+        ss_render_options_default(&o);
+        o.refine = SS_REFINE_ON;
+        o.refine_rounds = rounds;
+        EXPECT_EQ(ss_render(f.context, f.scene, 0, "pcss", &o, &bad), SS_ERROR_INVALID_ARGUMENT) << rounds;
+        EXPECT_NE(std::string(ss_last_error()).find("refine_rounds must be in 0..64"), std::string::npos)
+            << ss_last_error();
+        EXPECT_EQ(bad, nullptr);
+    }
+    ss_render_options o;
+    ss_render_options_default(&o);
+    EXPECT_EQ(o.refine, SS_REFINE_OFF);
+    EXPECT_EQ(o.refine_rounds, 0);
+    o.refine = ss_refine(2);
     ss_result* bad = nullptr;
-    EXPECT_EQ(render(f, "pcss", "refine=on;refine_rounds=0", 0, nullptr, &bad), SS_ERROR_INVALID_ARGUMENT);
-    EXPECT_NE(std::string(ss_last_error()).find("refine_rounds"), std::string::npos) << ss_last_error();
+    EXPECT_EQ(ss_render(f.context, f.scene, 0, "pcss", &o, &bad), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(ss_last_error()).find("refine must be SS_REFINE_OFF or SS_REFINE_ON"), std::string::npos)
+        << ss_last_error();
+    for (const char* settings : {"refine=on", "refine_rounds=2"}) {
+        EXPECT_EQ(render(f, "pcss", -1, 0, nullptr, &bad, settings), SS_ERROR_INVALID_ARGUMENT) << settings;
+        const std::string key = std::string(settings).substr(0, std::string(settings).find('='));
+        EXPECT_NE(std::string(ss_last_error()).find("has no setting '" + key + "'"), std::string::npos)
+            << ss_last_error();
+    }
 }
 
 }  // namespace

@@ -353,7 +353,7 @@ TEST(SceneUpdates, ARefusedEditLeavesTheSceneAsItWas) {
     EXPECT_EQ(scene.lights()[1].name, "B");
 }
 
-// One Embree BVH per scene geometry: the reference, refine=on and the sparse check share it, a
+// One Embree BVH per scene geometry: the reference, refinement and the sparse check share it, a
 // light or camera edit keeps it, a mesh edit rebuilds it once.
 TEST(SceneUpdates, OneBvhServesReferenceRefineAndTheCheckUntilAMeshEdit) {
     Scene scene = threeMeshTwoLights();
@@ -363,7 +363,7 @@ TEST(SceneUpdates, OneBvhServesReferenceRefineAndTheCheckUntilAMeshEdit) {
     RenderSettings adaptive = fixed;
     adaptive.options["adaptive"] = "on";
     RenderSettings refine;
-    refine.options["refine"] = "on";
+    refine.refine = true;
     refine.options["refine_samples"] = "16";
     RenderSettings estimate;
     estimate.options["estimate_rmse"] = "1";
@@ -460,7 +460,8 @@ TEST(SceneUpdates, TheCApiUpdatesOneMeshAndCountsUploads) {
         ASSERT_EQ(ss_render(context, scene, 0, "reference", &options, &result), SS_OK);
         ss_result_destroy(result);
     }
-    options.settings = "refine=on;refine_samples=16";
+    options.settings = "refine_samples=16";
+    options.refine = SS_REFINE_ON;
     ASSERT_EQ(ss_render(context, scene, 0, "pcss", &options, &result), SS_OK);
     ss_result_destroy(result);
     stats = capiCacheStats(context);

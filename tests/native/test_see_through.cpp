@@ -280,7 +280,7 @@ TEST(SeeThroughCApi, SetMeshMaterialsCopiesChecksAndClears) {
 
 // The GL methods on the two cards: each method's pass on the cut-out against the same method
 // on the opaque squares as geometry, and its mean V where the 50 % card covers the whole light
-// (the reference's V is exactly 0.5 there); then with refine=on, against the reference.
+// (the reference's V is exactly 0.5 there); then refined, against the reference.
 struct GlCase {
     std::string method;
     double cutoutRmse;         // most RMSE vs the same method on the squares
@@ -335,9 +335,9 @@ TEST_P(SeeThroughGl, HonoursCutOutsAndHalfTransparencyAsDocumented) {
     EXPECT_LE(halfMean, c.halfHi);
     if (c.opaqueCardRmse >= 0.0) EXPECT_LE(asOpaque.rmse, c.opaqueCardRmse) << asOpaque.toString();
 
-    // refine=on (what final renders use) re-traces what the pass got wrong.
+    // Refinement (what final renders use) re-traces what the pass got wrong.
     RenderSettings refine = settings;
-    refine.options["refine"] = "on";
+    refine.refine = true;
     Layers fixed = renderer.render(halfCard, 0, c.method, refine, nullptr);
     const Metrics refinedHalf = compareVisibility(*fixed.find("V"), *ref.find("V"), ref.find("mask"));
     Layers fixedCut = renderer.render(cut, 0, c.method, refine, nullptr);
@@ -371,7 +371,7 @@ TEST(SeeThroughAuto, FinalPassMatchesTheReference) {
     for (const MeshAlpha* alpha : {&checker, &half}) {
         Scene scene = sceneWith(cardMesh, alpha, 0.3f);
         RenderSettings refine = settings;
-        refine.options["refine"] = "on";
+        refine.refine = true;
         Layers autoPass = renderer.render(scene, 0, "auto", refine, nullptr);
         Layers ref = renderer.render(scene, 0, "reference", settings, nullptr);
         const Metrics m = compareVisibility(*autoPass.find("V"), *ref.find("V"), ref.find("mask"));

@@ -118,7 +118,7 @@ TEST_P(SeeThroughCameraMethods, PixelsThroughTheHoleGetTheGroundsVisibility) {
     const Metrics vsReference = compareVisibility(*a.find("V"), *ref.find("V"), &hole);
     const Metrics vsGeometry = compareVisibility(*a.find("V"), *b.find("V"), &hole);
     RenderSettings refine = settings;
-    refine.options["refine"] = "on";
+    refine.refine = true;
     const Layers fixed = renderer.render(cut, 0, c.method, refine, nullptr);
     const Metrics refined = compareVisibility(*fixed.find("V"), *ref.find("V"), &hole);
     std::cout << "  " << c.method << " through the hole: vs reference " << vsReference.toString()

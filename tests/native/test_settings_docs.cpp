@@ -51,7 +51,10 @@ std::string settingsPage() {
         "(the C API) accept, per method: made from the library's tables (`ss_method_setting_info`) and\n"
         "checked by the test `SettingsDocs.TheSettingsPageIsTheLibrarysTables`; regenerate it with\n"
         "`SS_UPDATE_DOCS=1 build/softshadow_tests --gtest_filter=SettingsDocs.*`. A key not in its method's\n"
-        "table, or a value outside its range, is refused naming the key, the value and the range.\n";
+        "table, or a value outside its range, is refused naming the key, the value and the range. `auto`\n"
+        "takes its own keys and every candidate method's: each candidate it renders gets the keys its\n"
+        "method has. Whether to refine is no key: `ss_render_options.refine`, the CLI's `--refine`, the\n"
+        "add-on's Refine Final Renders.\n";
     for (const std::string& method : methodsAndAuto()) {
         page += "\n## " + method + "\n\n| key | type | default | range | what it does |\n|---|---|---|---|---|\n";
         for (const ss_setting_info& s : settingsOf(method))
@@ -75,19 +78,23 @@ bool listed(const std::vector<ss_setting_info>& list, const std::string& key) {
 }
 
 TEST(SettingsDocs, EveryKeyIsOnItsMethodsPage) {
-    // The keys every method takes are documented once, in docs/methods/README.md (with auto's);
-    // a method's own keys on its page.
+    // The keys every method takes are documented once, in docs/methods/README.md (with auto's
+    // own); a method's own keys on its page (auto's candidates' keys on the candidate's).
     const std::string readme = readText(std::string(SS_SOURCE_DIR) + "/docs/methods/README.md");
     for (const std::string& method : methodsAndAuto()) {
-        const std::string page =
-            method == "auto" ? readme : readText(std::string(SS_SOURCE_DIR) + "/docs/methods/" + method + ".md");
         for (const ss_setting_info& s : settingsOf(method)) {
             bool everyMethods = true;
-            for (int32_t i = 0; i < ss_method_count(); ++i)
-                everyMethods = everyMethods && listed(settingsOf(ss_method_name(i)), s.key);
-            const std::string& where = everyMethods ? readme : page;
+            std::string owner = method;
+            for (int32_t i = 0; i < ss_method_count(); ++i) {
+                const bool has = listed(settingsOf(ss_method_name(i)), s.key);
+                everyMethods = everyMethods && has;
+                if (method == "auto" && has && owner == "auto") owner = ss_method_name(i);
+            }
+            const std::string where = everyMethods || owner == "auto"
+                                          ? readme
+                                          : readText(std::string(SS_SOURCE_DIR) + "/docs/methods/" + owner + ".md");
             EXPECT_NE(where.find(std::string("`") + s.key), std::string::npos)
-                << method << ": `" << s.key << "` is not on its page";
+                << method << ": `" << s.key << "` is not on " << owner << "'s page";
         }
     }
 }
@@ -109,20 +116,24 @@ TEST(CApiSettings, AMethodsSettingsAreListedWithTypeDefaultRangeAndDoc) {
     EXPECT_GT(std::string(pcss[0].doc).size(), 5u);
     std::vector<ss_setting_info> ot = settingsOf("occlusion_textures");
     ASSERT_FALSE(ot.empty());
-    bool filter = false, refine = false;
+    bool filter = false, refine = false, margin = false;
     for (const ss_setting_info& s : ot) {
         if (std::string(s.key) == "filter") {
             filter = true;
             EXPECT_STREQ(s.range, "sat|mipmap|nbuffer");
             EXPECT_STREQ(s.default_value, "sat");
         }
-        if (std::string(s.key) == "refine") {
-            refine = true;
-            EXPECT_STREQ(s.default_value, "off");
+        // Whether to refine is ss_render_options.refine; the keys tune it.
+        refine = refine || std::string(s.key).rfind("refine", 0) == 0 && std::string(s.key) != "refine_margin" &&
+                               std::string(s.key) != "refine_samples" && std::string(s.key) != "refine_verify";
+        if (std::string(s.key) == "refine_margin") {
+            margin = true;
+            EXPECT_STREQ(s.default_value, "3");
         }
     }
     EXPECT_TRUE(filter);
-    EXPECT_TRUE(refine);
+    EXPECT_FALSE(refine);
+    EXPECT_TRUE(margin);
     EXPECT_EQ(ss_method_setting_count("no_such_method"), -1);
     EXPECT_NE(std::string(ss_last_error()).find("no_such_method"), std::string::npos);
     ss_setting_info info{};

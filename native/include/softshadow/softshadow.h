@@ -103,7 +103,7 @@ typedef struct ss_context ss_context; /* a GL context on a render thread owned b
 typedef struct ss_scene ss_scene;
 typedef struct ss_result ss_result;   /* the layers of one (light, method) render */
 
-/* Refinement in rounds: with the settings "refine=on;refine_rounds=N" (N > 1) a GL method's
+/* Refinement in rounds: with refine = SS_REFINE_ON and refine_rounds = N > 1 a GL method's
  * uncertain pixels are traced in N shares of equal size, the largest expected correction first,
  * and after each round but the last this is called on the thread that called ss_render with the
  * result so far (`round` of `rounds`, 1-based): every ss_result_* function reads it (its
@@ -114,6 +114,20 @@ typedef struct ss_result ss_result;   /* the layers of one (light, method) rende
  * refused from inside it as from a progress callback. */
 typedef int (*ss_round_fn)(void* user, const ss_result* partial, int32_t round, int32_t rounds);
 
+/* Refinement: whether ss_render re-traces a GL method's uncertain pixels with rays (the
+ * settings refine_margin, refine_samples, refine_verify, error_target and guard_band tune it;
+ * docs/contracts.md). The reference is exact already and is never refined; ss_sweep_shadow_mesh
+ * does not read it. */
+typedef enum ss_refine {
+    SS_REFINE_OFF = 0,
+    SS_REFINE_ON = 1,
+    /* Reserved, as for ss_backend. */
+    SS_REFINE_RESERVED_MIN_ = -0x7fffffff - 1,
+    SS_REFINE_RESERVED_MAX_ = 0x7fffffff
+} ss_refine;
+
+/* Fill with ss_render_options_default, then set the fields wanted: a value out of range fails
+ * the render with SS_ERROR_INVALID_ARGUMENT naming the field. */
 typedef struct ss_render_options {
     int32_t samples;         /* light samples (reference, sweep, pcss...); 0 = method default */
     uint32_t seed;           /* deterministic sampling */
@@ -123,6 +137,9 @@ typedef struct ss_render_options {
     const char* settings;    /* optional "key=value;key=value" method settings, may be NULL */
     ss_round_fn round;       /* may be NULL: refinement rounds are not handed out */
     void* round_user;
+    ss_refine refine;        /* default SS_REFINE_OFF */
+    int32_t refine_rounds;   /* with SS_REFINE_ON: the shares the pixels are traced in, 1..64
+                                (0: 1); each but the last goes to `round` */
 } ss_render_options;
 
 SS_API const char* ss_version(void);
@@ -174,7 +191,7 @@ SS_API int32_t ss_method_count(void);
 SS_API const char* ss_method_name(int32_t index);
 /* The settings a method (a name above, or "auto") takes in ss_render_options.settings, as a user
    sees them: index 0 .. ss_method_setting_count(method)-1, the method's own first, then the ones
-   every method takes (estimate_rmse, refine..., memory_limit_mb). Test switches ("debug." keys)
+   every method takes (estimate_rmse, refine_margin..., memory_limit_mb). Test switches ("debug." keys)
    are accepted by ss_render but not listed. The count is -1 for an unknown method (ss_last_error
    says why). The strings stay valid until the process exits. */
 typedef struct ss_setting_info {
@@ -186,9 +203,6 @@ typedef struct ss_setting_info {
 } ss_setting_info;
 SS_API int32_t ss_method_setting_count(const char* method);
 SS_API ss_status ss_method_setting_info(const char* method, int32_t index, ss_setting_info* out);
-/* Whether a settings string gives `key` (*out 1 or 0), parsed as ss_render parses it: a malformed
-   string fails as ss_render would. NULL settings: none given. */
-SS_API ss_status ss_settings_has(const char* settings, const char* key, int32_t* out);
 
 /* Scenes. */
 SS_API ss_status ss_scene_create(ss_scene** out);

@@ -73,6 +73,8 @@ SS_API void ss_render_options_default(ss_render_options* options) {
     options->settings = nullptr;
     options->round = nullptr;
     options->round_user = nullptr;
+    options->refine = SS_REFINE_OFF;
+    options->refine_rounds = 0;
 }
 
 }  // extern "C"

@@ -13,11 +13,20 @@ ss::RenderSettings renderSettingsFrom(const ss_render_options* options, const ch
     ss_render_options o;
     ss_render_options_default(&o);
     if (options) o = *options;
+    const std::string in = std::string(function) + ": ";
     if (o.samples < 0)
-        ss::fail(SS_ERROR_INVALID_ARGUMENT, std::string(function) + ": samples must not be negative (got " +
-                                                std::to_string(o.samples) + ")");
+        ss::fail(SS_ERROR_INVALID_ARGUMENT,
+                 in + "samples must not be negative (got " + std::to_string(o.samples) + ")");
+    if (o.refine != SS_REFINE_OFF && o.refine != SS_REFINE_ON)
+        ss::fail(SS_ERROR_INVALID_ARGUMENT,
+                 in + "refine must be SS_REFINE_OFF or SS_REFINE_ON (got " + std::to_string(int(o.refine)) + ")");
+    if (o.refine_rounds < 0 || o.refine_rounds > 64)
+        ss::fail(SS_ERROR_INVALID_ARGUMENT,
+                 in + "refine_rounds must be in 0..64 (got " + std::to_string(o.refine_rounds) + ")");
     ss::RenderSettings s;
     s.samples = o.samples;
+    s.refine = o.refine == SS_REFINE_ON;
+    s.refineRounds = o.refine_rounds > 0 ? o.refine_rounds : 1;
     s.seed = o.seed;
     s.extraLayers = o.extra_layers != 0;
     if (o.settings) s.options = ss::parseSettings(o.settings);
@@ -89,14 +98,6 @@ SS_API ss_status ss_method_setting_info(const char* method, int32_t index, ss_se
                                                     std::to_string(list.size()) + " settings)");
         const ListedSetting& s = list[size_t(index)];
         *out = ss_setting_info{s.key.c_str(), s.type.c_str(), s.fallback.c_str(), s.range.c_str(), s.doc.c_str()};
-    });
-}
-
-SS_API ss_status ss_settings_has(const char* settings, const char* key, int32_t* out) {
-    return ss::capi::guarded([&] {
-        ss::capi::require(key, "ss_settings_has", "key");
-        ss::capi::require(out, "ss_settings_has", "out");
-        *out = settings && ss::parseSettings(settings).count(key) ? 1 : 0;
     });
 }
 

@@ -1,5 +1,5 @@
-// What a render is asked for beyond (scene, light, method): samples, seed, layers, the method's
-// own settings ("key=value") and the progress callback, and how those settings are read.
+// What a render is asked for beyond (scene, light, method): samples, seed, layers, refinement,
+// the method's own settings ("key=value") and the progress callback, and how those settings are read.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <atomic>
@@ -22,6 +22,10 @@ struct RenderSettings {
     uint32_t seed = 1;
     bool extraLayers = true;
     std::map<std::string, std::string> options;  // method quality settings, "key" -> "value"
+    // Re-trace a GL method's uncertain pixels with rays (renderer/refinement.h), in this many
+    // shares (1..64).
+    bool refine = false;
+    int refineRounds = 1;
     ProgressFn progress;
     // Set by the owner of the render (ss_context_destroy) to stop it at the next check; null: never.
     const std::atomic<bool>* cancel = nullptr;

@@ -31,7 +31,28 @@ bool clearlyBetter(double a, double b) { return a < b * 0.97 - 0.0005; }
 
 }  // namespace
 
-SettingTable autoSettingTable() { return {kCheckPixels, kCheckSamples}; }
+namespace {
+// Every method but the reference, the truth itself (not an interactive method), may be a candidate.
+bool autoMayTry(const std::string& method) { return method != "reference"; }
+}  // namespace
+
+const SettingTable& autoSettingTable() {
+    static const SettingTable table = [] {
+        SettingTable t{kCheckPixels, kCheckSamples};
+        for (const std::string& name : methodNames())
+            if (autoMayTry(name)) t = composed(std::move(t), createMethod(name)->settingTable());
+        return t;
+    }();
+    return table;
+}
+
+RenderSettings candidateSettings(const RenderSettings& settings, const SettingTable& candidate) {
+    RenderSettings own = settings;
+    own.options.clear();
+    for (const auto& [key, value] : settings.options)
+        if (findSetting(candidate, key)) own.options.emplace(key, value);
+    return own;
+}
 
 AutoCheckSize autoCheckSize(const RenderSettings& settings, const Camera& camera) {
     return {settings.integer(kCheckPixels, sparseCheckDefaultPixels(camera.width, camera.height)),
@@ -84,7 +105,7 @@ std::vector<std::string> autoCandidates(const Scene& scene, int lightIndex) {
     const bool closed = castersClosedForVolumes(scene, lightIndex);
     std::vector<std::string> out;
     for (const std::string& name : methodNames()) {
-        if (name == "reference") continue;  // the truth itself: not an interactive method
+        if (!autoMayTry(name)) continue;
         // dbuffer's volumes assume closed 2-manifold casters (docs/methods/dbuffer.md).
         if (name == "dbuffer" && !closed) continue;
         out.push_back(name);
@@ -126,12 +147,13 @@ std::string chooseAutoMethodByShape(const Scene& scene, int lightIndex) {
 
 AutoChoice chooseAutoMethod(const Scene& scene, int lightIndex, const RenderSettings& settings,
                             const SparseCheck* check, const AutoMethods& methods, AutoTrials& trials) {
-    RenderSettings candidateSettings = settings;  // each candidate with its own defaults
-    candidateSettings.options.clear();
+    auto settingsOf = [&](const std::string& candidate) {
+        return candidateSettings(settings, methods.method(candidate).settingTable());
+    };
     AutoChoice choice;
     if (!check) {
         choice.method = chooseAutoMethodByShape(scene, lightIndex);
-        choice.layers = methods.render(choice.method, candidateSettings);
+        choice.layers = methods.render(choice.method, settingsOf(choice.method));
         trials.rendered.push_back(choice.method);
         return choice;
     }
@@ -153,7 +175,7 @@ AutoChoice chooseAutoMethod(const Scene& scene, int lightIndex, const RenderSett
         settings.report(0.0f, ("auto: trying " + candidate).c_str());
         Layers tried;
         try {
-            tried = methods.render(candidate, candidateSettings);
+            tried = methods.render(candidate, settingsOf(candidate));
         } catch (const Error& e) {
             // A method that cannot take this scene is not a candidate here.
             if (e.status() == SS_ERROR_UNSUPPORTED) return;

@@ -13,8 +13,13 @@
 
 namespace ss {
 
-// `auto`'s own settings: how many pixels the sparse check traces and with how many light samples.
-SettingTable autoSettingTable();
+// `auto`'s settings: its own (how many pixels the sparse check traces and with how many light
+// samples), then every key of the methods it may try (all but the reference), in method order.
+// A key shared by methods has one entry (kShadowMapSizeSetting), so it is checked once.
+const SettingTable& autoSettingTable();
+// What a candidate renders with: `settings` with only the keys of its table (`candidate`, the
+// method's own), so each candidate takes the user's settings it has and its defaults for the rest.
+RenderSettings candidateSettings(const RenderSettings& settings, const SettingTable& candidate);
 struct AutoCheckSize {
     int pixels = 0, samples = 0;  // pixels 0: no check, choose by the light's shape
 };
@@ -51,7 +56,7 @@ struct AutoChoice {
     Layers layers;
 };
 
-// The candidates the prior keeps render first, each at its own defaults, then those whose lower
+// The candidates the prior keeps render first, each with candidateSettings, then those whose lower
 // bound leaves them a chance; the one whose estimate against `check` is lowest is kept (the
 // cheaper on a tie). With no check (null), the method by the light's shape. Fails with
 // SS_ERROR_UNSUPPORTED when no candidate can render the light.

@@ -13,25 +13,20 @@ namespace ss {
 
 namespace {
 
-constexpr SettingSpec kRefine = flagSetting("refine", false, "re-trace the GL pass's uncertain pixels with rays");
 constexpr SettingSpec kRefineMargin =
     intSetting("refine_margin", 3, 0, 32, "pixels around the uncertain ones that are re-traced too");
 constexpr SettingSpec kRefineSamples =
     intSetting("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16, "cap of samples per re-traced pixel");
 constexpr SettingSpec kRefineVerify = intSetting("refine_verify", kRefineDefaultVerifyRays, 0, 1024,
                                                  "rays that check each pixel the pass called certain (0: no check)");
-constexpr SettingSpec kRefineRounds = intSetting("refine_rounds", 1, 1, 64,
-                                                  "shares the uncertain pixels are traced in, each but the last handed out as it lands");
 
 }  // namespace
 
 const SettingTable& refinementSettings() {
     static const SettingTable table =
-        composed({kRefine, kRefineMargin, kRefineSamples, kRefineVerify, kRefineRounds}, adaptiveSamplingSettings());
+        composed({kRefineMargin, kRefineSamples, kRefineVerify}, adaptiveSamplingSettings());
     return table;
 }
-
-bool refinementRequested(const RenderSettings& settings) { return settings.flag(kRefine); }
 
 namespace {
 
@@ -104,7 +99,7 @@ Refinement refineUncertainPixels(const Scene& scene, int lightIndex, const Rende
     const int samples = settings.integer(kRefineSamples);
     const int verify = settings.integer(kRefineVerify);
     AdaptiveShares shares;
-    shares.count = settings.integer(kRefineRounds);
+    shares.count = settings.refineRounds;
     AdaptiveSampling sampling = adaptiveSampling(settings, samples);
     Image *visibility = nullptr, *mask = nullptr;
     for (auto& [name, image] : layers.items) {

@@ -1,4 +1,4 @@
-// Which pixels of a GL method's result are re-traced with the adaptive reference ("refine=on").
+// Which pixels of a GL method's result are re-traced with the adaptive reference (RenderSettings::refine).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <functional>
@@ -13,14 +13,11 @@
 
 namespace ss {
 
-// The settings every method accepts for refinement: "refine", "refine_margin",
-// "refine_samples", "refine_verify", "refine_rounds" (the shares the uncertain pixels are traced
-// in: each share but the last is handed out as it lands, RefinementRound) and the adaptive
-// sampling's (reference/adaptive_sampling.h).
+// The settings every method accepts to tune refinement: "refine_margin", "refine_samples",
+// "refine_verify" and the adaptive sampling's (reference/adaptive_sampling.h). Whether to refine,
+// and in how many rounds, are render options (RenderSettings::refine, refineRounds).
 constexpr int kRefineDefaultVerifyRays = 8;
 const SettingTable& refinementSettings();
-// The one reader of "refine" (on/off, default off).
-bool refinementRequested(const RenderSettings& settings);
 
 // Where the pass is uncertain: inside the mask, 0 < V < 1 or V = 0 beside V = 1 (a hard
 // edge), grown by `margin` pixels (within the mask). 1 there, 0 elsewhere.
@@ -51,7 +48,7 @@ struct Refinement {
     Image traced;
     float errorTarget = 0.0f;
 };
-// With "refine_rounds" = n > 1 the pixels to trace are traced in n shares (AdaptiveShares: the
+// With settings.refineRounds = n > 1 the pixels to trace are traced in n shares (AdaptiveShares: the
 // largest expected change first); after each share but the last, `landed` hears the result so far:
 // the layers as refined up to then (with extraLayers their "rays" and "refined" so far), the
 // pixels traced so far and the error target, round of rounds (1-based). The final layers are

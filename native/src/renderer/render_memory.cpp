@@ -7,7 +7,6 @@
 #include "core/error.h"
 #include "core/memory_budget.h"
 #include "frame/frame.h"
-#include "renderer/refinement.h"
 
 namespace ss {
 
@@ -16,9 +15,9 @@ void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& me
     settings.options.erase(kMemoryLimitSetting.key);
     const double limit = limitMib > 0 ? double(limitMib) * double(1 << 20) : physicalMemoryBytes();
     if (!(limit > 0.0)) return;
-    const BudgetKind kind = method == "reference"                                     ? BudgetKind::Cpu
-                            : method == "auto" || refinementRequested(settings) ? BudgetKind::Auto
-                                                                                : BudgetKind::Gl;
+    const BudgetKind kind = method == "reference"                    ? BudgetKind::Cpu
+                            : method == "auto" || settings.refine ? BudgetKind::Auto
+                                                                  : BudgetKind::Gl;
     const Camera& camera = scene.camera();
     const int64_t pixels = int64_t(camera.width) * camera.height;
     int64_t triangles = 0;

@@ -331,7 +331,7 @@ Layers Renderer::render(const Scene& given, int lightIndex, const std::string& m
     double estimate = std::numeric_limits<double>::quiet_NaN();
     // Refinement traces on the caller's thread (progress and rounds may call Python); the
     // reference is exact already, so it has nothing to refine.
-    if (refinementRequested(settings) && impl_->method(scene, name).needsGl()) {
+    if (settings.refine && impl_->method(scene, name).needsGl()) {
         const Refinement r =
             impl_->refine(scene, lightIndex, name, settings, layers, checked ? &check : nullptr, rounds);
         if (checked) estimate = estimatedRmse(check, layers, &r.traced, r.errorTarget);

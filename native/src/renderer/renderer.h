@@ -46,7 +46,7 @@ public:
     // Meshes beyond the scene range (core/scene_range.h) are left out, one message each in
     // *warnings (may be null); a light or camera beyond it, or a render past the memory budget
     // (renderer/render_memory.h), fails before any work.
-    // With "refine=on" and "refine_rounds" = n > 1 (renderer/refinement.h), `rounds` (may be
+    // With settings.refine and refineRounds = n > 1 (renderer/refinement.h), `rounds` (may be
     // empty) hears each round but the last, on the caller's thread, while the render holds the
     // renderer; it returns false to cancel (SS_ERROR_CANCELLED).
     struct RoundResult {
