@@ -10,25 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "capi_demo.h"
 #include "softshadow/softshadow.h"
 
 namespace {
 
-struct Demo {
-    ss_scene* scene = nullptr;
-    ss_context* context = nullptr;
-    Demo() {
-        EXPECT_EQ(ss_scene_load(SS_SOURCE_DIR "/examples/scenes/demo.json", &scene), SS_OK) << ss_last_error();
-        ss_camera_desc cam;
-        EXPECT_EQ(ss_scene_get_camera(scene, &cam), SS_OK);
-        cam.width = 96, cam.height = 72;
-        EXPECT_EQ(ss_scene_set_camera(scene, &cam), SS_OK);
-        EXPECT_EQ(ss_context_create(SS_BACKEND_AUTO, &context), SS_OK) << ss_last_error();
-    }
-    ~Demo() {
-        ss_context_destroy(context);
-        ss_scene_destroy(scene);
-    }
+struct Demo : test::CapiDemo {
+    Demo() : CapiDemo(96, 72) {}
 
     struct Pass {
         ss_status status = SS_OK;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "capi_demo.h"
 #include "softshadow/softshadow.h"
 
 namespace {
@@ -15,21 +16,8 @@ namespace {
 constexpr int kWidth = 160, kHeight = 120;
 constexpr int kRounds = 4;
 
-struct Fixture {
-    ss_scene* scene = nullptr;
-    ss_context* context = nullptr;
-    Fixture() {
-        EXPECT_EQ(ss_scene_load(SS_SOURCE_DIR "/examples/scenes/demo.json", &scene), SS_OK) << ss_last_error();
-        ss_camera_desc cam;
-        EXPECT_EQ(ss_scene_get_camera(scene, &cam), SS_OK);
-        cam.width = kWidth, cam.height = kHeight;
-        EXPECT_EQ(ss_scene_set_camera(scene, &cam), SS_OK);
-        EXPECT_EQ(ss_context_create(SS_BACKEND_AUTO, &context), SS_OK) << ss_last_error();
-    }
-    ~Fixture() {
-        ss_context_destroy(context);
-        ss_scene_destroy(scene);
-    }
+struct Fixture : test::CapiDemo {
+    Fixture() : CapiDemo(kWidth, kHeight) {}
 };
 
 std::vector<float> layerOf(const ss_result* result, const char* wanted) {
