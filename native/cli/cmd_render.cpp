@@ -93,8 +93,9 @@ void preparePreviewFolder(const std::string& dir) {
 }  // namespace
 
 int runRender(const std::vector<std::string>& argv) {
-    Args args(argv, {"-m", "--method", "-l", "--light", "--width", "--height", "--samples", "--seed",
-                     "--set", "--backend", "--png-dir", "-o", "--output"},
+    Args args(argv,
+              {"-m", "--method", "-l", "--light", "--width", "--height", "--samples", "--seed", "--set",
+               "--backend", "--png-dir", "-o", "--output"},
               {"--no-extra", "--refine"});
     if (args.positional().size() != 1) throw CliError("render needs exactly one SCENE file");
     if (args.has("-o") && args.has("--output")) throw CliError("give -o or --output, not both");

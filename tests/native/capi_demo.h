@@ -11,7 +11,8 @@ struct CapiDemo {
     ss_scene* scene = nullptr;
     ss_context* context = nullptr;
     CapiDemo(int32_t width, int32_t height) {
-        EXPECT_EQ(ss_scene_load(SS_SOURCE_DIR "/examples/scenes/demo.json", &scene), SS_OK) << ss_last_error();
+        EXPECT_EQ(ss_scene_load(SS_SOURCE_DIR "/examples/scenes/demo.json", &scene), SS_OK)
+            << ss_last_error();
         ss_camera_desc cam;
         EXPECT_EQ(ss_scene_get_camera(scene, &cam), SS_OK);
         cam.width = width, cam.height = height;

@@ -69,9 +69,9 @@ TEST(AutoSettings, TheMeasuredChoiceRendersWithTheUsersSettings) {
     const Demo::Pass plain = d.render("auto", nullptr);
     ASSERT_EQ(plain.status, SS_OK) << plain.error;
     const std::map<std::string, std::string> keyOf{
-        {"shadow_map", "bias=20"},          {"pcss", "blocker_samples=1"}, {"dbuffer", "profile=segment"},
-        {"sweep", "fill=rings"},            {"penumbra_map", "intensity=paper"},
-        {"occlusion_textures", "resolution=64"}};
+        {"shadow_map", "bias=20"},           {"pcss", "blocker_samples=1"},
+        {"dbuffer", "profile=segment"},      {"sweep", "fill=rings"},
+        {"penumbra_map", "intensity=paper"}, {"occlusion_textures", "resolution=64"}};
     ASSERT_TRUE(keyOf.count(plain.method)) << plain.method;
     const std::string key = keyOf.at(plain.method);
     const Demo::Pass keyed = d.render("auto", key.c_str());
@@ -90,7 +90,8 @@ TEST(AutoSettings, AKeyNoCandidateHasIsRefusedNamingIt) {
     for (const char* key : {"adaptive", "threads", "no_such_key"}) {
         const Demo::Pass bad = d.render("auto", (std::string(key) + "=1").c_str());
         EXPECT_EQ(bad.status, SS_ERROR_INVALID_ARGUMENT) << key;
-        EXPECT_NE(bad.error.find("method 'auto' has no setting '" + std::string(key) + "'"), std::string::npos)
+        EXPECT_NE(bad.error.find("method 'auto' has no setting '" + std::string(key) + "'"),
+                  std::string::npos)
             << bad.error;
     }
     const Demo::Pass range = d.render("auto", "blocker_samples=0");

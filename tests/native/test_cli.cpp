@@ -162,19 +162,23 @@ TEST(Cli, RenderWritesExactPassNames) {
 TEST(Cli, AdaptiveReferenceAndRefinedPcssWriteTheirRayCounts) {
     fs::path dir = tempDir("adaptive");
     std::string out = (dir / "demo.exr").string();
-    CliRun r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m reference,pcss --width 64 "
-                   "-l Area --refine --set adaptive=on --set error_target=0.02 -o '" + out + "'");
+    CliRun r = cli("render '" SS_SOURCE_DIR
+                   "/examples/scenes/demo.json' -m reference,pcss --width 64 "
+                   "-l Area --refine --set adaptive=on --set error_target=0.02 -o '" +
+                   out + "'");
     // adaptive is a reference key only: pcss refuses it by name.
     expectFailure(r, {"method 'pcss' has no setting 'adaptive'"});
-    r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m pcss --width 64 --refine -o '" + out + "'");
+    r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m pcss --width 64 --refine -o '" + out +
+            "'");
     ASSERT_EQ(r.code, 0) << r.err;
     ss::ExrContents back = ss::readMultilayerExr(out);
     ASSERT_TRUE(back.find("Area_pcss_rays"));
     ASSERT_TRUE(back.find("Area_pcss_refined"));
     // Refinement is --refine, not a setting.
-    expectFailure(cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m pcss --width 64 --set refine=on -o '" +
-                      out + "'"),
-                  {"method 'pcss' has no setting 'refine'"});
+    expectFailure(
+        cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m pcss --width 64 --set refine=on -o '" +
+            out + "'"),
+        {"method 'pcss' has no setting 'refine'"});
     r = cli("render '" SS_SOURCE_DIR "/examples/scenes/demo.json' -m reference --width 64 --set adaptive=on -o '" +
             out + "'");
     ASSERT_EQ(r.code, 0) << r.err;

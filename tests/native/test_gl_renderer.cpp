@@ -246,10 +246,11 @@ TEST(GlRendererSettings, AnUnknownKeyIsRefusedNamingItAndTheKnownKeys) {
         ADD_FAILURE() << "the unknown key was accepted";
     } catch (const Error& e) {
         EXPECT_EQ(e.status(), SS_ERROR_INVALID_ARGUMENT);
-        EXPECT_EQ(std::string(e.what()),
-                  "method 'pcss' has no setting 'blocker_sample' (its settings: blocker_samples, pcf_samples, "
-                  "shadow_map_size, max_search, estimate_rmse, refine_margin, refine_samples, refine_verify, "
-                  "error_target, guard_band, memory_limit_mb)");
+        EXPECT_EQ(
+            std::string(e.what()),
+            "method 'pcss' has no setting 'blocker_sample' (its settings: blocker_samples, pcf_samples, "
+            "shadow_map_size, max_search, estimate_rmse, refine_margin, refine_samples, refine_verify, "
+            "error_target, guard_band, memory_limit_mb)");
     }
     // Every method refuses an unknown key, CPU and GL alike, and before any work.
     for (const std::string& method : methodNames()) {

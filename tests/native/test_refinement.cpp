@@ -1,5 +1,5 @@
-// Checks refinement (RenderSettings::refine): untouched where the pass is certain, closer to the truth elsewhere.
-// SPDX-License-Identifier: GPL-3.0-or-later
+// Checks refinement (RenderSettings::refine): untouched where the pass is certain, closer to the truth
+// elsewhere. SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
 #include <cmath>

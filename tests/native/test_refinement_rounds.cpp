@@ -66,8 +66,8 @@ int hear(void* user, const ss_result* partial, int32_t round, int32_t rounds) {
 }
 
 // refineRounds: -1 for no refinement, else SS_REFINE_ON in that many rounds (0: the default, 1).
-ss_status render(Fixture& f, const char* method, int32_t refineRounds, int samples, Heard* heard, ss_result** out,
-                 const char* settings = nullptr) {
+ss_status render(Fixture& f, const char* method, int32_t refineRounds, int samples, Heard* heard,
+                 ss_result** out, const char* settings = nullptr) {
     ss_render_options o;
     ss_render_options_default(&o);
     o.samples = samples;
@@ -213,7 +213,8 @@ TEST(RefinementRounds, TheOptionIsCheckedAndTheSettingsKeysAreGone) {
     o.refine = ss_refine(2);
     ss_result* bad = nullptr;
     EXPECT_EQ(ss_render(f.context, f.scene, 0, "pcss", &o, &bad), SS_ERROR_INVALID_ARGUMENT);
-    EXPECT_NE(std::string(ss_last_error()).find("refine must be SS_REFINE_OFF or SS_REFINE_ON"), std::string::npos)
+    EXPECT_NE(std::string(ss_last_error()).find("refine must be SS_REFINE_OFF or SS_REFINE_ON"),
+              std::string::npos)
         << ss_last_error();
     for (const char* settings : {"refine=on", "refine_rounds=2"}) {
         EXPECT_EQ(render(f, "pcss", -1, 0, nullptr, &bad, settings), SS_ERROR_INVALID_ARGUMENT) << settings;

@@ -90,9 +90,10 @@ TEST(SettingsDocs, EveryKeyIsOnItsMethodsPage) {
                 everyMethods = everyMethods && has;
                 if (method == "auto" && has && owner == "auto") owner = ss_method_name(i);
             }
-            const std::string where = everyMethods || owner == "auto"
-                                          ? readme
-                                          : readText(std::string(SS_SOURCE_DIR) + "/docs/methods/" + owner + ".md");
+            const std::string where =
+                everyMethods || owner == "auto"
+                    ? readme
+                    : readText(std::string(SS_SOURCE_DIR) + "/docs/methods/" + owner + ".md");
             EXPECT_NE(where.find(std::string("`") + s.key), std::string::npos)
                 << method << ": `" << s.key << "` is not on " << owner << "'s page";
         }
@@ -124,8 +125,9 @@ TEST(CApiSettings, AMethodsSettingsAreListedWithTypeDefaultRangeAndDoc) {
             EXPECT_STREQ(s.default_value, "sat");
         }
         // Whether to refine is ss_render_options.refine; the keys tune it.
-        refine = refine || std::string(s.key).rfind("refine", 0) == 0 && std::string(s.key) != "refine_margin" &&
-                               std::string(s.key) != "refine_samples" && std::string(s.key) != "refine_verify";
+        refine =
+            refine || std::string(s.key).rfind("refine", 0) == 0 && std::string(s.key) != "refine_margin" &&
+                          std::string(s.key) != "refine_samples" && std::string(s.key) != "refine_verify";
         if (std::string(s.key) == "refine_margin") {
             margin = true;
             EXPECT_STREQ(s.default_value, "3");

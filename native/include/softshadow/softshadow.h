@@ -107,11 +107,11 @@ typedef struct ss_result ss_result;   /* the layers of one (light, method) rende
  * uncertain pixels are traced in N shares of equal size, the largest expected correction first,
  * and after each round but the last this is called on the thread that called ss_render with the
  * result so far (`round` of `rounds`, 1-based): every ss_result_* function reads it (its
- * warnings and methods rendered come with the final result), valid until the call returns. Pixels traced in a round
- * keep their value in later rounds (up to the guard band's further rounds), so its error does not
- * rise; the last round's result, which ss_render returns, is the one-round result to the bit.
- * Return non-zero to cancel (ss_render then returns SS_ERROR_CANCELLED). The same calls are
- * refused from inside it as from a progress callback. */
+ * warnings and methods rendered come with the final result), valid until the call returns. Pixels traced in a
+ * round keep their value in later rounds (up to the guard band's further rounds), so its error does not rise;
+ * the last round's result, which ss_render returns, is the one-round result to the bit. Return non-zero to
+ * cancel (ss_render then returns SS_ERROR_CANCELLED). The same calls are refused from inside it as from a
+ * progress callback. */
 typedef int (*ss_round_fn)(void* user, const ss_result* partial, int32_t round, int32_t rounds);
 
 /* Refinement: whether ss_render re-traces a GL method's uncertain pixels with rays (the
@@ -137,9 +137,9 @@ typedef struct ss_render_options {
     const char* settings;    /* optional "key=value;key=value" method settings, may be NULL */
     ss_round_fn round;       /* may be NULL: refinement rounds are not handed out */
     void* round_user;
-    ss_refine refine;        /* default SS_REFINE_OFF */
-    int32_t refine_rounds;   /* with SS_REFINE_ON: the shares the pixels are traced in, 1..64
-                                (0: 1); each but the last goes to `round` */
+    ss_refine refine;      /* default SS_REFINE_OFF */
+    int32_t refine_rounds; /* with SS_REFINE_ON: the shares the pixels are traced in, 1..64
+                              (0: 1); each but the last goes to `round` */
 } ss_render_options;
 
 SS_API const char* ss_version(void);

@@ -18,8 +18,8 @@ ss::RenderSettings renderSettingsFrom(const ss_render_options* options, const ch
         ss::fail(SS_ERROR_INVALID_ARGUMENT,
                  in + "samples must not be negative (got " + std::to_string(o.samples) + ")");
     if (o.refine != SS_REFINE_OFF && o.refine != SS_REFINE_ON)
-        ss::fail(SS_ERROR_INVALID_ARGUMENT,
-                 in + "refine must be SS_REFINE_OFF or SS_REFINE_ON (got " + std::to_string(int(o.refine)) + ")");
+        ss::fail(SS_ERROR_INVALID_ARGUMENT, in + "refine must be SS_REFINE_OFF or SS_REFINE_ON (got " +
+                                                std::to_string(int(o.refine)) + ")");
     if (o.refine_rounds < 0 || o.refine_rounds > 64)
         ss::fail(SS_ERROR_INVALID_ARGUMENT,
                  in + "refine_rounds must be in 0..64 (got " + std::to_string(o.refine_rounds) + ")");

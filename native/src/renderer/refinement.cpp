@@ -17,8 +17,9 @@ constexpr SettingSpec kRefineMargin =
     intSetting("refine_margin", 3, 0, 32, "pixels around the uncertain ones that are re-traced too");
 constexpr SettingSpec kRefineSamples =
     intSetting("refine_samples", kReferenceAdaptiveDefaultSamples, 1, 1 << 16, "cap of samples per re-traced pixel");
-constexpr SettingSpec kRefineVerify = intSetting("refine_verify", kRefineDefaultVerifyRays, 0, 1024,
-                                                 "rays that check each pixel the pass called certain (0: no check)");
+constexpr SettingSpec kRefineVerify =
+    intSetting("refine_verify", kRefineDefaultVerifyRays, 0, 1024,
+               "rays that check each pixel the pass called certain (0: no check)");
 
 }  // namespace
 

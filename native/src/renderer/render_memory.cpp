@@ -15,7 +15,7 @@ void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& me
     settings.options.erase(kMemoryLimitSetting.key);
     const double limit = limitMib > 0 ? double(limitMib) * double(1 << 20) : physicalMemoryBytes();
     if (!(limit > 0.0)) return;
-    const BudgetKind kind = method == "reference"                    ? BudgetKind::Cpu
+    const BudgetKind kind = method == "reference"                 ? BudgetKind::Cpu
                             : method == "auto" || settings.refine ? BudgetKind::Auto
                                                                   : BudgetKind::Gl;
     const Camera& camera = scene.camera();
