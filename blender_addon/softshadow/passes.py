@@ -77,18 +77,17 @@ class LiveScene:
         self.meshes.append(mesh)
 
     def _add_light(self, light):
-        problem = scene_export.light_problem(light)
-        if problem:
-            self.problems.append(problem)
-            return
         self.scene.add_light(light)
         self.lights.append(light)
 
+    _MESH_REFUSED = "object '%s' skipped: %s"
+    _LIGHT_REFUSED = "light '%s' gets no pass: %s"
+
     def _try_add_mesh(self, mesh):
-        self._try_add(self._add_mesh, mesh, "object '%s' skipped: %s")
+        self._try_add(self._add_mesh, mesh, self._MESH_REFUSED)
 
     def _try_add_light(self, light):
-        self._try_add(self._add_light, light, "light '%s' gets no pass: %s")
+        self._try_add(self._add_light, light, self._LIGHT_REFUSED)
 
     def _try_add(self, add, item, problem):
         try:
@@ -106,6 +105,17 @@ class LiveScene:
         if name in self.refused:
             problem = self.refused.pop(name)[1]
             self.problems = [p for p in self.problems if p != problem]
+
+    def _replaced(self, replace, index, item, problem):
+        """Whether `item` took index's place; where the library refused it, the refusal is
+        remembered as for an add (the caller removes the old one)."""
+        try:
+            replace(index, item)
+        except native.SoftShadowError as exc:
+            self._refuse(item, problem % (item["name"], exc))
+            return False
+        self._forget_refusal(item["name"])
+        return True
 
     def _still_refused(self, item):
         """Whether the library refused this very object: sent again, it would fail the same way."""
@@ -167,8 +177,7 @@ class LiveScene:
         with self.lock:
             try:
                 meshes = [m for m in exported.meshes if not self._still_refused(m)]
-                lights = [l for l in exported.lights
-                          if not scene_export.light_problem(l) and not self._still_refused(l)]
+                lights = [l for l in exported.lights if not self._still_refused(l)]
                 exported_names = {item["name"] for item in exported.meshes + exported.lights}
                 if (self.scene is None or [m["name"] for m in self.meshes] != [m["name"] for m in meshes]
                         or [l["name"] for l in self.lights] != [l["name"] for l in lights]
@@ -176,11 +185,15 @@ class LiveScene:
                         or self.scene_view_layer != exported.view_layer):
                     self.rebuild(exported)
                 else:
-                    for index, mesh in enumerate(meshes):
-                        self._replace_mesh(index, mesh)
-                    for index, light in enumerate(lights):
-                        self._replace_light(index, light)
-                    self._send_links()
+                    try:
+                        for index, mesh in enumerate(meshes):
+                            self._replace_mesh(index, mesh)
+                        for index, light in enumerate(lights):
+                            self._replace_light(index, light)
+                    except native.SoftShadowError:
+                        self.rebuild(exported)  # adds each object anew, remembering the refused ones
+                    else:
+                        self._send_links()
                 self.scene_view_layer = exported.view_layer
                 self.set_camera(exported.camera)
             except Exception:
@@ -195,7 +208,7 @@ class LiveScene:
         with self.lock:
             try:
                 meshes = {m["name"]: m for m in partial.meshes}
-                lights = {l["name"]: l for l in partial.lights if not scene_export.light_problem(l)}
+                lights = {l["name"]: l for l in partial.lights}
                 for name in changed:
                     if name in self.refused and not any(name in found for found in (meshes, lights)):
                         self._forget_refusal(name)  # the refused object is gone
@@ -209,24 +222,22 @@ class LiveScene:
                     if mesh is not None and mesh["local"] is None and index is not None:
                         mesh = dict(mesh, local=self.meshes[index]["local"], triangles=self.meshes[index]["triangles"],
                                     alpha=self.meshes[index].get("alpha"))
-                    if index is not None and mesh is None:
+                    if index is None:
+                        if mesh is not None and mesh["local"] is not None:
+                            self._try_add_mesh(mesh)
+                    elif mesh is None or not self._replaced(self._replace_mesh, index, mesh, self._MESH_REFUSED):
                         self.scene.remove_mesh(index)
                         del self.meshes[index]
-                    elif index is not None:
-                        self._replace_mesh(index, mesh)
-                    elif mesh is not None and mesh["local"] is not None:
-                        self._try_add_mesh(mesh)
                     index = next((i for i, l in enumerate(self.lights) if l["name"] == name), None)
                     light = lights.get(name)
                     if light is not None and self._still_refused(light):
                         light = None
-                    if index is not None and light is None:
+                    if index is None:
+                        if light is not None:
+                            self._try_add_light(light)
+                    elif light is None or not self._replaced(self._replace_light, index, light, self._LIGHT_REFUSED):
                         self.scene.remove_light(index)
                         del self.lights[index]
-                    elif index is not None:
-                        self._replace_light(index, light)
-                    elif light is not None:
-                        self._try_add_light(light)
                 self._send_links()
             except Exception:
                 self.close()

@@ -4,7 +4,6 @@
 without Blender. The bottom half walks an evaluated depsgraph; it only touches the objects it
 is given, so this module never imports bpy itself.
 """
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -59,24 +58,12 @@ def render_size(resolution_x, resolution_y, percentage):
     return (int(resolution_x) * int(percentage)) // 100, (int(resolution_y) * int(percentage)) // 100
 
 
-def mesh_problem(name, vertices, triangles):
-    """Why a mesh cannot be sent (a message), or None when it can."""
-    vertices = np.asarray(vertices)
-    triangles = np.asarray(triangles)
-    if triangles.size == 0:
+def faceless_problem(name, triangles):
+    """Why a Blender object of a geometry type gives no mesh (a message), or None. The library
+    takes an empty mesh, which shadows nothing: the user hears why the object does not show.
+    Vertices, indices and transforms are the library's to check (LiveScene reports its refusals)."""
+    if np.asarray(triangles).size == 0:
         return "object '%s' has no faces: it casts no shadow and was skipped" % name
-    if not np.all(np.isfinite(vertices)):
-        bad = int(np.count_nonzero(~np.isfinite(vertices).all(axis=-1)))
-        return "object '%s' has %d vertices that are not finite numbers (NaN/inf): skipped" % (name, bad)
-    if triangles.max() >= len(vertices.reshape(-1, 3)):
-        return "object '%s' has a face index out of range: skipped" % name
-    return None
-
-
-def transform_problem(name, matrix):
-    """Why an object's matrix cannot place its mesh (a message), or None."""
-    if not np.all(np.isfinite(np.asarray(matrix))):
-        return "object '%s' has a transform that is not finite numbers (NaN/inf): skipped" % name
     return None
 
 
@@ -95,16 +82,6 @@ def light_values(name, kind, shape, matrix, size=0.0, size_y=0.0, radius=0.0, an
         "radius": float(radius), "angle": float(angle), "spot_size": float(spot_size),
         "spot_blend": float(spot_blend), "cast_shadows": bool(use_shadow),
     }
-
-
-def light_problem(light):
-    """Why a light cannot get a pass (a message), or None. The library checks again."""
-    numbers = [light[k] for k in ("size", "size_y", "radius", "angle", "spot_size", "spot_blend")]
-    if not all(math.isfinite(v) for v in numbers) or not np.all(np.isfinite(light["light_to_world"])):
-        return "light '%s' has values that are not finite numbers: no pass" % light["name"]
-    if light["type"] in AREA_SHAPES and (light["size"] <= 0 or light["size_y"] <= 0):
-        return "light '%s' has zero size: no pass" % light["name"]
-    return None
 
 
 def camera_values(world_to_camera_rows, projection_rows, width, height, pixel_aspect=1.0):
@@ -408,18 +385,14 @@ def export(depsgraph, scene, mode="RENDER", view_layer=None, camera=None, only=N
             arrays = local_cache[key]
         name = unique_name(base_name, used_mesh_names)
         if fresh:
-            problem = mesh_problem(name, *arrays)
+            problem = faceless_problem(name, arrays[1])
             if problem:
                 out.problems.append(problem)
                 continue
             if cacheable:
-                reuse.put(obj, *arrays)  # only meshes that passed the checks
+                reuse.put(obj, *arrays)
         vertices, triangles = arrays
         flat = column_major(matrix)
-        problem = transform_problem(name, flat)
-        if problem:
-            out.problems.append(problem)
-            continue
         flags = _layer_flags(_mesh_flags(obj), obj, parent if is_instance else None, view_layer,
                              scene.render.engine)
         if flags == 0:

@@ -4,6 +4,8 @@ import math
 import os
 import sys
 
+import numpy as np
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sstest  # noqa: E402
 import bpy  # noqa: E402
@@ -40,6 +42,55 @@ def test_bad_objects_and_light_reported_rest_produced():
     arrays = ss.render_passes(scene)
     sstest.check(list(arrays) == [("Key", "shadow_map")], "API: only the good pass: %s" % list(arrays))
     sstest.check(any("ZeroLight" in p for p in ss.render_passes.last_problems), "API keeps the problems")
+
+
+def test_the_library_refuses_bad_meshes_and_lights_naming_them():
+    """LiveScene sends every exported object; the library's refusals name the object and say why."""
+    verts = np.zeros((3, 3), np.float32)
+    verts[1, 0] = verts[2, 1] = 1.0
+    tris = np.array([[0, 1, 2]], np.uint32)
+    bad = verts.copy()
+    bad[1, 2] = np.nan
+    eye = ss.scene_export.column_major(np.eye(4))
+    nan_matrix = list(eye)
+    nan_matrix[12] = float("nan")
+    meshes = [{"name": "Good", "local": verts, "triangles": tris, "flags": 3, "matrix": eye},
+              {"name": "NaNVertex", "local": bad, "triangles": tris, "flags": 3, "matrix": eye},
+              {"name": "BadIndex", "local": verts, "triangles": np.array([[0, 1, 3]], np.uint32), "flags": 3,
+               "matrix": eye},
+              {"name": "NaNMatrix", "local": verts, "triangles": tris, "flags": 3, "matrix": nan_matrix}]
+    lights = [ss.scene_export.light_values("Zero", "AREA", "SQUARE", np.eye(4), size=0.0),
+              ss.scene_export.light_values("NaNSize", "POINT", "", np.eye(4), radius=float("nan")),
+              ss.scene_export.light_values("Key", "AREA", "SQUARE", np.eye(4), size=1.0)]
+    live = ss.passes.LiveScene()
+    try:
+        live.rebuild(ss.scene_export.ExportedScene(meshes=meshes, lights=lights))
+        text = "\n".join(live.problems)
+        sstest.check([m["name"] for m in live.meshes] == ["Good"] and list(live.light_indices()) == ["Key"],
+                     "only the good ones sent: %s %s" % ([m["name"] for m in live.meshes], live.light_indices()))
+        for name, why in (("NaNVertex", "not finite"), ("BadIndex", "vertex index 3"),
+                          ("NaNMatrix", "transform is not finite"), ("Zero", "size greater than zero"),
+                          ("NaNSize", "not finite")):
+            line = next((p for p in live.problems if "'%s'" % name in p), "")
+            sstest.check(why in line, "%s: %r in %s" % (name, why, text))
+        sstest.check(len(live.problems) == 5, "one line each: %s" % text)
+        # An edit the library refuses (the good light made zero-size, the good mesh moved to NaN)
+        # removes that object with its message; the rest stays.
+        edited = [dict(lights[2], size=0.0, size_y=0.0)]
+        live.apply(ss.scene_export.ExportedScene(meshes=[dict(meshes[0], matrix=nan_matrix)], lights=edited),
+                   ["Key", "Good"])
+        sstest.check(live.meshes == [] and live.light_indices() == {}, "both edits refused")
+        sstest.check(any("'Key'" in p and "size greater than zero" in p for p in live.problems)
+                     and any("'Good'" in p and "transform is not finite" in p for p in live.problems),
+                     "the edits' refusals named: %s" % live.problems)
+        live.sync(ss.scene_export.ExportedScene(meshes=meshes, lights=lights))
+        sstest.check([m["name"] for m in live.meshes] == ["Good"] and list(live.light_indices()) == ["Key"],
+                     "sent again once they are good")
+        # The same edit in a full sync: the scene is rebuilt around the refusal.
+        live.sync(ss.scene_export.ExportedScene(meshes=meshes, lights=lights[:2] + edited))
+        sstest.check(live.light_indices() == {} and "Key" in live.refused, "the sync's edit refused")
+    finally:
+        live.close()
 
 
 def test_operator_reports_instead_of_raising():
