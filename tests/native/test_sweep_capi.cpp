@@ -5,19 +5,34 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "capi/capi_internal.h"
 #include "core/memory_budget.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
 
-TEST(SweepCapi, ShadowMeshOfTheBox) {
+namespace {
+
+ss_scene* capiScene(ss::Scene s) {
     ss_scene* scene = nullptr;
-    ASSERT_EQ(ss_scene_create(&scene), SS_OK);
-    scene->scene = ss::test::sceneBox();
+    EXPECT_EQ(ss_scene_create(&scene), SS_OK);
+    scene->scene = std::move(s);
+    return scene;
+}
+
+ss_render_options optionsWith(int samples) {
     ss_render_options o;
     ss_render_options_default(&o);
-    o.samples = 16;
+    o.samples = samples;
+    return o;
+}
+
+}  // namespace
+
+TEST(SweepCapi, ShadowMeshOfTheBox) {
+    ss_scene* scene = capiScene(ss::test::sceneBox());
+    ss_render_options o = optionsWith(16);
     // Equal weights: the integral is then the samples' mean hard-shadow area (irradiance
     // weights, the default, make it the weighted mean; see test_sweep_weights.cpp).
     o.settings = "fill=steps;weights=equal";
@@ -64,12 +79,8 @@ TEST(SweepCapi, ShadowMeshOfTheBox) {
 // past the memory limit is refused with its figure once its triangles are known, and the same
 // mesh without weights, under the limit, is made.
 TEST(SweepCapi, ShadowMeshPastTheMemoryLimitIsRefused) {
-    ss_scene* scene = nullptr;
-    ASSERT_EQ(ss_scene_create(&scene), SS_OK);
-    scene->scene = ss::test::sceneTorus();
-    ss_render_options o;
-    ss_render_options_default(&o);
-    o.samples = 32;
+    ss_scene* scene = capiScene(ss::test::sceneTorus());
+    ss_render_options o = optionsWith(32);
     ss_sweep_mesh* mesh = nullptr;
     ASSERT_EQ(ss_sweep_shadow_mesh(scene, 0, &o, &mesh), SS_OK) << ss_last_error();
     uint32_t nv = 0, nt = 0;
