@@ -4,7 +4,7 @@
 # from the header so the two cannot drift apart), as a Markdown table on stdout.
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Usage: bench/memory_budget.sh CLI WORK_DIR "SIDES" "METHODS"
-#   e.g. ... "1024 4096 8192" "shadow_map auto+refine" (a method, "+refine" for refine=on)
+#   e.g. ... "1024 4096 8192" "shadow_map occlusion_textures auto+refine" (a method, "+refine" for refine=on)
 set -euo pipefail
 CLI=${1:?usage: memory_budget.sh CLI WORK_DIR SIDES METHODS}
 WORK=${2:?}

@@ -129,7 +129,7 @@ if [ "$QUICK" = 1 ]; then COUNTS="50 200"; else COUNTS="50 500 2000"; fi
   echo "\`softshadow render\` beside the budget of docs/reliability.md (core/memory_budget.h)."
   echo
   if [ "$QUICK" = 1 ]; then SIDES="1024"; else SIDES="1024 4096 8192"; fi
-  bash "$HERE/memory_budget.sh" "$CLI" "$WORK/memory" "$SIDES" "shadow_map auto+refine"
+  bash "$HERE/memory_budget.sh" "$CLI" "$WORK/memory" "$SIDES" "shadow_map occlusion_textures auto+refine"
 } > "$OUT/memory.md"
 cat "$OUT/memory.md"
 

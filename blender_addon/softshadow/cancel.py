@@ -6,9 +6,10 @@ library's renders on the shared context (ss_context_cancel_renders, which its lo
 makes `progress` answer "stop" from then on, so the handler returns within a second. A request
 lasts until the next render starts (render_init) or the loaded file is in (load_post).
 
-Esc and quitting cannot reach here: Esc sets Blender's G.is_break, which no Python API shows,
-and the interface that a render with these passes locks runs no Python operator or modal
-handler; quitting waits for the render job before any Python runs."""
+Esc and quitting cannot reach here: Esc sets Blender's G.is_break, which no Python API shows
+(bpy.app.is_job_running stays true until the handler returns); the interface that a render with
+these passes locks runs no Python modal handler, and the timers it still runs see nothing of the
+Esc; quitting waits for the render job before any Python runs (docs/reliability.md, the evidence)."""
 import threading
 
 import bpy

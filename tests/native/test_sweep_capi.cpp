@@ -4,18 +4,35 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "capi/capi_internal.h"
+#include "core/memory_budget.h"
 #include "softshadow/softshadow.h"
 #include "test_scenes.h"
 
-TEST(SweepCapi, ShadowMeshOfTheBox) {
+namespace {
+
+ss_scene* capiScene(ss::Scene s) {
     ss_scene* scene = nullptr;
-    ASSERT_EQ(ss_scene_create(&scene), SS_OK);
-    scene->scene = ss::test::sceneBox();
+    EXPECT_EQ(ss_scene_create(&scene), SS_OK);
+    scene->scene = std::move(s);
+    return scene;
+}
+
+ss_render_options optionsWith(int samples) {
     ss_render_options o;
     ss_render_options_default(&o);
-    o.samples = 16;
+    o.samples = samples;
+    return o;
+}
+
+}  // namespace
+
+TEST(SweepCapi, ShadowMeshOfTheBox) {
+    ss_scene* scene = capiScene(ss::test::sceneBox());
+    ss_render_options o = optionsWith(16);
     // Equal weights: the integral is then the samples' mean hard-shadow area (irradiance
     // weights, the default, make it the weighted mean; see test_sweep_weights.cpp).
     o.settings = "fill=steps;weights=equal";
@@ -55,5 +72,49 @@ TEST(SweepCapi, ShadowMeshOfTheBox) {
     o.settings = "boarder=0.5";
     EXPECT_EQ(ss_sweep_shadow_mesh(scene, 0, &o, &mesh), SS_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(ss_last_error()).find("no setting 'boarder'"), std::string::npos) << ss_last_error();
+    ss_scene_destroy(scene);
+}
+
+// The shadow mesh grows with the samples (its irradiance weights by samples x triangles): one
+// past the memory limit is refused with its figure once its triangles are known, and the same
+// mesh without weights, under the limit, is made.
+TEST(SweepCapi, ShadowMeshPastTheMemoryLimitIsRefused) {
+    ss_scene* scene = capiScene(ss::test::sceneTorus());
+    ss_render_options o = optionsWith(32);
+    ss_sweep_mesh* mesh = nullptr;
+    ASSERT_EQ(ss_sweep_shadow_mesh(scene, 0, &o, &mesh), SS_OK) << ss_last_error();
+    uint32_t nv = 0, nt = 0;
+    int32_t receiver = -1, used = 0;
+    ASSERT_EQ(ss_sweep_mesh_data(mesh, nullptr, nullptr, &nv, nullptr, &nt), SS_OK);
+    ASSERT_EQ(ss_sweep_mesh_info(mesh, &receiver, &used), SS_OK);
+    ss_sweep_mesh_destroy(mesh);
+    ASSERT_GT(nt, 1000u);
+    ASSERT_EQ(used, 32);
+    const double weighed = double(nt) * (ss::kBudgetBytesPerSweepTriangle + ss::kBudgetBytesPerSweepWeight * (used + 1));
+    const double plain = double(nt) * ss::kBudgetBytesPerSweepTriangle;
+    const int limitMib = int((weighed + plain) / 2.0 / double(1 << 20));
+    ASSERT_GT(double(limitMib) * (1 << 20), plain);
+    ASSERT_LT(double(limitMib) * (1 << 20), weighed);
+    const std::string limit = "memory_limit_mb=" + std::to_string(limitMib);
+    o.settings = limit.c_str();
+    mesh = nullptr;
+    EXPECT_EQ(ss_sweep_shadow_mesh(scene, 0, &o, &mesh), SS_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(mesh, nullptr);
+    const std::string error = ss_last_error();
+    const std::string light = scene->scene.light(0).name;
+    EXPECT_NE(error.find("light '" + light + "': sweep's shadow mesh of " + std::to_string(nt) +
+                         " triangles from 32 light samples needs about " + ss::bytesText(weighed)),
+              std::string::npos)
+        << error;
+    EXPECT_NE(error.find("more than the memory limit " + ss::bytesText(double(limitMib) * (1 << 20)) +
+                         " (the setting memory_limit_mb): use fewer samples, or weights=equal"),
+              std::string::npos)
+        << error;
+    const std::string equal = limit + ";weights=equal";
+    o.settings = equal.c_str();
+    ASSERT_EQ(ss_sweep_shadow_mesh(scene, 0, &o, &mesh), SS_OK) << ss_last_error();
+    ASSERT_EQ(ss_sweep_mesh_data(mesh, nullptr, nullptr, &nv, nullptr, &nt), SS_OK);
+    EXPECT_GT(nt, 1000u);
+    ss_sweep_mesh_destroy(mesh);
     ss_scene_destroy(scene);
 }

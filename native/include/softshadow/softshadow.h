@@ -387,8 +387,11 @@ SS_API ss_status ss_compare_exr(const char* path_a, const char* path_b, const ch
  * can bring it in as geometry: triangles on the receiver plane, world-space vertices with a shadow
  * intensity each (0 lit .. 1 umbra; V = 1 - intensity, Gouraud-interpolated). Options as for
  * ss_render ("receiver=<mesh name>;fill=smooth|steps;border=0.25;weights=irradiance|equal;
- * clusters=1"); extra_layers is ignored. With clusters > 1 (square/rectangle lights cut into
- * convex strips) the clusters' triangles overlap and their intensities ADD (already weighted). */
+ * clusters=1;memory_limit_mb=0"); extra_layers is ignored. With clusters > 1 (square/rectangle
+ * lights cut into convex strips) the clusters' triangles overlap and their intensities ADD (already
+ * weighted). A mesh over the memory limit (memory_limit_mb, default the machine's memory) is
+ * refused (SS_ERROR_INVALID_ARGUMENT, both figures in the message) once its triangles are known,
+ * before its irradiance weights are made. */
 typedef struct ss_sweep_mesh ss_sweep_mesh;
 SS_API ss_status ss_sweep_shadow_mesh(const ss_scene* scene, int32_t light_index,
                                       const ss_render_options* options, ss_sweep_mesh** out);

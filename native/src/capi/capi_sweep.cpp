@@ -7,6 +7,7 @@
 #include "capi/capi_internal.h"
 #include "methods/method.h"
 #include "methods/sweep/shadow.h"
+#include "renderer/render_memory.h"
 
 struct ss_sweep_mesh {
     std::vector<float> xyz, intensity;
@@ -42,7 +43,8 @@ SS_API ss_status ss_sweep_shadow_mesh(const ss_scene* scene, int32_t light_index
         ss::capi::require(scene, "ss_sweep_shadow_mesh", "scene");
         ss::capi::require(out, "ss_sweep_shadow_mesh", "out");
         *out = nullptr;
-        const ss::RenderSettings settings = ss::capi::renderSettingsFrom(options, "ss_sweep_shadow_mesh", nullptr);
+        ss::RenderSettings settings = ss::capi::renderSettingsFrom(options, "ss_sweep_shadow_mesh", nullptr);
+        ss::takeMemoryLimit(settings);  // the mesh is refused past it before its weights are made
         settings.requireKnownKeys("sweep", ss::sweepSettings());
         settings.report(0.0f, "sweep: shadow mesh");
         ss::SweepShadow shadow = ss::computeSweepShadow(scene->scene, light_index, ss::sweepOptions(settings));

@@ -14,6 +14,13 @@
 
 namespace ss {
 
+// What a render may take (core/memory_budget.h): `bytes` 0 is unchecked; from the setting
+// memory_limit_mb, or the machine's memory (renderer/render_memory.h works it out before a render).
+struct MemoryLimit {
+    double bytes = 0.0;
+    bool fromSetting = false;
+};
+
 // Returns false to cancel. fraction in [0,1].
 using ProgressFn = std::function<bool(float fraction, const char* stage)>;
 
@@ -29,6 +36,8 @@ struct RenderSettings {
     ProgressFn progress;
     // Set by the owner of the render (ss_context_destroy) to stop it at the next check; null: never.
     const std::atomic<bool>* cancel = nullptr;
+    // What the render may take (renderer/render_memory.h sets it before any work; 0: unchecked).
+    MemoryLimit memoryLimit;
 
     // Reads `spec.key` from `options` as the table entry says: its default when absent; a
     // malformed, non-finite or out-of-range value throws ss::Error(SS_ERROR_INVALID_ARGUMENT)

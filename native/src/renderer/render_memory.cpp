@@ -4,39 +4,41 @@
 
 #include <cstdio>
 
-#include "core/error.h"
 #include "core/memory_budget.h"
 #include "frame/frame.h"
 
 namespace ss {
 
-void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& method, RenderSettings& settings) {
+MemoryLimit takeMemoryLimit(RenderSettings& settings) {
     const int limitMib = settings.integer(kMemoryLimitSetting);
     settings.options.erase(kMemoryLimitSetting.key);
-    const double limit = limitMib > 0 ? double(limitMib) * double(1 << 20) : physicalMemoryBytes();
-    if (!(limit > 0.0)) return;
-    const BudgetKind kind = method == "reference"                 ? BudgetKind::Cpu
+    MemoryLimit limit;
+    limit.fromSetting = limitMib > 0;
+    limit.bytes = limitMib > 0 ? double(limitMib) * double(1 << 20) : physicalMemoryBytes();
+    settings.memoryLimit = limit;
+    return limit;
+}
+
+void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& method, RenderSettings& settings) {
+    const MemoryLimit limit = takeMemoryLimit(settings);
+    const BudgetKind kind = method == "reference"                                     ? BudgetKind::Cpu
                             : method == "auto" || settings.refine ? BudgetKind::Auto
-                                                                  : BudgetKind::Gl;
+                                                                                : BudgetKind::Gl;
     const Camera& camera = scene.camera();
     const int64_t pixels = int64_t(camera.width) * camera.height;
     int64_t triangles = 0;
     for (const Mesh& m : scene.meshes()) triangles += int64_t(m.triangles.size());
     const int mapSize = shadowMapSizeSetting(settings);
     const double need = renderPeakBytes(kind, pixels, triangles, mapSize > 0 ? mapSize : Frame::kDefaultShadowMapSize);
-    if (need <= limit) return;
     const double perPixel = kind == BudgetKind::Auto ? kBudgetBytesPerPixelAuto
                             : kind == BudgetKind::Gl ? kBudgetBytesPerPixelGl
                                                      : kBudgetBytesPerPixelCpu;
-    char text[512];
-    std::snprintf(text, sizeof text,
-                  "%s at %d x %d needs about %s (%s + %.0f bytes a pixel + %.0f bytes a triangle of the %lld), "
-                  "more than the memory limit %s (%s): render at a lower resolution",
-                  method.c_str(), camera.width, camera.height, bytesText(need).c_str(),
-                  bytesText(kBudgetFixedBytes).c_str(), perPixel, kBudgetBytesPerTriangle, (long long)triangles,
-                  bytesText(limit).c_str(),
-                  limitMib > 0 ? "the setting memory_limit_mb" : "the machine's memory; memory_limit_mb sets another");
-    fail(SS_ERROR_INVALID_ARGUMENT, "light '" + scene.light(lightIndex).name + "': " + text);
+    char what[256], how[256];
+    std::snprintf(what, sizeof what, "light '%s': %s at %d x %d", scene.light(lightIndex).name.c_str(), method.c_str(),
+                  camera.width, camera.height);
+    std::snprintf(how, sizeof how, "%s + %.0f bytes a pixel + %.0f bytes a triangle of the %lld",
+                  bytesText(kBudgetFixedBytes).c_str(), perPixel, kBudgetBytesPerTriangle, (long long)triangles);
+    requireWithinMemory(limit, need, what, how, "render at a lower resolution");
 }
 
 }  // namespace ss

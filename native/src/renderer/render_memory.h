@@ -3,6 +3,7 @@
 #pragma once
 #include <string>
 
+#include "core/memory_budget.h"
 #include "core/scene.h"
 #include "core/settings.h"
 
@@ -13,7 +14,10 @@ namespace ss {
 inline constexpr SettingSpec kMemoryLimitSetting = intSetting(
     "memory_limit_mb", 0, 0, 1 << 24, "memory a render may need, in MiB (0: the machine's physical memory)");
 
-// Takes kMemoryLimitSetting out of `settings` and throws ss::Error(SS_ERROR_INVALID_ARGUMENT) when
+// Takes kMemoryLimitSetting out of `settings` and leaves the limit it gives in
+// settings.memoryLimit (what the sweep's shadow mesh is checked against).
+MemoryLimit takeMemoryLimit(RenderSettings& settings);
+// takeMemoryLimit, then throws ss::Error(SS_ERROR_INVALID_ARGUMENT) when
 // the render's budget (renderPeakBytes) is over the limit, with both figures in the message.
 void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& method, RenderSettings& settings);
 

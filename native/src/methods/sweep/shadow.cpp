@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "core/stopwatch.h"
 #include "methods/sweep/weights.h"
 #include "planar/outline.h"
@@ -46,6 +48,7 @@ SweepOptions sweepOptions(const RenderSettings& settings) {
     if (o.samples > 4096) fail(SS_ERROR_INVALID_ARGUMENT, "sweep: at most 4096 samples (got " + std::to_string(o.samples) + ")");
     o.seed = settings.seed;
     o.cancel = settings.cancel;
+    o.memoryLimit = settings.memoryLimit;
     o.receiver = settings.text(kReceiver);
     const std::string fill = settings.choice(kFill);
     o.fill = fill == "smooth" ? planar::FillMode::Smooth : fill == "steps" ? planar::FillMode::Steps : planar::FillMode::Rings;
@@ -132,10 +135,30 @@ WidestPenumbra widestPenumbra(const Scene& scene, const Light& light, const Rece
     return out;
 }
 
-// One cluster's shadow mesh (intensities not yet weighted) and the samples it used.
+// Refuses a shadow mesh whose triangles (with `held` of the clusters before it) are over the
+// memory limit, before its weights are made: the fill is done by then, the largest part not.
+void requireMeshWithinMemory(const Light& light, int64_t held, const planar::ShadowMesh& mesh, int samples,
+                             const SweepOptions& options) {
+    const int64_t triangles = held + int64_t(mesh.indices.size() / 3);
+    const bool weighed = options.irradianceWeights && samples > 1;
+    const double need = sweepMeshPeakBytes(held, 0, false) + sweepMeshPeakBytes(triangles - held, samples, weighed);
+    char how[160];
+    if (weighed)
+        std::snprintf(how, sizeof how, "%.0f bytes a triangle + %.0f for each of its %d samples' weights and their sum",
+                      kBudgetBytesPerSweepTriangle, kBudgetBytesPerSweepWeight, samples);
+    else
+        std::snprintf(how, sizeof how, "%.0f bytes a triangle", kBudgetBytesPerSweepTriangle);
+    requireWithinMemory(options.memoryLimit, need,
+                        "light '" + light.name + "': sweep's shadow mesh of " + std::to_string(triangles) +
+                            " triangles from " + std::to_string(samples) + " light samples",
+                        how, weighed ? "use fewer samples, or weights=equal" : "use fewer samples");
+}
+
+// One cluster's shadow mesh (intensities not yet weighted) and the samples it used; `held`:
+// the triangles of the clusters' meshes made before it.
 planar::ShadowMesh clusterShadow(const Scene& scene, int lightIndex, int cluster, const std::vector<int>& occluders,
                                  const Light& light, const LightSampleOptions& so, const SweepOptions& options,
-                                 SweepProjectionCache& cache, SweepShadow* out, int* used) {
+                                 SweepProjectionCache& cache, SweepShadow* out, int* used, int64_t held) {
     std::vector<LightSample> usedSamples;
     for (const LightSample& s : placeLightSamples(light, so))
         if (castsOntoPlane(out->plane, s)) usedSamples.push_back(s);
@@ -164,6 +187,7 @@ planar::ShadowMesh clusterShadow(const Scene& scene, int lightIndex, int cluster
     planar::ShadowMesh mesh = fillShadowParts(merged, *used, options.fill, projections.filledParts(), &out->filling);
     projections.filled();
     out->timings.fillMs += msSince(t3);
+    requireMeshWithinMemory(scene.light(lightIndex), held, mesh, *used, options);
     if (options.irradianceWeights && *used > 1) {
         auto t4 = Clock::now();
         if (WeightedTriangles* kept = projections.weighted()) {
@@ -205,7 +229,7 @@ SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOp
     if (clusters.size() == 1 && out.passes == 1) {
         so.count = options.samples;
         projections.keep(int(scene.lights().size()), lightIndex, 1);
-        out.mesh = clusterShadow(scene, lightIndex, 0, occluders, light, so, options, projections, &out, &out.samplesUsed);
+        out.mesh = clusterShadow(scene, lightIndex, 0, occluders, light, so, options, projections, &out, &out.samplesUsed, 0);
         return out;
     }
     // Clusters and passes: each its own soft shadow from its share of the samples (at least
@@ -217,6 +241,7 @@ SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOp
     std::vector<planar::ShadowMesh> meshes;
     std::vector<double> weights;
     double total = 0.0;
+    int64_t held = 0;
     for (int p = 0; p < out.passes; ++p)
         for (size_t k = 0; k < clusters.size(); ++k) {
             so.count = std::max(1, int(std::lround(options.samples * clusters[k].weight)));
@@ -226,8 +251,9 @@ SweepShadow computeSweepShadow(const Scene& scene, int lightIndex, const SweepOp
             int used = 0;
             const int set = p * int(clusters.size()) + int(k);
             planar::ShadowMesh m =
-                clusterShadow(scene, lightIndex, set, occluders, clusters[k].light, so, options, projections, &out, &used);
+                clusterShadow(scene, lightIndex, set, occluders, clusters[k].light, so, options, projections, &out, &used, held);
             if (used == 0) continue;
+            held += int64_t(m.indices.size() / 3);
             out.samplesUsed += used;
             total += clusters[k].weight;
             meshes.push_back(std::move(m));

@@ -37,6 +37,9 @@ struct SweepOptions {
     bool irradianceWeights = true;
     // RenderSettings::cancel: checked between light samples (null: never cancelled).
     const std::atomic<bool>* cancel = nullptr;
+    // RenderSettings::memoryLimit: the shadow mesh is refused once its triangles are known, before
+    // its irradiance weights, when sweepMeshPeakBytes is over it (core/memory_budget.h).
+    MemoryLimit memoryLimit;
 };
 
 // raster=gl: the shadow triangles drawn with the camera's matrices and resolved on the GPU;
