@@ -11,13 +11,13 @@ the viewport draws scaled up at once, then the full one that replaces it. The tw
 native scenes fed the same edits, so each keeps its own camera pass and neither is redrawn whole
 for the other's resolution. While the scene and the view stay as they are, the full image is then
 refined: the same GL pass with refinement on, whose rays re-trace the pixels the pass is unsure of
-in REFINE_ROUNDS rounds, each drawn as it lands (deterministic sampling, the largest corrections
-first, so the image only gets closer to the truth; the last round is the final render's
-refined pass). A newer request cancels the running render, coarse, full or refined, through the
-progress and round callbacks (within 50 ms: the library polls them while it traces). A viewport
-always draws the last image it received until a newer one lands (an edit, a new view or a failed
-render never blanks it), and says in its corner what the preview is doing. Images are drawn with the `gpu`
-module only (no bgl), as black with alpha 1 - V."""
+in REFINE_ROUNDS rounds, each drawn as it lands (deterministic sampling, the uncertain pixels'
+largest corrections first, the check of the others after them, so the image gets closer to the
+truth; the last round is the final render's refined pass). A newer request cancels the running
+render, coarse, full or refined, through the progress and round callbacks (within 50 ms: the
+library polls them while it traces). A viewport always draws the last image it received until a
+newer one lands (an edit, a new view or a failed render never blanks it), and says in its corner
+what the preview is doing. Images are drawn with the `gpu` module only (no bgl), as black with alpha 1 - V."""
 import itertools
 import threading
 
@@ -42,8 +42,9 @@ COARSE_SETTINGS = {"occlusion_textures": "resolution=%d" % (512 // COARSE_DIVISO
 RECORD_LENGTH = 64    # entries kept in _State.delivered and _State.cancelled
 # The stages of one request, in the order they are delivered: each image is closer to the truth.
 STAGES = ("coarse", "full", "refined")
-# The refined image comes in rounds, each a further share of the uncertain pixels traced (the
-# largest corrections first), drawn as it lands; the last is the final render's refined pass.
+# The refined image comes in rounds, drawn as they land: shares of the uncertain pixels traced
+# (the largest corrections first), then the check of the pixels the GL pass called certain and
+# those it contradicts; the last is the final render's refined pass.
 REFINE_ROUNDS = 4
 
 

@@ -236,6 +236,53 @@ TEST(ReferenceAdaptive, DeterministicForASeedWhateverTheThreadCount) {
     EXPECT_NE(layer(a, "V").pixels, layer(c, "V").pixels);
 }
 
+// Samples kept by one call (TracedSamples) give a later call what tracing them again gives, bit for
+// bit, even under another error target (other stopping points) and over more pixels; the kept
+// blocks are the pixels' own, in their order.
+TEST(ReferenceAdaptive, KeptSamplesGiveALaterCallWhatTracingGives) {
+    Scene scene = test::sceneTorus(smallScene());
+    const Camera& camera = scene.camera();
+    TraceSceneCache cache;
+    const std::shared_ptr<const TraceScene> trace = cache.get(scene, 0);
+    RenderSettings settings;
+    Image left(camera.width, camera.height, 0.0f);
+    for (int y = 0; y < camera.height; ++y)
+        for (int x = 0; x < camera.width / 2; ++x) left.at(x, y) = 1.0f;
+    struct Traced {
+        Image v, rays;
+    };
+    auto traceWith = [&](float target, const Image* select, TracedSamples* kept) {
+        AdaptiveSampling sampling;
+        sampling.errorTarget = target;
+        Traced out{Image(camera.width, camera.height, 1.0f), Image(camera.width, camera.height, 0.0f)};
+        traceAdaptive(scene, 0, *trace, sampling, settings, {select, nullptr}, {&out.v, nullptr, &out.rays, nullptr},
+                      {1, {}, kept});
+        return out;
+    };
+    TracedSamples kept(size_t(camera.width) * size_t(camera.height));
+    traceWith(0.03f, &left, &kept);  // a looser target over half the image
+    const Traced fresh = traceWith(0.01f, nullptr, nullptr), again = traceWith(0.01f, nullptr, &kept);
+    EXPECT_EQ(again.v.pixels, fresh.v.pixels);
+    EXPECT_EQ(again.rays.pixels, fresh.rays.pixels);
+    double sumRays = 0.0;
+    for (float r : fresh.rays.pixels) sumRays += r;
+    EXPECT_GT(sumRays, 16.0 * double(camera.width * camera.height)) << "further rounds were traced";
+    // A pixel's first round is kept; a block after sums it did not follow is not given.
+    size_t pixel = 0;
+    while (pixel < fresh.rays.pixels.size() && !(left.pixels[pixel] != 0.0f && fresh.rays.pixels[pixel] > 16.0f)) ++pixel;
+    ASSERT_LT(pixel, fresh.rays.pixels.size()) << "no pixel of the left half took further rounds";
+    SampleSums first;
+    ASSERT_TRUE(kept.take(pixel, 0, 16, &first));
+    EXPECT_GT(first.rays, 0);
+    SampleSums next = first;
+    EXPECT_TRUE(kept.take(pixel, 16, 32, &next));
+    EXPECT_GT(next.rays, first.rays);
+    SampleSums other = first;
+    other.visible += 0.5;
+    EXPECT_FALSE(kept.take(pixel, 16, 32, &other));
+    EXPECT_FALSE(kept.take(pixel, 0, 32, &first));
+}
+
 TEST(ReferenceAdaptive, SettingsAreReadByNameAndRefusedOutOfRange) {
     Scene scene = test::sceneBox(smallScene());
     Renderer renderer(SS_BACKEND_AUTO);

@@ -35,7 +35,7 @@ std::vector<float> layerOf(const ss_result* result, const char* wanted) {
 // What one round callback saw.
 struct Round {
     int32_t round = 0, rounds = 0;
-    std::vector<float> v, refined;
+    std::vector<float> v, refined, rays;
     double estimate = 0.0;
     std::string method;
 };
@@ -52,7 +52,7 @@ struct Heard {
 
 int hear(void* user, const ss_result* partial, int32_t round, int32_t rounds) {
     Heard& h = *static_cast<Heard*>(user);
-    h.rounds.push_back({round, rounds, layerOf(partial, "V"), layerOf(partial, "refined"),
+    h.rounds.push_back({round, rounds, layerOf(partial, "V"), layerOf(partial, "refined"), layerOf(partial, "rays"),
                         ss_result_estimated_rmse(partial), ss_result_method(partial)});
     if (h.reenter) {
         ss_result* inner = nullptr;
@@ -137,7 +137,49 @@ TEST(RefinementRounds, TheErrorFallsRoundByRoundToTheTargetAndTheOneRoundResult)
         EXPECT_LE(errors.back(), 0.01) << method;
         EXPECT_EQ(final, layerOf(once, "V")) << method;
         EXPECT_EQ(layerOf(last, "refined"), layerOf(once, "refined")) << method;
+        EXPECT_EQ(layerOf(last, "rays"), layerOf(once, "rays")) << method;
         for (ss_result* r : {gl, once, last}) ss_result_destroy(r);
+    }
+}
+
+double sum(const std::vector<float>& values) {
+    double s = 0.0;
+    for (float v : values) s += v;
+    return s;
+}
+
+// Rays where a pixel was not traced adaptively: the check of the pixels the pass called certain.
+double checkRays(const Round& r) {
+    double s = 0.0;
+    for (size_t i = 0; i < r.rays.size(); ++i)
+        if (r.refined[i] == 0.0f) s += r.rays[i];
+    return s;
+}
+
+// The first round lands on the uncertain pixels' largest corrections alone: no ray of the check of
+// the certain pixels yet, and a small share of the rays the result rests on. The rays of each round
+// rest on more than the last's; the check comes in the rounds after the uncertain pixels'.
+TEST(RefinementRounds, TheFirstRoundRestsOnAFewOfTheRaysAndTheCheckComesAfter) {
+    Fixture f;
+    for (const char* method : {"pcss", "shadow_map"}) {
+        Heard heard;
+        ss_result* last = nullptr;
+        ASSERT_EQ(render(f, method, 4, 0, &heard, &last), SS_OK) << ss_last_error();
+        ASSERT_EQ(heard.rounds.size(), 3u) << method;
+        Round final{4, 4, layerOf(last, "V"), layerOf(last, "refined"), layerOf(last, "rays")};
+        const double total = sum(final.rays);
+        std::printf("%s: rays per round", method);
+        for (const Round& r : heard.rounds) std::printf(" %.0f (check %.0f)", sum(r.rays), checkRays(r));
+        std::printf(", last %.0f (check %.0f)\n", total, checkRays(final));
+        EXPECT_EQ(checkRays(heard.rounds[0]), 0.0) << method << ": round 1 waits for no check";
+        EXPECT_EQ(checkRays(heard.rounds[1]), 0.0) << method << ": round 2 is the uncertain pixels' rest";
+        EXPECT_GT(checkRays(heard.rounds[2]), 0.25 * total) << method << ": round 3 checks the certain pixels";
+        EXPECT_EQ(checkRays(heard.rounds[2]), checkRays(final)) << method << ": one check in all";
+        EXPECT_LE(sum(heard.rounds[0].rays), 0.5 * total) << method;
+        for (size_t k = 1; k < heard.rounds.size(); ++k)
+            EXPECT_GE(sum(heard.rounds[k].rays), sum(heard.rounds[k - 1].rays)) << method << " round " << k + 1;
+        EXPECT_GE(total, sum(heard.rounds.back().rays)) << method;
+        ss_result_destroy(last);
     }
 }
 

@@ -40,6 +40,7 @@ struct Tracer {
     const LightSampler sampler;
     const CameraRays rays;
     const uint32_t seed;
+    TracedSamples* const kept;
 
     // False when the pixel sees no surface that receives this light (its mesh flags and light linking).
     bool surface(int x, int y, SurfaceHit* hit) const {
@@ -50,8 +51,11 @@ struct Tracer {
         return hit->hit && scene.receivesFrom(int(hit->mesh), lightIndex);
     }
     void add(const SurfaceHit& hit, int x, int y, uint32_t begin, uint32_t end, SampleSums* sums) const {
+        const size_t pixel = size_t(y) * size_t(rays.camera.width) + size_t(x);
+        if (kept && kept->take(pixel, begin, end, sums)) return;
         addSamples(trace, sampler, hit, SampleSequence(seed, uint32_t(x), uint32_t(y)), begin, end,
                    light.castShadows, sums);
+        if (kept) kept->keep(pixel, begin, end, *sums);
     }
 };
 
@@ -81,6 +85,37 @@ void continueRounds(const std::function<void(uint32_t, uint32_t, SampleSums*)>& 
 }
 
 }  // namespace
+
+namespace {
+
+bool sameSums(const SampleSums& a, const SampleSums& b) {
+    return a.weight == b.weight && a.visible == b.visible && a.rays == b.rays && a.leastThrough == b.leastThrough &&
+           a.mostThrough == b.mostThrough;
+}
+
+}  // namespace
+
+bool TracedSamples::take(size_t pixel, uint32_t begin, uint32_t end, SampleSums* sums) const {
+    const std::vector<Block>* blocks = blocks_[pixel].get();
+    if (!blocks) return false;
+    // The sums before the block must be what the kept blocks before it gave: the same samples
+    // in the same order.
+    bool startsHere = begin == 0 && sameSums(*sums, SampleSums{});
+    for (const Block& b : *blocks) {
+        if (b.begin == begin && b.end == end && startsHere) {
+            *sums = b.after;
+            return true;
+        }
+        if (b.end == begin && sameSums(b.after, *sums)) startsHere = true;
+    }
+    return false;
+}
+
+void TracedSamples::keep(size_t pixel, uint32_t begin, uint32_t end, const SampleSums& after) {
+    std::unique_ptr<std::vector<Block>>& blocks = blocks_[pixel];
+    if (!blocks) blocks = std::make_unique<std::vector<Block>>();
+    blocks->push_back({begin, end, after});
+}
 
 int raysToTrustAgreement(float pixelTarget) {
     return int(std::ceil(2.0 / (std::exp(1.0) * double(pixelTarget))));
@@ -134,7 +169,8 @@ void traceAdaptive(const Scene& scene, int lightIndex, const TraceScene& trace,
     const Camera& camera = scene.camera();
     const int width = camera.width, height = camera.height;
     const Light& light = scene.light(lightIndex);
-    const Tracer t{scene, lightIndex, light, trace, LightSampler(light), CameraRays(camera), settings.seed};
+    const Tracer t{scene, lightIndex, light, trace, LightSampler(light), CameraRays(camera), settings.seed,
+                     shares.kept};
     const size_t count = size_t(width) * size_t(height);
     std::vector<PixelState> state(count, PixelState::Outside);
     std::vector<SampleSums> sums(count);

@@ -23,16 +23,6 @@ const SettingTable& refinementSettings();
 // edge), grown by `margin` pixels (within the mask). 1 there, 0 elsewhere.
 Image uncertainPixels(const Image& visibility, const Image& mask, int margin);
 
-// Where `verifyRays` rays per pixel contradict a certain pass (inside the mask, outside
-// `uncertain`): V = 1 and a ray is blocked, or V = 0 and a ray sees the light; grown by `margin`
-// pixels within the mask. Also, on their own, the certain pixels of the method's own mask
-// (`methodMask`) where fewer than half the rays could be traced (light mostly below the horizon,
-// or no receiving surface for the ray tracer). Adds the rays traced per pixel to *rays.
-Image wronglyCertainPixels(const Scene& scene, int lightIndex, const RenderSettings& settings,
-                           const TraceScene& trace, int verifyRays, const Image& visibility,
-                           const Image& mask, const Image& methodMask, const Image& uncertain, int margin,
-                           Image* rays);
-
 // Checks the pixels where the method was certain with "refine_verify" rays each (a GL pass can
 // be certain and wrong: a shadow map's missed caster, a faint penumbra it calls lit), then traces
 // adaptively the uncertain pixels and those the check contradicted, with their margin; the guard
@@ -48,11 +38,15 @@ struct Refinement {
     Image traced;
     float errorTarget = 0.0f;
 };
-// With settings.refineRounds = n > 1 the pixels to trace are traced in n shares (AdaptiveShares: the
-// largest expected change first); after each share but the last, `landed` hears the result so far:
-// the layers as refined up to then (with extraLayers their "rays" and "refined" so far), the
-// pixels traced so far and the error target, round of rounds (1-based). The final layers are
-// those of one round.
+// With settings.refineRounds = n > 1 and `landed` set, rounds 1 .. n - 1 land before the last one, each
+// handed to `landed` as it lands: the layers as refined up to then (with extraLayers their "rays"
+// and "refined" so far), the pixels traced so far and the error target, round of rounds
+// (1-based). The uncertain pixels come first, in shares of their adaptive rounds (the largest
+// expected change first), so the first round lands without waiting for the check; then the
+// check of the certain pixels in bands of rows, the pixels each band contradicts traced in the
+// same round. Those rounds aim at a provisional pixel target (the final one needs the whole
+// check); the last round is the one-round refinement, bit for bit, and traces only what the
+// rounds before it left out (TracedSamples). Without `landed` the rounds change nothing.
 struct RefinementRound {
     Layers layers;
     Image traced;
