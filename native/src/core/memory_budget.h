@@ -9,7 +9,7 @@ namespace ss {
 
 // Measured with /usr/bin/time -v on `softshadow render` (bench/memory_budget.sh: one light,
 // llvmpipe, 1024² to 8192²): the program, GL and Embree state and one 2048² shadow map. Several
-// lights in one process add up to Frame::kDefaultShadowMapBudget (256 MiB) of cached maps.
+// lights in one process add up to SceneCache::kDefaultShadowMapBudget (256 MiB) of cached maps.
 inline constexpr double kBudgetFixedBytes = 250e6;
 // A pixel of the camera for a GL method: the camera pass (two RGBA32F targets, an RG32F one and
 // depth: 44 bytes), the method's targets and the result's float layers. Measured: shadow_map 78,

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "methods/method.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "reference/render_reference.h"
 
 namespace ss {
@@ -15,8 +15,8 @@ namespace {
 class ReferenceMethod final : public Method {
 public:
     ReferenceMethod() : Method("reference", MethodDevice::Cpu, referenceSettings()) {}
-    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        return renderReference(frame.scene(), lightIndex, settings, &frame.traceScenes());
+    Layers render(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
+        return renderReference(sceneCache.scene(), lightIndex, settings, &sceneCache.traceScenes());
     }
 };
 

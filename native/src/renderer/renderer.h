@@ -24,7 +24,7 @@ SettingTable renderSettingTable(const std::string& method);
 // Owns (lazily) the GL context on the library's own render thread and the per-scene cache of
 // shared passes (mesh buffers, the camera pass, one light-centre shadow map per light), so that
 // a series of render() calls on the same scene draws each shared pass once and, after an edit,
-// redraws only what the edit changed (see Frame).
+// redraws only what the edit changed (see SceneCache).
 // CPU-only methods (reference) never start GL.
 class Renderer {
 public:
@@ -61,13 +61,13 @@ public:
                   double* estimatedRmse = nullptr, AutoTrials* trials = nullptr,
                   std::vector<std::string>* warnings = nullptr, const RoundFn& rounds = {});
 
-    // What the caches did over the renderer's life (frame/cache_counters.h lists the counters;
+    // What the caches did over the renderer's life (scene_cache/cache_counters.h lists the counters;
     // tests of the frame cache and the benchmark's stage counts read them).
     using CacheStats = ss::CacheStats;
     CacheStats cacheStats() const;
 
     // What the cached shadow maps may hold between renders (least recently used go first);
-    // default Frame::kDefaultShadowMapBudget.
+    // default SceneCache::kDefaultShadowMapBudget.
     void setShadowMapBudget(size_t bytes);
 
 private:

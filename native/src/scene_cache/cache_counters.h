@@ -1,15 +1,15 @@
-// The cache counters, declared once: FrameStats, Renderer::CacheStats, the C API's
+// The cache counters, declared once: SceneCacheStats, Renderer::CacheStats, the C API's
 // ss_cache_stat_* and the add-on's native.cache_stats() all come from these lists.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <algorithm>
 #include <cstddef>
 
-// X(type, member, name, combine, doc): the C++ member (FrameStats, CacheStats), the C API's name,
+// X(type, member, name, combine, doc): the C++ member (SceneCacheStats, CacheStats), the C API's name,
 // how the renderer adds up its frames' values (Sum or Max) and what it counts (the C API's doc).
 //
-// Counted by each frame cache (FrameStats); the renderer adds up all its frames, dropped ones too.
-#define SS_FRAME_COUNTERS(X)                                                                          \
+// Counted by each frame cache (SceneCacheStats); the renderer adds up all its frames, dropped ones too.
+#define SS_SCENE_CACHE_COUNTERS(X)                                                                          \
     X(int, meshUploads, "mesh_uploads", Sum, "meshes uploaded to the GPU (one per mesh shape: a move uploads nothing)") \
     X(int, cameraPasses, "camera_passes", Sum, "camera passes drawn, whole or patched")                  \
     X(int, cameraReadbacks, "camera_readbacks", Sum, "camera passes read back to the CPU (48 MB at 1024x1024)") \
@@ -33,14 +33,14 @@
 
 // Counted by the renderer itself (frames made, the frames' ray-tracing scenes, GL method runs).
 #define SS_RENDERER_COUNTERS(X)                                                                       \
-    X(int, frames, "frames", Sum, "frame caches made (one per scene)")                                  \
+    X(int, sceneCaches, "frames", Sum, "frame caches made (one per scene)")                                  \
     X(int, traceSceneBuilds, "trace_scene_builds", Sum, "Embree scenes built (one per scene and geometry edit, shared by reference, refine=on and auto's check)") \
     X(int, meshBvhBuilds, "mesh_bvh_builds", Sum, "mesh BVHs those scenes built (one per mesh shape: a moved mesh keeps its BVH)") \
     X(double, methodMs, "method_ms", Sum, "milliseconds running GL methods (prepare + render, the shared passes they drew included)")
 
-#define SS_CACHE_COUNTERS(X) SS_FRAME_COUNTERS(X) SS_METHOD_COUNTERS(X) SS_RENDERER_COUNTERS(X)
+#define SS_CACHE_COUNTERS(X) SS_SCENE_CACHE_COUNTERS(X) SS_METHOD_COUNTERS(X) SS_RENDERER_COUNTERS(X)
 
-// A struct's members from a list: `struct S { SS_FRAME_COUNTERS(SS_COUNTER_MEMBER) };`.
+// A struct's members from a list: `struct S { SS_SCENE_CACHE_COUNTERS(SS_COUNTER_MEMBER) };`.
 #define SS_COUNTER_MEMBER(type, member, name, combine, doc) type member = 0;
 
 namespace ss {

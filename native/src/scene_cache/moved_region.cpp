@@ -1,6 +1,6 @@
 // Which part of a pass a move touched: the boxes moved meshes left and entered, on screen.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "frame/moved_region.h"
+#include "scene_cache/moved_region.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // How the shared passes are drawn once per frame: mesh upload, camera G-buffer, shadow maps.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,14 +18,14 @@ namespace ss {
 bool GpuMesh::casts() const { return (flags & SS_MESH_CAST) != 0; }
 bool GpuMesh::receives() const { return (flags & SS_MESH_RECEIVE) != 0; }
 
-Frame::Frame(const Scene& scene) : scene_(&scene) {}
-Frame::~Frame() = default;
+SceneCache::SceneCache(const Scene& scene) : scene_(&scene) {}
+SceneCache::~SceneCache() = default;
 
-const Light& Frame::light(int index) const { return scene_->light(index); }
+const Light& SceneCache::light(int index) const { return scene_->light(index); }
 
-const gl::Functions& Frame::gl() const { return gl::api(); }
+const gl::Functions& SceneCache::gl() const { return gl::api(); }
 
-std::vector<MeshPlacement> Frame::placements() const {
+std::vector<MeshPlacement> SceneCache::placements() const {
     std::vector<MeshPlacement> out;
     for (const Mesh& m : scene_->meshes()) {
         MeshPlacement p;
@@ -37,7 +37,7 @@ std::vector<MeshPlacement> Frame::placements() const {
     return out;
 }
 
-void Frame::dropStalePasses() {
+void SceneCache::dropStalePasses() {
     const uint64_t geometry = scene_->geometryVersion();
     if (camera_ && cameraPassCamera_ != scene_->cameraVersion()) camera_.reset();
     if (camera_ && cameraPassGeometry_ != geometry) cameraImages_.reset();  // cameraPass() patches the pass
@@ -92,7 +92,7 @@ void place(GpuMesh& gm, const Mesh& mesh) {
 
 }  // namespace
 
-const std::vector<GpuMesh>& Frame::meshes() {
+const std::vector<GpuMesh>& SceneCache::meshes() {
     if (meshesGeometryVersion_ == scene_->geometryVersion()) return meshes_;
     const auto start = Clock::now();
     const gl::Functions& g = gl();
@@ -143,7 +143,7 @@ const std::vector<GpuMesh>& Frame::meshes() {
     return meshes_;
 }
 
-void Frame::drawMeshes(const gl::Program& program, uint32_t requiredFlags,
+void SceneCache::drawMeshes(const gl::Program& program, uint32_t requiredFlags,
                        const std::function<void(const GpuMesh&)>& before) {
     drawMeshesWhere(program, requiredFlags, std::nullopt, before);
 }
@@ -172,7 +172,7 @@ bool reaches(const PatchRegion& region, const GpuMesh& m, const Bounds& objectBo
 
 }  // namespace
 
-void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
+void SceneCache::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
                             const std::optional<PatchRegion>& region,
                             const std::function<void(const GpuMesh&)>& before, int castingFor,
                             bool skipSeeThrough) {
@@ -210,7 +210,7 @@ void Frame::drawMeshesWhere(const gl::Program& program, uint32_t requiredFlags,
     g.BindVertexArray(0);
 }
 
-void Frame::drawSeeThroughWhere(const gl::Program& program, uint32_t requiredFlags,
+void SceneCache::drawSeeThroughWhere(const gl::Program& program, uint32_t requiredFlags,
                                 const std::function<void(const GpuMesh&)>& before, int castingFor) {
     const gl::Functions& g = gl();
     bool bound = false;
@@ -238,7 +238,7 @@ void Frame::drawSeeThroughWhere(const gl::Program& program, uint32_t requiredFla
     if (bound) g.BindVertexArray(0);
 }
 
-void Frame::bindEmptyVertexArray() {
+void SceneCache::bindEmptyVertexArray() {
     if (!emptyVao_) {
         GLuint vao = 0;
         gl().CreateVertexArrays(1, &vao);
@@ -247,7 +247,7 @@ void Frame::bindEmptyVertexArray() {
     gl().BindVertexArray(emptyVao_.id());
 }
 
-void Frame::drawFullscreen() {
+void SceneCache::drawFullscreen() {
     const gl::Functions& g = gl();
     bindEmptyVertexArray();
     g.DrawArrays(GL_TRIANGLES, 0, 3);
@@ -272,7 +272,7 @@ std::optional<PatchRegion> patchRegion(const std::optional<PixelRect>& rect, con
 
 }  // namespace
 
-void Frame::listCoveringTriangles(const Camera& camera, const PixelRect& rect) {
+void SceneCache::listCoveringTriangles(const Camera& camera, const PixelRect& rect) {
     // The runs of triangles to test: per mesh, its consecutive clusters that reach the rectangle.
     struct Run {
         size_t mesh;
@@ -341,7 +341,7 @@ void Frame::listCoveringTriangles(const Camera& camera, const PixelRect& rect) {
     }
 }
 
-void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect) {
+void SceneCache::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rect) {
     const gl::Functions& g = gl();
     const Camera& cam = camera();
     listCoveringTriangles(cam, rect ? *rect : PixelRect{0, 0, pass.width, pass.height});
@@ -421,7 +421,7 @@ void Frame::drawCameraPass(CameraPass& pass, const std::optional<PixelRect>& rec
     g.check("drawing the camera pass");
 }
 
-const CameraPass& Frame::cameraPass() {
+const CameraPass& SceneCache::cameraPass() {
     dropStalePasses();
     if (camera_ && cameraPassGeometry_ == scene_->geometryVersion()) return *camera_;
     meshes();  // uploads timed apart
@@ -458,7 +458,7 @@ const CameraPass& Frame::cameraPass() {
     return *camera_;
 }
 
-const CameraImages& Frame::cameraImages() {
+const CameraImages& SceneCache::cameraImages() {
     dropStalePasses();
     if (cameraImages_) return *cameraImages_;
     const CameraPass& pass = cameraPass();
@@ -473,7 +473,7 @@ const CameraImages& Frame::cameraImages() {
     return *cameraImages_;
 }
 
-void Frame::drawShadowMap(ShadowMap& map, int lightIndex, const std::optional<PixelRect>& rect) {
+void SceneCache::drawShadowMap(ShadowMap& map, int lightIndex, const std::optional<PixelRect>& rect) {
     const gl::Functions& g = gl();
     gl::Framebuffer fb(map.size, map.size, {});
     fb.attachColor(0, map.distance.id());
@@ -502,7 +502,7 @@ void Frame::drawShadowMap(ShadowMap& map, int lightIndex, const std::optional<Pi
     g.check("drawing a shadow map");
 }
 
-const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
+const ShadowMap& SceneCache::shadowMap(int lightIndex, int size) {
     if (size <= 0) size = kDefaultShadowMapSize;
     const Bounds fit = shadowFitBounds(lightIndex);  // drops the stale passes
     auto key = std::make_pair(light(lightIndex).version, size);
@@ -551,7 +551,7 @@ const ShadowMap& Frame::shadowMap(int lightIndex, int size) {
     return *shadowMaps_.emplace(key, std::move(entry)).first->second.map;
 }
 
-void Frame::dropStale() {
+void SceneCache::dropStale() {
     dropStalePasses();
     traceScenes_.dropStale(*scene_);
     // Maps of lights edited or removed since are never asked for again.
@@ -567,12 +567,12 @@ void Frame::dropStale() {
     }
 }
 
-void Frame::trimCameraImages(size_t keepBytes) {
+void SceneCache::trimCameraImages(size_t keepBytes) {
     if (cameraImages_ && size_t(cameraImages_->width) * size_t(cameraImages_->height) * 3 * sizeof(glm::vec4) > keepBytes)
         cameraImages_.reset();
 }
 
-void Frame::trimCache(size_t budgetBytes) {
+void SceneCache::trimCache(size_t budgetBytes) {
     while (stats_.shadowMapBytes > budgetBytes && !shadowMaps_.empty()) {
         auto oldest = shadowMaps_.begin();
         for (auto it = shadowMaps_.begin(); it != shadowMaps_.end(); ++it)
@@ -583,7 +583,7 @@ void Frame::trimCache(size_t budgetBytes) {
     }
 }
 
-void Frame::bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const {
+void SceneCache::bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const {
     program.set("uShadowWorldToClip", map.worldToClip());
     program.set("uShadowOrigin", map.origin);
     program.set("uShadowAxis", map.axis);
@@ -593,13 +593,13 @@ void Frame::bindShadowMapUniforms(const gl::Program& program, const ShadowMap& m
                 map.orthographic ? 2.0f * map.halfWidth / float(map.size) : 2.0f * map.tanHalfFov / float(map.size));
 }
 
-int Frame::bindShadowMap(const gl::Program& program, const ShadowMap& map, int unit) const {
+int SceneCache::bindShadowMap(const gl::Program& program, const ShadowMap& map, int unit) const {
     program.setTexture("uShadowDistance", unit, map.distance.id());
     bindShadowMapUniforms(program, map);
     return unit + 1;
 }
 
-int Frame::bindCameraPass(const gl::Program& program, int firstUnit) {
+int SceneCache::bindCameraPass(const gl::Program& program, int firstUnit) {
     const CameraPass& pass = cameraPass();
     program.setTexture("uCamPositionDepth", firstUnit, pass.positionDepth());
     program.setTexture("uCamNormalReceive", firstUnit + 1, pass.normalReceive());
@@ -607,7 +607,7 @@ int Frame::bindCameraPass(const gl::Program& program, int firstUnit) {
     return firstUnit + 3;
 }
 
-void Frame::setLightUniforms(const gl::Program& program, int lightIndex) const {
+void SceneCache::setLightUniforms(const gl::Program& program, int lightIndex) const {
     const Light& L = light(lightIndex);
     program.set("uLight.type", int(L.type));
     program.set("uLight.position", L.position());

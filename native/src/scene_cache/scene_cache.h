@@ -13,10 +13,10 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
-#include "frame/cache_counters.h"
-#include "frame/covering_triangles.h"
-#include "frame/moved_region.h"
-#include "frame/see_through.h"
+#include "scene_cache/cache_counters.h"
+#include "scene_cache/covering_triangles.h"
+#include "scene_cache/moved_region.h"
+#include "scene_cache/see_through.h"
 #include "gl/framebuffer.h"
 #include "gl/gl_functions.h"
 #include "gl/objects.h"
@@ -61,7 +61,7 @@ struct GpuMesh {
 // The camera G-buffer: camera resolution, drawn with the scene camera's own matrices, so GL
 // fragment (x, y) is contract pixel (x, height-1-y); read-backs flip to row 0 = top.
 // In shaders read it with texelFetch(tex, ivec2(gl_FragCoord.xy), 0) from a full-screen pass at
-// camera resolution, or include "common/camera_gbuffer.glsl" and call Frame::bindCameraPass().
+// camera resolution, or include "common/camera_gbuffer.glsl" and call SceneCache::bindCameraPass().
 struct CameraPass {
     int width = 0, height = 0;
     // colour 0 RGBA32F: world position xyz at the pixel centre; w = view depth (distance along
@@ -128,23 +128,23 @@ inline constexpr float kSceneFitSlack = 8.0f;
 // that region, so one outlier never spreads a map over its own extent. No GL needed.
 Bounds shadowFitBounds(const Light& light, const Bounds& scene, const Bounds& receivers);
 
-// What one frame cache drew and uploaded (frame/cache_counters.h says what each counts).
-struct FrameStats {
-    SS_FRAME_COUNTERS(SS_COUNTER_MEMBER)
+// What one frame cache drew and uploaded (scene_cache/cache_counters.h says what each counts).
+struct SceneCacheStats {
+    SS_SCENE_CACHE_COUNTERS(SS_COUNTER_MEMBER)
     size_t shadowMapBytes = 0;  // the cached shadow maps' bytes now (the budget's measure)
 };
 
-class Frame {
+class SceneCache {
 public:
     static constexpr int kDefaultShadowMapSize = 2048;
     // What the cached shadow maps may hold between renders: eight 2048² maps (distance +
     // depth, 32 MiB each). One render may add its own maps on top until the next trim.
     static constexpr size_t kDefaultShadowMapBudget = size_t(256) << 20;
 
-    explicit Frame(const Scene& scene);
-    ~Frame();
-    Frame(const Frame&) = delete;
-    Frame& operator=(const Frame&) = delete;
+    explicit SceneCache(const Scene& scene);
+    ~SceneCache();
+    SceneCache(const SceneCache&) = delete;
+    SceneCache& operator=(const SceneCache&) = delete;
 
     const Scene& scene() const { return *scene_; }
     const Camera& camera() const { return scene_->camera(); }
@@ -235,7 +235,7 @@ public:
     // Sets uShadowDistance (texture) and uShadow* of "common/shadow_map.glsl"; returns next unit.
     int bindShadowMap(const gl::Program& program, const ShadowMap& map, int unit) const;
 
-    const FrameStats& stats() const { return stats_; }
+    const SceneCacheStats& stats() const { return stats_; }
 
 private:
     void bindShadowMapUniforms(const gl::Program& program, const ShadowMap& map) const;
@@ -280,7 +280,7 @@ private:
     std::vector<std::pair<size_t, size_t>> listedRanges_;  // per mesh: first, count in listed_
     gl::BufferHandle listedBuffer_;
     size_t listedCapacity_ = 0;                             // uint32 entries listedBuffer_ holds
-    FrameStats stats_;
+    SceneCacheStats stats_;
     TraceSceneCache traceScenes_;
 };
 

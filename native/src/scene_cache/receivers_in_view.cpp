@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 
-const Bounds& Frame::receiversInView() {
+const Bounds& SceneCache::receiversInView() {
     const CameraPass& pass = cameraPass();
     if (receiversInView_) return *receiversInView_;
     // A band of rows at a time (about 16 MiB for each of the two attachments), so an 8192² pass
@@ -27,7 +27,7 @@ const Bounds& Frame::receiversInView() {
     return *receiversInView_;
 }
 
-Bounds Frame::shadowFitBounds(int lightIndex) {
+Bounds SceneCache::shadowFitBounds(int lightIndex) {
     dropStalePasses();
     return ss::shadowFitBounds(light(lightIndex), shadowMapBounds_, receiversInView());
 }

@@ -5,7 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 
