@@ -150,7 +150,7 @@ TEST(CameraPassCoverage, TheListedTrianglesDrawTheSamePassAsEveryTriangle) {
     });
 }
 
-// What a GPU gets (SceneCache::CameraCulling::Clusters): every triangle of the clusters that reach
+// What a GPU gets (CameraCulling::Clusters): every triangle of the clusters that reach
 // the rectangle, the same pass; and Auto on this machine's llvmpipe tests each triangle.
 TEST(CameraPassCoverage, AGpuIsHandedEveryTriangleOfTheClustersAndDrawsTheSamePass) {
     Scene scene = denseScene();
@@ -158,7 +158,7 @@ TEST(CameraPassCoverage, AGpuIsHandedEveryTriangleOfTheClustersAndDrawsTheSamePa
     gl::RenderThread thread(SS_BACKEND_AUTO);
     thread.run([&] {
         SceneCache tested(scene), clusters(scene);
-        clusters.setCameraCulling(SceneCache::CameraCulling::Clusters);
+        clusters.setCameraCulling(CameraCulling::Clusters);
         const GBuffer a = read(tested.cameraPass().framebuffer);
         const GBuffer b = read(clusters.cameraPass().framebuffer);
         EXPECT_EQ(differences(a, b), 0u);

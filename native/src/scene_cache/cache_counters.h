@@ -44,6 +44,13 @@
 #define SS_COUNTER_MEMBER(type, member, name, combine, doc) type member = 0;
 
 namespace ss {
+
+// What one scene cache drew and uploaded (SS_SCENE_CACHE_COUNTERS says what each counts).
+struct SceneCacheStats {
+    SS_SCENE_CACHE_COUNTERS(SS_COUNTER_MEMBER)
+    size_t shadowMapBytes = 0;  // the cached shadow maps' bytes now (the budget's measure)
+};
+
 template <class T>
 T combineCounterSum(T total, T value) { return total + value; }
 template <class T>

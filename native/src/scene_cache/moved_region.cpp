@@ -7,6 +7,18 @@
 
 namespace ss {
 
+std::vector<MeshPlacement> placementsOf(const Scene& scene) {
+    std::vector<MeshPlacement> out;
+    for (const Mesh& m : scene.meshes()) {
+        MeshPlacement p;
+        p.shapeVersion = m.shapeVersion;
+        p.objectToWorld = m.objectToWorld;
+        for (const glm::vec3& v : m.positions) p.bounds.extend(v);
+        out.push_back(p);
+    }
+    return out;
+}
+
 std::optional<std::vector<Bounds>> movedBoxes(const std::vector<MeshPlacement>& drawn,
                                               const std::vector<MeshPlacement>& now) {
     if (drawn.size() != now.size()) return std::nullopt;
