@@ -1,4 +1,4 @@
-// How a (light, method) render is dispatched: lazy GL start, the frame cache, CPU vs GL methods.
+// How a (light, method) render is dispatched: lazy GL start, the scene caches, CPU vs GL methods.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "renderer/renderer.h"
 
@@ -28,12 +28,12 @@ namespace ss {
 
 struct Renderer::Impl {
     ss_backend backend;
-    std::mutex m;  // one render at a time per renderer: frames and methods are not thread-safe
+    std::mutex m;  // one render at a time per renderer: scene caches and methods are not thread-safe
     std::unique_ptr<gl::RenderThread> thread;
     std::string infoJson;
 
     // The shared passes of a scene and the method objects with what they prepared, all kept
-    // across its edits: the frame redraws only what an edit changed, and a method rebuilds its
+    // across its edits: the scene cache redraws only what an edit changed, and a method rebuilds its
     // geometry only when its light's key changes (Scene::lightGeometryKey).
     struct Cached {
         uint64_t sceneId = 0;
@@ -49,7 +49,7 @@ struct Renderer::Impl {
     // larger ones are made again for each render instead.
     static constexpr size_t kKeptCameraImagesBytes = size_t(64) << 20;
     std::vector<std::unique_ptr<Cached>> caches;
-    CacheStats finished;  // of frames already dropped (and every method run's time)
+    CacheStats finished;  // of scene caches already dropped (and every method run's time)
     ScenesInRange inRange;  // the scenes without their meshes beyond the scene range
     size_t shadowMapBudget = SceneCache::kDefaultShadowMapBudget;
 
@@ -67,7 +67,7 @@ struct Renderer::Impl {
         into.meshBvhBuilds += f.traceScenes().meshBvhBuilds();
     }
 
-    // ss_shutdown() stopped the thread: everything GL died with its context, so the frame
+    // ss_shutdown() stopped the thread: everything GL died with its context, so the scene
     // caches go too and the next GL use starts afresh. Called only before any cache reference
     // is taken, since it may drop the caches.
     void forgetStoppedThread() {
@@ -158,9 +158,9 @@ struct Renderer::Impl {
         return *caches.back();
     }
 
-    // Between renders, on the render thread: the current frame's stale passes go, the other
+    // Between renders, on the render thread: the current scene cache's stale passes go, the other
     // scenes' shadow maps (least recent scene first) give way until every kept map fits in the
-    // budget beside the current frame's, which is then trimmed to the budget itself.
+    // budget beside the current scene's, which is then trimmed to the budget itself.
     void trimCaches(SceneCache& current) {
         current.dropStale();
         size_t others = 0;

@@ -1,4 +1,4 @@
-// How one (light, method) render is run: the GL render thread, the shared frame passes, the checks.
+// How one (light, method) render is run: the GL render thread, the scene caches, the checks.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <functional>
@@ -62,7 +62,7 @@ public:
                   std::vector<std::string>* warnings = nullptr, const RoundFn& rounds = {});
 
     // What the caches did over the renderer's life (scene_cache/cache_counters.h lists the counters;
-    // tests of the frame cache and the benchmark's stage counts read them).
+    // tests of the scene caches and the benchmark's stage counts read them).
     using CacheStats = ss::CacheStats;
     CacheStats cacheStats() const;
 
@@ -71,7 +71,7 @@ public:
     void setShadowMapBudget(size_t bytes);
 
 private:
-    // One method as it is (settings keys checked), with the shared frame and GL thread; not refined.
+    // One method as it is (settings keys checked), with the scene cache and GL thread; not refined.
     Layers renderMethod(const Scene& scene, int lightIndex, const std::string& name,
                         const RenderSettings& settings);
     // The sparse exact check of the light; false where it cannot be made (no pixel, no ray

@@ -128,7 +128,7 @@ private:
     }
 
     // Each light's last slices, by light index (a few MiB each at the default 8 slices of 512²;
-    // freed with the renderer's frame cache, on the render thread).
+    // freed with the renderer's scene cache, on the render thread).
     std::map<int, std::optional<KeptSlices>> kept_;
 };
 
