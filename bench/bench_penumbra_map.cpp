@@ -15,7 +15,7 @@
 #include "geometry/silhouette.h"
 #include "methods/penumbra_map.h"
 #include "core/stopwatch.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "softshadow/softshadow.h"
 
 namespace ss {

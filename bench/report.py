@@ -317,7 +317,7 @@ def summary(scenes, key):
 def foundation(out):
     rows = bench_rows(os.path.join(out, "foundation.json"))
     lines = ["# Per-stage timings of our methods (ms per frame)", "",
-             "Every row is one cold frame (new Frame: meshes uploaded, camera pass and light-centre "
+             "Every row is one cold frame (new SceneCache: meshes uploaded, camera pass and light-centre "
              "shadow map drawn again) after a warm-up frame (shaders compiled), mean of the timed "
              "frames; glFinish closes each GL stage. `method render` includes the method's own "
              "read-back; `readback (1 layer)` is the separately measured cost of reading one float "

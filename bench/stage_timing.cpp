@@ -10,7 +10,7 @@
 #include "core/stopwatch.h"
 #include "gl/render_thread.h"
 #include "methods/method.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss::bench {
 
@@ -40,37 +40,37 @@ Stages runOnce(const Scene& scene, const std::string& method, Layers* keep, doub
         settings.progress = [deadline](float, const char*) { return Clock::now() < deadline; };
     }
     if (!m->needsGl()) {
-        Frame frame(scene);
+        SceneCache sceneCache(scene);
         auto t = Clock::now();
-        m->prepare(frame, 0, settings);
+        m->prepare(sceneCache, 0, settings);
         st.prepare = msSince(t);
         t = Clock::now();
-        Layers out = m->render(frame, 0, settings);
+        Layers out = m->render(sceneCache, 0, settings);
         st.render = msSince(t);
         if (keep) *keep = std::move(out);
         return st;
     }
     glThread().run([&] {
-        Frame frame(scene);
-        const gl::Functions& g = frame.gl();
+        SceneCache sceneCache(scene);
+        const gl::Functions& g = sceneCache.gl();
         auto t = Clock::now();
-        frame.meshes();
+        sceneCache.meshes();
         g.Finish();
         st.meshUpload = msSince(t);
         t = Clock::now();
-        const CameraPass& cam = frame.cameraPass();
+        const CameraPass& cam = sceneCache.cameraPass();
         g.Finish();
         st.cameraPass = msSince(t);
         t = Clock::now();
-        frame.shadowMap(0);
+        sceneCache.shadowMap(0);
         g.Finish();
         st.shadowMap = msSince(t);
         t = Clock::now();
-        m->prepare(frame, 0, settings);
+        m->prepare(sceneCache, 0, settings);
         g.Finish();
         st.prepare = msSince(t);
         t = Clock::now();
-        Layers out = m->render(frame, 0, settings);
+        Layers out = m->render(sceneCache, 0, settings);
         st.render = msSince(t);
         if (keep) *keep = std::move(out);
         // What one float layer at camera resolution costs to bring back (every method reads at

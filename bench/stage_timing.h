@@ -15,7 +15,7 @@ struct Stages {
 };
 
 // Light 0 of `scene` with `method` (its settings in `options`; `samples` the render's sample
-// count, 0 = the method's default) on a fresh Frame (every shared pass drawn again), on one
+// count, 0 = the method's default) on a fresh SceneCache (every shared pass drawn again), on one
 // long-lived render thread; `keep` receives the layers. Throws what the method throws, and
 // ss::Error(SS_ERROR_CANCELLED) when the method reports progress after `budgetSeconds` (0: none).
 Stages runOnce(const Scene& scene, const std::string& method, Layers* keep = nullptr,

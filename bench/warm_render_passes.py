@@ -378,9 +378,9 @@ with open(out_path, "w") as f:
             camera = statistics.median(row["camera pass"] for m, row in rows if m != SWEEP_APART)
             maps = statistics.median(row["shadow map"] for m, row in rows if row["shadow map"] > 0)
             f.write("\nThe shared passes a move redraws (only inside the screen rectangle of the box's old and new "
-                    "place, drawing the meshes that reach it: `Frame` patches them), medians over the methods that "
-                    "draw them: camera pass %.3f s, light-centre shadow map (2048²) %.3f s; together %.3f s%s. The "
-                    "rest of each total is the method's own GL or CPU work, which every moved frame redoes.\n\n"
+                    "place, drawing the meshes that reach it: `SceneCache` patches them), medians over the methods "
+                    "that draw them: camera pass %.3f s, light-centre shadow map (2048²) %.3f s; together %.3f s%s. "
+                    "The rest of each total is the method's own GL or CPU work, which every moved frame redoes.\n\n"
                     % (camera, maps, camera + maps,
                        ", above the target by themselves" if target and camera + maps > target else ""))
         if final:

@@ -1,5 +1,5 @@
 // Where each vertex of the camera pass's listed triangles is: the pass draws, per mesh, only the
-// triangles that may cover a pixel centre (Frame lists them, frame/covering_triangles.h), three
+// triangles that may cover a pixel centre (SceneCache lists them, scene_cache/covering_triangles.h), three
 // vertices each, fetched from the mesh's own index and position buffers. The triangle's index
 // travels as a flat output instead of gl_PrimitiveID, which would make llvmpipe un-index every
 // triangle (its primitive assembler) at about a third of the pass's cost.

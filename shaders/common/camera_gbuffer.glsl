@@ -1,4 +1,4 @@
-// How a full-screen pass reads the shared camera G-buffer (Frame::bindCameraPass sets these).
+// How a full-screen pass reads the shared camera G-buffer (SceneCache::bindCameraPass sets these).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #ifndef SS_COMMON_CAMERA_GBUFFER_GLSL
 #define SS_COMMON_CAMERA_GBUFFER_GLSL

@@ -1,4 +1,4 @@
-// What a light is in a shader: the uLight uniforms Frame::setLightUniforms() sets (core/light.h).
+// What a light is in a shader: the uLight uniforms SceneCache::setLightUniforms() sets (core/light.h).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #ifndef SS_COMMON_LIGHT_GLSL
 #define SS_COMMON_LIGHT_GLSL

@@ -1,4 +1,4 @@
-// Where a mesh's object-space vertex and face normal are in the world (set by Frame::drawMeshes).
+// Where a mesh's object-space vertex and face normal are in the world (setPlacementUniforms, scene_cache/shader_uniforms.h, sets them).
 // SPDX-License-Identifier: GPL-3.0-or-later
 uniform int uTransformed;      // 0: the coordinates are world coordinates already
 uniform mat4 uObjectToWorld;

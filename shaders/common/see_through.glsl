@@ -1,5 +1,5 @@
 // What a see-through mesh's material lets through at a fragment (ss::MeshAlpha): the alpha of
-// the material being drawn (Frame::drawSeeThroughWhere draws one material at a time), and the
+// the material being drawn (SceneCache::drawSeeThroughWhere draws one material at a time), and the
 // hashed alpha test that turns it into a binary coverage whose average is the alpha (the light
 // side), or the camera's threshold test.
 // SPDX-License-Identifier: GPL-3.0-or-later

@@ -1,5 +1,5 @@
 // Where a vertex of a see-through mesh is and which UV and material it carries: drawn unindexed
-// (three vertices per triangle, Frame::drawSeeThroughWhere), fetched from the mesh's own index,
+// (three vertices per triangle, SceneCache::drawSeeThroughWhere), fetched from the mesh's own index,
 // position, corner-UV and material buffers.
 // SPDX-License-Identifier: GPL-3.0-or-later
 layout(std430, binding = 2) readonly buffer MeshIndices { uint meshIndex[]; };       // uint32 x3 per triangle

@@ -1,4 +1,4 @@
-// How a shader looks up the shared light-centre shadow map (Frame::bindShadowMap sets these).
+// How a shader looks up the shared light-centre shadow map (SceneCache::bindShadowMap sets these).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #ifndef SS_COMMON_SHADOW_MAP_GLSL
 #define SS_COMMON_SHADOW_MAP_GLSL

@@ -10,7 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "gl/framebuffer.h"
 #include "gl/program.h"
 #include "gl/render_state.h"
@@ -39,7 +39,7 @@ GBuffer read(const gl::Framebuffer& fb) {
 // The camera pass drawn the plain way: every triangle of every mesh, one indexed draw per mesh
 // (tests/shaders/camera/every_triangle.frag.glsl); see-through meshes whole, one draw per
 // material, with the camera's alpha test.
-GBuffer drawEveryTriangle(Frame& frame, const Camera& cam) {
+GBuffer drawEveryTriangle(SceneCache& sceneCache, const Camera& cam) {
     gl::Framebuffer fb(cam.width, cam.height, {GL_RGBA32F, GL_RGBA32F, GL_RG32F}, GL_DEPTH_COMPONENT32F);  // as the camera pass
     fb.bind();
     fb.clearColor(0, glm::vec4(0.0f));
@@ -66,11 +66,11 @@ GBuffer drawEveryTriangle(Frame& frame, const Camera& cam) {
         };
     };
     p.use();
-    frame.drawMeshesWhere(p, 0, std::nullopt, ids(p), -1, true);
+    sceneCache.drawMeshesWhere(p, 0, std::nullopt, ids(p), -1, true);
     q.use();
-    frame.drawSeeThroughWhere(q, 0, ids(q));
+    sceneCache.drawSeeThroughWhere(q, 0, ids(q));
     GBuffer out = read(fb);
-    frame.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
+    sceneCache.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
     return out;
 }
 
@@ -112,12 +112,12 @@ TEST(CameraPassCoverage, TheListedTrianglesDrawTheSamePassAsEveryTriangle) {
     const size_t total = triangleCount(scene);
     gl::RenderThread thread(SS_BACKEND_AUTO);
     thread.run([&] {
-        Frame frame(scene);
+        SceneCache sceneCache(scene);
         auto check = [&](const char* view) {
-            const size_t before = frame.stats().cameraPassTriangles;
-            const GBuffer pass = read(frame.cameraPass().framebuffer);
-            const size_t drawn = frame.stats().cameraPassTriangles - before;
-            EXPECT_EQ(differences(pass, drawEveryTriangle(frame, scene.camera())), 0u) << view;
+            const size_t before = sceneCache.stats().cameraPassTriangles;
+            const GBuffer pass = read(sceneCache.cameraPass().framebuffer);
+            const size_t drawn = sceneCache.stats().cameraPassTriangles - before;
+            EXPECT_EQ(differences(pass, drawEveryTriangle(sceneCache, scene.camera())), 0u) << view;
             return drawn;
         };
         // From above: the torus and the sphere are mostly sub-pixel triangles, left out.
@@ -141,24 +141,24 @@ TEST(CameraPassCoverage, TheListedTrianglesDrawTheSamePassAsEveryTriangle) {
         // The torus turned and moved by its matrix: the pass is patched where it was and is.
         scene.setCamera(test::makeTopCamera(80, 60));
         check("from above again");
-        const int patched = frame.stats().cameraPassesPatched;
+        const int patched = sceneCache.stats().cameraPassesPatched;
         scene.setMeshTransform(1, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-0.4f, 0.3f, 0.2f)), 0.4f,
                                               glm::vec3(0.3f, 0.2f, 1.0f)));
-        frame.setScene(scene);
+        sceneCache.setScene(scene);
         check("torus moved by its matrix");
-        EXPECT_EQ(frame.stats().cameraPassesPatched, patched + 1);
+        EXPECT_EQ(sceneCache.stats().cameraPassesPatched, patched + 1);
     });
 }
 
-// What a GPU gets (Frame::CameraCulling::Clusters): every triangle of the clusters that reach
+// What a GPU gets (CameraCulling::Clusters): every triangle of the clusters that reach
 // the rectangle, the same pass; and Auto on this machine's llvmpipe tests each triangle.
 TEST(CameraPassCoverage, AGpuIsHandedEveryTriangleOfTheClustersAndDrawsTheSamePass) {
     Scene scene = denseScene();
     const size_t total = triangleCount(scene);
     gl::RenderThread thread(SS_BACKEND_AUTO);
     thread.run([&] {
-        Frame tested(scene), clusters(scene);
-        clusters.setCameraCulling(Frame::CameraCulling::Clusters);
+        SceneCache tested(scene), clusters(scene);
+        clusters.setCameraCulling(CameraCulling::Clusters);
         const GBuffer a = read(tested.cameraPass().framebuffer);
         const GBuffer b = read(clusters.cameraPass().framebuffer);
         EXPECT_EQ(differences(a, b), 0u);
@@ -181,10 +181,10 @@ TEST(CameraPassCoverage, ACutOutCardIsAlphaTestedAsTheCameraRaysSeeIt) {
     scene.addMesh(test::makeTorus({1.6f, 0.9f, 0.5f}, 0.5f, 0.2f, 128, 64, kBoth));
     gl::RenderThread thread(SS_BACKEND_AUTO);
     thread.run([&] {
-        Frame frame(scene);
-        const GBuffer pass = read(frame.cameraPass().framebuffer);
-        EXPECT_EQ(differences(pass, drawEveryTriangle(frame, scene.camera())), 0u);
-        const CameraImages& images = frame.cameraImages();
+        SceneCache sceneCache(scene);
+        const GBuffer pass = read(sceneCache.cameraPass().framebuffer);
+        EXPECT_EQ(differences(pass, drawEveryTriangle(sceneCache, scene.camera())), 0u);
+        const CameraImages& images = sceneCache.cameraImages();
         const Camera& cam = scene.camera();
         TraceScene trace(scene);
         const CameraRays rays(cam);

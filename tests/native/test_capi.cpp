@@ -458,7 +458,7 @@ TEST(CApiContext, MethodListComesFromTheLibrary) {
 }
 
 TEST(CApiContext, EveryCacheCounterIsReadByNameThroughTheCApi) {
-    // The counters are declared once (frame/cache_counters.h): each reaches the C API in that
+    // The counters are declared once (scene_cache/cache_counters.h): each reaches the C API in that
     // order under its name, with what it counts, and reads the renderer's own value.
     std::vector<std::string> declared;
 #define SS_NAME(type, member, name, combine, doc) declared.push_back(name);
@@ -490,7 +490,7 @@ TEST(CApiContext, EveryCacheCounterIsReadByNameThroughTheCApi) {
         ss_result_destroy(r);
     }
     const ss::CacheStats s = ctx->renderer.cacheStats();
-    EXPECT_EQ(s.frames, 1);
+    EXPECT_EQ(s.sceneCaches, 1);
     EXPECT_EQ(s.meshUploads, 2);
     EXPECT_EQ(s.traceSceneBuilds, 1);
 #define SS_CHECK(type, member, name, combine, doc)                       \

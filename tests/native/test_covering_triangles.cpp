@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/camera.h"
-#include "frame/covering_triangles.h"
+#include "scene_cache/covering_triangles.h"
 
 namespace ss {
 namespace {

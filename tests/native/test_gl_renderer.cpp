@@ -38,7 +38,7 @@ TEST(GlRendererCache, SharedPassesAreDrawnOnceUntilTheirInputsChange) {
     Layers again = renderer.render(scene, 0, "shadow_map", settings, nullptr);
     renderer.render(scene, 1, "shadow_map", settings, nullptr);
     Renderer::CacheStats s = renderer.cacheStats();
-    EXPECT_EQ(s.frames, 1);
+    EXPECT_EQ(s.sceneCaches, 1);
     EXPECT_EQ(s.meshUploads, 2);  // each mesh once
     EXPECT_EQ(s.cameraPasses, 1);
     EXPECT_EQ(s.shadowMaps, 2);  // one per light
@@ -48,13 +48,13 @@ TEST(GlRendererCache, SharedPassesAreDrawnOnceUntilTheirInputsChange) {
     scene.addLight(test::makeDiskLight({0.0f, -1.0f, 3.0f}, 0.5f, "C"));
     renderer.render(scene, 2, "shadow_map", settings, nullptr);
     s = renderer.cacheStats();
-    EXPECT_EQ(s.frames, 1);
+    EXPECT_EQ(s.sceneCaches, 1);
     EXPECT_EQ(s.cameraPasses, 1);
     EXPECT_EQ(s.shadowMaps, 3);
     // A copy is another scene: a frame of its own.
     Scene copy = scene;
     renderer.render(copy, 0, "shadow_map", settings, nullptr);
-    EXPECT_EQ(renderer.cacheStats().frames, 2);
+    EXPECT_EQ(renderer.cacheStats().sceneCaches, 2);
 }
 
 // Every GL method resolves over the camera pass on the GPU and reads back only its layers: the

@@ -14,7 +14,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "methods/penumbra_map.h"
 #include "test_assembly_scene.h"
 #include "test_pcss_support.h"

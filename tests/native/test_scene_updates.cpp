@@ -13,7 +13,7 @@
 
 #include "core/error.h"
 #include "core/method_names.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "methods/method.h"
 #include "renderer/renderer.h"
 #include "softshadow/softshadow.h"
@@ -108,7 +108,7 @@ TEST(SceneUpdates, ALightEditRedrawsOnlyThatLightsShadowMap) {
     renderer.render(scene, 0, "shadow_map", RenderSettings{}, nullptr);
     renderer.render(scene, 1, "shadow_map", RenderSettings{}, nullptr);
     Renderer::CacheStats after = renderer.cacheStats();
-    EXPECT_EQ(after.frames, 1);
+    EXPECT_EQ(after.sceneCaches, 1);
     EXPECT_EQ(after.meshUploads, 3);       // no mesh sent again
     EXPECT_EQ(after.cameraPasses, 1);      // the camera sees no change
     EXPECT_EQ(after.shadowMaps, 3);        // light A's map reused, B's redrawn
@@ -132,7 +132,7 @@ TEST(SceneUpdates, AMeshEditUploadsOnlyThatMesh) {
     scene.updateMesh(2, boxBEdited());
     Layers after = renderer.render(scene, 0, "pcss", RenderSettings{}, nullptr);
     Renderer::CacheStats s = renderer.cacheStats();
-    EXPECT_EQ(s.frames, 1);
+    EXPECT_EQ(s.sceneCaches, 1);
     EXPECT_EQ(s.meshUploads, 4);   // the edited mesh alone
     EXPECT_EQ(s.cameraPasses, 2);  // the camera sees every mesh
     EXPECT_EQ(s.shadowMaps, 2);    // and so does the light
@@ -321,7 +321,7 @@ TEST(SceneUpdates, ThreeScenesRenderedInTurnKeepTheirCaches) {
         renderer.render(render, 0, "shadow_map", RenderSettings{}, nullptr);
     }
     Renderer::CacheStats s = renderer.cacheStats();
-    EXPECT_EQ(s.frames, 3);
+    EXPECT_EQ(s.sceneCaches, 3);
     EXPECT_EQ(s.meshUploads, first.meshUploads);
     EXPECT_EQ(s.shadowMaps, first.shadowMaps);
     EXPECT_EQ(s.cameraPasses, first.cameraPasses);
@@ -330,9 +330,9 @@ TEST(SceneUpdates, ThreeScenesRenderedInTurnKeepTheirCaches) {
     Scene fourth = threeMeshTwoLights();
     renderer.render(fourth, 0, "shadow_map", RenderSettings{}, nullptr);
     renderer.render(render, 0, "shadow_map", RenderSettings{}, nullptr);
-    EXPECT_EQ(renderer.cacheStats().frames, 4);
+    EXPECT_EQ(renderer.cacheStats().sceneCaches, 4);
     renderer.render(coarse, 0, "shadow_map", RenderSettings{}, nullptr);
-    EXPECT_EQ(renderer.cacheStats().frames, 5);
+    EXPECT_EQ(renderer.cacheStats().sceneCaches, 5);
 }
 
 TEST(SceneUpdates, ARefusedEditLeavesTheSceneAsItWas) {

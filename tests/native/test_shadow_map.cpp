@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "gl/render_thread.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "renderer/renderer.h"
 #include "test_scenes.h"
 
@@ -63,8 +63,8 @@ TEST(ShadowMapCameraPass, WorldPointsLandOnThePixelThatReportsThem) {
     const Camera& cam = scene.camera();
     gl::RenderThread thread(SS_BACKEND_AUTO);
     thread.run([&] {
-        Frame frame(scene);
-        const CameraImages& img = frame.cameraImages();
+        SceneCache sceneCache(scene);
+        const CameraImages& img = sceneCache.cameraImages();
         ASSERT_EQ(img.width, cam.width);
         ASSERT_EQ(img.height, cam.height);
 
@@ -117,19 +117,19 @@ TEST(ShadowMapCameraPass, WorldPointsLandOnThePixelThatReportsThem) {
     });
 }
 
-TEST(ShadowMapFrame, SharedPassesAreDrawnOncePerFrame) {
+TEST(ShadowMapSceneCache, SharedPassesAreDrawnOncePerSceneCache) {
     Scene scene = boxOverPlane(test::makeDiskLight({0.5f, 0.3f, 4.0f}, 1.0f));
     gl::RenderThread thread(SS_BACKEND_AUTO);
     thread.run([&] {
-        Frame frame(scene);
-        const CameraPass* a = &frame.cameraPass();
-        const ShadowMap* m = &frame.shadowMap(0);
-        EXPECT_EQ(a, &frame.cameraPass());
-        EXPECT_EQ(m, &frame.shadowMap(0));
-        EXPECT_EQ(m, &frame.shadowMap(0, Frame::kDefaultShadowMapSize));
-        EXPECT_EQ(frame.stats().cameraPasses, 1);
-        EXPECT_EQ(frame.stats().shadowMaps, 1);
-        EXPECT_EQ(frame.stats().meshUploads, int(scene.meshes().size()));  // each mesh once
+        SceneCache sceneCache(scene);
+        const CameraPass* a = &sceneCache.cameraPass();
+        const ShadowMap* m = &sceneCache.shadowMap(0);
+        EXPECT_EQ(a, &sceneCache.cameraPass());
+        EXPECT_EQ(m, &sceneCache.shadowMap(0));
+        EXPECT_EQ(m, &sceneCache.shadowMap(0, SceneCache::kDefaultShadowMapSize));
+        EXPECT_EQ(sceneCache.stats().cameraPasses, 1);
+        EXPECT_EQ(sceneCache.stats().shadowMaps, 1);
+        EXPECT_EQ(sceneCache.stats().meshUploads, int(scene.meshes().size()));  // each mesh once
         EXPECT_TRUE(m->coversScene);
     });
 }
@@ -161,8 +161,8 @@ TEST_P(ShadowMapPlacement, ShadowLandsWhereTheLightCentreProjectsTheBox) {
     gl::RenderThread thread(SS_BACKEND_AUTO);
     CameraImages img;
     thread.run([&] {
-        Frame frame(scene);
-        img = frame.cameraImages();
+        SceneCache sceneCache(scene);
+        img = sceneCache.cameraImages();
     });
 
     // Ambiguity margin around the box: the ray is classified only when it clears (or hits) the
@@ -231,8 +231,8 @@ TEST(ShadowMapMethod, MaskIsZeroOnMeshesThatDoNotReceive) {
     gl::RenderThread thread(SS_BACKEND_AUTO);
     CameraImages img;
     thread.run([&] {
-        Frame frame(scene);
-        img = frame.cameraImages();
+        SceneCache sceneCache(scene);
+        img = sceneCache.cameraImages();
     });
     int boxPixels = 0;
     for (int y = 0; y < img.height; ++y)

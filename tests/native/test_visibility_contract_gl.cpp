@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "gl/render_thread.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "renderer/renderer.h"
 #include "core/visibility_contract.h"
 #include "test_scenes.h"
@@ -78,8 +78,8 @@ CameraImages cameraImages(const Scene& scene) {
     CameraImages out;
     gl::RenderThread thread(SS_BACKEND_AUTO);
     thread.run([&] {
-        Frame frame(scene);
-        out = frame.cameraImages();
+        SceneCache sceneCache(scene);
+        out = sceneCache.cameraImages();
     });
     return out;
 }

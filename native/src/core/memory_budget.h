@@ -13,7 +13,7 @@ namespace ss {
 // llvmpipe, 1024² to 8192²): the program, GL and Embree state (auto holds both: 236 to 260 MB
 // beside its per-pixel share and its map, the most at 1024²; shadow_map alone about 115 MB). The
 // render's own shadow map is counted apart (renderPeakBytes); several lights in one process add
-// up to Frame::kDefaultShadowMapBudget (256 MiB) of cached maps.
+// up to SceneCache::kDefaultShadowMapBudget (256 MiB) of cached maps.
 inline constexpr double kBudgetFixedBytes = 280e6;
 // A pixel of the camera for a GL method: the camera pass (two RGBA32F targets, an RG32F one and
 // depth: 44 bytes), the method's targets and the result's float layers. Measured (4096² to

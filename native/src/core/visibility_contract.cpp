@@ -46,7 +46,7 @@ bool lensAboveHorizon(glm::vec3 u, float cosA, float sinA, glm::vec3 s, float co
 }  // namespace
 
 bool lightReaches(const Light& light, const glm::vec3& P, const glm::vec3& N) {
-    // The uniforms the GLSL twin reads (Frame::setLightUniforms), derived the same way.
+    // The uniforms the GLSL twin reads (SceneCache::setLightUniforms), derived the same way.
     const glm::vec3 position = light.position(), direction = light.direction();
     const float radius = light.radius;
     const float cosHalfSpot = std::cos(0.5f * light.spotSize);

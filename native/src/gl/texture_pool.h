@@ -7,7 +7,7 @@ namespace ss::gl {
 
 // A released texture of exactly this size and format, or 0. llvmpipe allocates texture storage
 // lazily, so every fresh render target pays page faults on its first draw (~10 ms per 1024²
-// RGBA32F); each new Frame (a new scene: a farm frame's, a CLI run's) makes its camera pass and
+// RGBA32F); each new SceneCache (a new scene: a farm frame's, a CLI run's) makes its camera pass and
 // shadow maps afresh. The contents are stale: users clear what they read.
 GLuint takePooledTexture(int width, int height, GLenum format);
 // Keeps `id` (immutable storage width x height, `format`) for reuse; the oldest entries are

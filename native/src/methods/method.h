@@ -11,11 +11,11 @@
 #include "core/method_names.h"
 #include "core/scene.h"
 #include "core/settings.h"
-#include "frame/cache_counters.h"
+#include "scene_cache/cache_counters.h"
 
 namespace ss {
 
-class Frame;  // frame/frame.h: the scene plus the GL passes shared by every method
+class SceneCache;  // scene_cache/scene_cache.h: the scene plus the GL passes shared by every method
 struct SparseCheck;  // methods/sparse_check.h
 
 // Where a method's render() runs: on the caller's thread, or on the library's GL render thread.
@@ -42,13 +42,13 @@ public:
     bool needsGl() const { return device_ == MethodDevice::Gl; }
     const SettingTable& settingTable() const { return settings_; }
     // CPU geometry that depends only on the scene and the light. Default: nothing.
-    virtual void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) {
-        (void)frame, (void)lightIndex, (void)settings;
+    virtual void prepare(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) {
+        (void)sceneCache, (void)lightIndex, (void)settings;
     }
     // Produces at least "V" and "mask"; with settings.extraLayers, the method's debug layers too
     // (never "umbra"/"penumbra": the renderer adds those, core/visibility_classes.h). Every
     // layer: camera resolution, row 0 = top.
-    virtual Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) = 0;
+    virtual Layers render(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) = 0;
     // What the sparse check says about this method's estimate at its default settings before it
     // renders: a lower bound where its output is constrained (checkedLowerBound). Over the check's
     // own mask; the GL passes and the traced rays may disagree along hard and silhouette edges,

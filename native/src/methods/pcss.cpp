@@ -10,7 +10,7 @@
 #include "gl/scratch_targets.h"
 #include "methods/method.h"
 #include "methods/receiver_plane.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 
@@ -30,8 +30,8 @@ public:
     PcssMethod()
         : Method("pcss", MethodDevice::Gl, {kBlockerSamples, kPcfSamples, kShadowMapSizeSetting, kMaxSearch}) {}
 
-    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        const Light& light = frame.light(lightIndex);
+    Layers render(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
+        const Light& light = sceneCache.light(lightIndex);
         if (settings.samples > 4096)
             fail(SS_ERROR_INVALID_ARGUMENT, "pcss: samples must be in 1..4096 (got " + std::to_string(settings.samples) + ")");
         const int blockerSamples = settings.integer(kBlockerSamples);
@@ -39,19 +39,19 @@ public:
         const int mapSize = shadowMapSizeSetting(settings);
         const float maxSearch = settings.number(kMaxSearch);
 
-        const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
-        frame.cameraPass();  // the shared pass drawn (or found) before the filter stage begins
+        const ShadowMap& map = sceneCache.shadowMap(lightIndex, mapSize);
+        sceneCache.cameraPass();  // the shared pass drawn (or found) before the filter stage begins
         settings.report(0.3f, "pcss filter");
 
         const gl::Framebuffer& out = drawReceiverPlanePass(
-            frame, lightIndex, map, "pcss.camera", "pcss/camera.frag.glsl", glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),
+            sceneCache, lightIndex, map, "pcss.camera", "pcss/camera.frag.glsl", glm::vec4(1.0f, 0.0f, 0.0f, 0.0f),
             [&](const gl::Program& p, int) {
                 p.set("uBlockerSamples", blockerSamples);
                 p.set("uPcfSamples", pcfSamples);
                 // A sun's size is an angle: the penumbra grows by tan(half angle) per unit of distance.
                 p.set("uLightSize", light.type == LightType::Sun ? std::tan(light.sunHalfAngle())
                                                                  : light.equivalentRadius());
-                p.set("uNearCaster", nearestCasterDistance(frame.scene(), lightIndex, map));
+                p.set("uNearCaster", nearestCasterDistance(sceneCache.scene(), lightIndex, map));
                 p.set("uMaxSearchUv", maxSearch);
             });
         return readReceiverPlaneLayers(out, settings.extraLayers, {{"blocker_distance", 2}, {"kernel_texels", 3}});

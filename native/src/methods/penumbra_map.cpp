@@ -15,7 +15,7 @@
 #include "methods/penumbra_map.h"
 #include "methods/receiver_plane.h"
 #include "methods/sparse_check.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 
@@ -87,8 +87,8 @@ public:
         });
     }
 
-    void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        const Light& light = frame.light(lightIndex);
+    void prepare(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
+        const Light& light = sceneCache.light(lightIndex);
         if (light.type == LightType::Sun)
             fail(SS_ERROR_UNSUPPORTED, "penumbra_map: light '" + light.name +
                                            "' is a sun; penumbra maps need a light centre (use pcss)");
@@ -98,13 +98,13 @@ public:
         (void)intensityRule(settings);  // a bad value fails before any GL work
         const float radius = penumbraMapLightRadius(light);
         GpuConesSheets& g = geometry_;
-        const Scene& scene = frame.scene();
+        const Scene& scene = sceneCache.scene();
         if (g.key == scene.lightGeometryKey(lightIndex) && g.radius == radius && g.mapSize == mapSize && g.coneSegments == cs.coneSegments)
             return;
-        const ShadowMap& map = frame.shadowMap(lightIndex, mapSize);
+        const ShadowMap& map = sceneCache.shadowMap(lightIndex, mapSize);
         settings.report(0.1f, "penumbra_map cones and sheets");
-        ConesSheets cpu = buildPenumbraGeometry(frame.scene(), lightIndex, map, radius, cs);
-        const gl::Functions& api = frame.gl();
+        ConesSheets cpu = buildPenumbraGeometry(sceneCache.scene(), lightIndex, map, radius, cs);
+        const gl::Functions& api = sceneCache.gl();
         g = GpuConesSheets{};
         g.key = scene.lightGeometryKey(lightIndex);
         g.radius = radius;
@@ -128,10 +128,10 @@ public:
         api.check("uploading penumbra_map cones and sheets");
     }
 
-    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        const gl::Functions& api = frame.gl();
-        const ShadowMap& map = frame.shadowMap(lightIndex, geometry_.mapSize);
-        frame.cameraPass();  // the shared pass drawn (or found) before the stages are timed
+    Layers render(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
+        const gl::Functions& api = sceneCache.gl();
+        const ShadowMap& map = sceneCache.shadowMap(lightIndex, geometry_.mapSize);
+        sceneCache.cameraPass();  // the shared pass drawn (or found) before the stages are timed
         const bool finishStages = settings.flag(kFinishStages);
 
         // Pass 2: the penumbra map, cleared to lit; darkest fragment wins through LESS.
@@ -146,7 +146,7 @@ public:
             gl::apply(gl::states::opaqueDepthClamped);
             const gl::Program& p = gl::program("penumbra_map/cones.vert.glsl", "penumbra_map/cones.frag.glsl");
             p.use();
-            frame.bindShadowMap(p, map, 0);
+            sceneCache.bindShadowMap(p, map, 0);
             p.set("uIntensityRule", int(intensityRule(settings)));
             api.BindVertexArray(geometry_.vao.id());
             api.DrawElements(GL_TRIANGLES, geometry_.indexCount, GL_UNSIGNED_INT, nullptr);
@@ -158,7 +158,7 @@ public:
         // Pass 3: the camera lookup.
         settings.report(0.7f, "penumbra_map pass 3");
         const gl::Framebuffer& out = drawReceiverPlanePass(
-            frame, lightIndex, map, "penumbra_map.camera", "penumbra_map/camera.frag.glsl",
+            sceneCache, lightIndex, map, "penumbra_map.camera", "penumbra_map/camera.frag.glsl",
             glm::vec4(1.0f, 0.0f, 0.0f, 1.0f),
             [&](const gl::Program& p, int unit) { p.setTexture("uPenumbraMap", unit, pm.colorId(0)); });
         if (finishStages) api.Finish();

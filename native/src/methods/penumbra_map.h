@@ -5,7 +5,7 @@
 #include "core/scene.h"
 #include "geometry/cones_sheets.h"
 #include "methods/method.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 

@@ -24,24 +24,24 @@ void setShadowRayBasis(const gl::Program& program, const ShadowMap& map) {
     if (loc >= 0) gl::api().ProgramUniformMatrix3fv(program.id(), loc, 1, GL_FALSE, &b[0][0]);
 }
 
-const gl::Framebuffer& drawReceiverPlanePass(Frame& frame, int lightIndex, const ShadowMap& map, const char* target,
+const gl::Framebuffer& drawReceiverPlanePass(SceneCache& sceneCache, int lightIndex, const ShadowMap& map, const char* target,
                                              const char* fragment, const glm::vec4& clear,
                                              const std::function<void(const gl::Program&, int firstFreeUnit)>& setInputs) {
-    const CameraPass& cam = frame.cameraPass();
+    const CameraPass& cam = sceneCache.cameraPass();
     const gl::Framebuffer& out = gl::scratchFramebuffer(target, cam.width, cam.height, {GL_RGBA32F});
     out.bind();
     out.clearColor(0, clear);
     gl::apply(gl::states::overwrite);
     const gl::Program& p = gl::program("common/fullscreen.vert.glsl", fragment);
     p.use();
-    int unit = frame.bindCameraPass(p, 0);
-    unit = frame.bindShadowMap(p, map, unit);
-    frame.setLightUniforms(p, lightIndex);
+    int unit = sceneCache.bindCameraPass(p, 0);
+    unit = sceneCache.bindShadowMap(p, map, unit);
+    sceneCache.setLightUniforms(p, lightIndex);
     setShadowRayBasis(p, map);
     setInputs(p, unit);
-    frame.drawFullscreen();
-    frame.gl().check(fragment);
-    frame.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
+    sceneCache.drawFullscreen();
+    sceneCache.gl().check(fragment);
+    sceneCache.gl().BindFramebuffer(GL_FRAMEBUFFER, 0);
     return out;
 }
 

@@ -11,7 +11,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "gl/program.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 
@@ -27,7 +27,7 @@ float nearestCasterDistance(const Scene& scene, int lightIndex, const ShadowMap&
 // into the RGBA32F scratch target `target` (cleared to `clear` first), with the shadow map, the
 // light and the shadow-ray basis bound; `setInputs` sets the method's own uniforms, binding
 // textures from the unit it is given. Returns the target, for readReceiverPlaneLayers.
-const gl::Framebuffer& drawReceiverPlanePass(Frame& frame, int lightIndex, const ShadowMap& map, const char* target,
+const gl::Framebuffer& drawReceiverPlanePass(SceneCache& sceneCache, int lightIndex, const ShadowMap& map, const char* target,
                                              const char* fragment, const glm::vec4& clear,
                                              const std::function<void(const gl::Program&, int firstFreeUnit)>& setInputs);
 // V (channel 0), mask (1) and, with extraLayers, the `extra` (name, channel) layers in that order.

@@ -3,20 +3,20 @@
 #include <memory>
 
 #include "methods/method.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "reference/render_reference.h"
 
 namespace ss {
 namespace {
 
-// CPU only: needs no GL, reads nothing from the frame but its scene and the frame's Embree BVH
+// CPU only: needs no GL, reads nothing from the scene cache but its scene and its Embree BVH
 // (kept per scene id and geometry version, shared with refine=on and the sparse check), so
 // rendering every light of an unchanged scene builds the BVH once.
 class ReferenceMethod final : public Method {
 public:
     ReferenceMethod() : Method("reference", MethodDevice::Cpu, referenceSettings()) {}
-    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        return renderReference(frame.scene(), lightIndex, settings, &frame.traceScenes());
+    Layers render(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
+        return renderReference(sceneCache.scene(), lightIndex, settings, &sceneCache.traceScenes());
     }
 };
 

@@ -7,7 +7,7 @@
 #include "gl/scratch_targets.h"
 #include "methods/method.h"
 #include "methods/sparse_check.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 
@@ -29,11 +29,11 @@ class ShadowMapMethod final : public Method {
 public:
     ShadowMapMethod() : Method("shadow_map", MethodDevice::Gl, {kShadowMapSizeSetting, kConstantBias, kSlopeBias}) {}
 
-    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        const gl::Functions& g = frame.gl();
+    Layers render(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
+        const gl::Functions& g = sceneCache.gl();
         settings.report(0.0f, "shadow map");
-        const CameraPass& cam = frame.cameraPass();
-        const ShadowMap& map = frame.shadowMap(lightIndex, shadowMapSizeSetting(settings));
+        const CameraPass& cam = sceneCache.cameraPass();
+        const ShadowMap& map = sceneCache.shadowMap(lightIndex, shadowMapSizeSetting(settings));
         settings.report(0.5f, "resolve");
 
         gl::Framebuffer& out = gl::scratchFramebuffer("shadow_map.camera", cam.width, cam.height, {GL_RGBA32F});
@@ -41,12 +41,12 @@ public:
         gl::apply(gl::states::overwrite);
         const gl::Program& p = gl::program("common/fullscreen.vert.glsl", "shadow_map/resolve.frag.glsl");
         p.use();
-        int unit = frame.bindCameraPass(p);
-        frame.bindShadowMap(p, map, unit);
-        frame.setLightUniforms(p, lightIndex);
+        int unit = sceneCache.bindCameraPass(p);
+        sceneCache.bindShadowMap(p, map, unit);
+        sceneCache.setLightUniforms(p, lightIndex);
         p.set("uConstantBias", settings.number(kConstantBias));
         p.set("uSlopeBias", settings.number(kSlopeBias));
-        frame.drawFullscreen();
+        sceneCache.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("resolving the shadow map");
 

@@ -4,12 +4,12 @@
 #include <cstddef>
 #include <iterator>
 
-#include "frame/cache_counters.h"
+#include "scene_cache/cache_counters.h"
 
 namespace ss {
 
-// Over a renderer's life: its frames' FrameStats and methods' MethodStats added up, and its own
-// counters (frame/cache_counters.h lists them all).
+// Over a renderer's life: its frames' SceneCacheStats and methods' MethodStats added up, and its own
+// counters (scene_cache/cache_counters.h lists them all).
 struct CacheStats {
     SS_CACHE_COUNTERS(SS_COUNTER_MEMBER)
 };

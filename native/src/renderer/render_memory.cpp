@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "core/memory_budget.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 
@@ -29,7 +29,7 @@ void checkRenderMemory(const Scene& scene, int lightIndex, const std::string& me
     int64_t triangles = 0;
     for (const Mesh& m : scene.meshes()) triangles += int64_t(m.triangles.size());
     const int mapSize = shadowMapSizeSetting(settings);
-    const double need = renderPeakBytes(kind, pixels, triangles, mapSize > 0 ? mapSize : Frame::kDefaultShadowMapSize);
+    const double need = renderPeakBytes(kind, pixels, triangles, mapSize > 0 ? mapSize : SceneCache::kDefaultShadowMapSize);
     const double perPixel = kind == BudgetKind::Auto ? kBudgetBytesPerPixelAuto
                             : kind == BudgetKind::Gl ? kBudgetBytesPerPixelGl
                                                      : kBudgetBytesPerPixelCpu;

@@ -1,4 +1,4 @@
-// How a (light, method) render is dispatched: lazy GL start, the frame cache, CPU vs GL methods.
+// How a (light, method) render is dispatched: lazy GL start, the scene caches, CPU vs GL methods.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "renderer/renderer.h"
 
@@ -16,7 +16,7 @@
 #include "gl/context.h"
 #include "gl/render_thread.h"
 #include "gl/scratch_targets.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "methods/sparse_check.h"
 #include "renderer/auto_method.h"
 #include "renderer/refinement.h"
@@ -28,16 +28,16 @@ namespace ss {
 
 struct Renderer::Impl {
     ss_backend backend;
-    std::mutex m;  // one render at a time per renderer: frames and methods are not thread-safe
+    std::mutex m;  // one render at a time per renderer: scene caches and methods are not thread-safe
     std::unique_ptr<gl::RenderThread> thread;
     std::string infoJson;
 
     // The shared passes of a scene and the method objects with what they prepared, all kept
-    // across its edits: the frame redraws only what an edit changed, and a method rebuilds its
+    // across its edits: the scene cache redraws only what an edit changed, and a method rebuilds its
     // geometry only when its light's key changes (Scene::lightGeometryKey).
     struct Cached {
         uint64_t sceneId = 0;
-        std::unique_ptr<Frame> frame;
+        std::unique_ptr<SceneCache> sceneCache;
         std::map<std::string, std::unique_ptr<Method>> methods;
     };
     // The scenes rendered last, least recent first: three, so that the add-on's two preview
@@ -49,9 +49,9 @@ struct Renderer::Impl {
     // larger ones are made again for each render instead.
     static constexpr size_t kKeptCameraImagesBytes = size_t(64) << 20;
     std::vector<std::unique_ptr<Cached>> caches;
-    CacheStats finished;  // of frames already dropped (and every method run's time)
+    CacheStats finished;  // of scene caches already dropped (and every method run's time)
     ScenesInRange inRange;  // the scenes without their meshes beyond the scene range
-    size_t shadowMapBudget = Frame::kDefaultShadowMapBudget;
+    size_t shadowMapBudget = SceneCache::kDefaultShadowMapBudget;
 
     void count(const Cached& c, CacheStats& into) const {
 #define SS_ADD(type, member, name, combine, doc) into.member = combineCounter##combine(into.member, from.member);
@@ -59,15 +59,15 @@ struct Renderer::Impl {
             const MethodStats& from = method->stats();
             SS_METHOD_COUNTERS(SS_ADD)
         }
-        const Frame& f = *c.frame;
-        const FrameStats& from = f.stats();
-        SS_FRAME_COUNTERS(SS_ADD)
+        const SceneCache& f = *c.sceneCache;
+        const SceneCacheStats& from = f.stats();
+        SS_SCENE_CACHE_COUNTERS(SS_ADD)
 #undef SS_ADD
         into.traceSceneBuilds += f.traceScenes().builds();
         into.meshBvhBuilds += f.traceScenes().meshBvhBuilds();
     }
 
-    // ss_shutdown() stopped the thread: everything GL died with its context, so the frame
+    // ss_shutdown() stopped the thread: everything GL died with its context, so the scene
     // caches go too and the next GL use starts afresh. Called only before any cache reference
     // is taken, since it may drop the caches.
     void forgetStoppedThread() {
@@ -136,7 +136,7 @@ struct Renderer::Impl {
                     fail(SS_ERROR_CANCELLED, "cancelled after refinement round " + std::to_string(r.round) + " of " +
                                                  std::to_string(r.rounds));
             };
-        return refineUncertainPixels(scene, lightIndex, settings, cacheFor(scene).frame->traceScenes(), layers, landed);
+        return refineUncertainPixels(scene, lightIndex, settings, cacheFor(scene).sceneCache->traceScenes(), layers, landed);
     }
 
     Cached& cacheFor(const Scene& scene) {
@@ -146,36 +146,36 @@ struct Renderer::Impl {
             caches.erase(caches.begin() + long(i));
             caches.push_back(std::move(c));
             Cached& cached = *caches.back();
-            cached.frame->setScene(scene);  // the same scene, perhaps moved in memory
+            cached.sceneCache->setScene(scene);  // the same scene, perhaps moved in memory
             return cached;
         }
         if (caches.size() >= kKeptScenes) dropOldest();
         auto cached = std::make_unique<Cached>();
         cached->sceneId = scene.id();
-        cached->frame = std::make_unique<Frame>(scene);
-        ++finished.frames;
+        cached->sceneCache = std::make_unique<SceneCache>(scene);
+        ++finished.sceneCaches;
         caches.push_back(std::move(cached));
         return *caches.back();
     }
 
-    // Between renders, on the render thread: the current frame's stale passes go, the other
+    // Between renders, on the render thread: the current scene cache's stale passes go, the other
     // scenes' shadow maps (least recent scene first) give way until every kept map fits in the
-    // budget beside the current frame's, which is then trimmed to the budget itself.
-    void trimCaches(Frame& current) {
+    // budget beside the current scene's, which is then trimmed to the budget itself.
+    void trimCaches(SceneCache& current) {
         current.dropStale();
         size_t others = 0;
         for (const auto& c : caches)
-            if (c->frame.get() != &current) others += c->frame->shadowMapBytes();
+            if (c->sceneCache.get() != &current) others += c->sceneCache->shadowMapBytes();
         const size_t room = shadowMapBudget > current.shadowMapBytes() ? shadowMapBudget - current.shadowMapBytes() : 0;
         for (const auto& c : caches) {
-            if (c->frame.get() == &current || others <= room) continue;
-            size_t held = c->frame->shadowMapBytes();
+            if (c->sceneCache.get() == &current || others <= room) continue;
+            size_t held = c->sceneCache->shadowMapBytes();
             size_t excess = others - room;
-            c->frame->trimCache(held > excess ? held - excess : 0);
-            others -= held - c->frame->shadowMapBytes();
+            c->sceneCache->trimCache(held > excess ? held - excess : 0);
+            others -= held - c->sceneCache->shadowMapBytes();
         }
         current.trimCache(shadowMapBudget);
-        for (const auto& c : caches) c->frame->trimCameraImages(kKeptCameraImagesBytes);
+        for (const auto& c : caches) c->sceneCache->trimCameraImages(kKeptCameraImagesBytes);
         gl::trimThreadScratchTargets(kKeptCameraImagesBytes);
     }
 };
@@ -255,21 +255,21 @@ SettingTable renderSettingTable(const std::string& method) {
 Layers Renderer::renderMethod(const Scene& scene, int lightIndex, const std::string& name,
                               const RenderSettings& settings) {
     Method& m = impl_->method(scene, name);
-    Frame& frame = *impl_->cacheFor(scene).frame;
+    SceneCache& sceneCache = *impl_->cacheFor(scene).sceneCache;
 
     Layers layers;
     if (!m.needsGl()) {
-        m.prepare(frame, lightIndex, settings);
-        layers = m.render(frame, lightIndex, settings);
+        m.prepare(sceneCache, lightIndex, settings);
+        layers = m.render(sceneCache, lightIndex, settings);
     } else {
         impl_->glThread().run([&] {
-            impl_->trimCaches(frame);
+            impl_->trimCaches(sceneCache);
             const auto start = Clock::now();
-            m.prepare(frame, lightIndex, settings);
-            layers = m.render(frame, lightIndex, settings);
+            m.prepare(sceneCache, lightIndex, settings);
+            layers = m.render(sceneCache, lightIndex, settings);
             impl_->finished.methodMs += msSince(start);
             if (scene.light(lightIndex).links.receivers)
-                maskUnlitReceivers(scene, lightIndex, frame.cameraImages(), layers);
+                maskUnlitReceivers(scene, lightIndex, sceneCache.cameraImages(), layers);
         });
     }
     checkLayers(layers, scene.camera(), name);
@@ -280,7 +280,7 @@ bool Renderer::sparseCheck(const Scene& scene, int lightIndex, int pixels, int s
                            SparseCheck* out) {
     if (pixels <= 0) return false;
     try {
-        std::shared_ptr<const TraceScene> trace = impl_->cacheFor(scene).frame->traceScenes().get(scene, lightIndex);
+        std::shared_ptr<const TraceScene> trace = impl_->cacheFor(scene).sceneCache->traceScenes().get(scene, lightIndex);
         *out = runSparseCheck(*trace, scene, lightIndex, pixels, samples, seed);
     } catch (const Error& e) {
         if (e.status() == SS_ERROR_CANCELLED) throw;

@@ -1,4 +1,4 @@
-// How one (light, method) render is run: the GL render thread, the shared frame passes, the checks.
+// How one (light, method) render is run: the GL render thread, the scene caches, the checks.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <functional>
@@ -24,7 +24,7 @@ SettingTable renderSettingTable(const std::string& method);
 // Owns (lazily) the GL context on the library's own render thread and the per-scene cache of
 // shared passes (mesh buffers, the camera pass, one light-centre shadow map per light), so that
 // a series of render() calls on the same scene draws each shared pass once and, after an edit,
-// redraws only what the edit changed (see Frame).
+// redraws only what the edit changed (see SceneCache).
 // CPU-only methods (reference) never start GL.
 class Renderer {
 public:
@@ -61,17 +61,17 @@ public:
                   double* estimatedRmse = nullptr, AutoTrials* trials = nullptr,
                   std::vector<std::string>* warnings = nullptr, const RoundFn& rounds = {});
 
-    // What the caches did over the renderer's life (frame/cache_counters.h lists the counters;
-    // tests of the frame cache and the benchmark's stage counts read them).
+    // What the caches did over the renderer's life (scene_cache/cache_counters.h lists the counters;
+    // tests of the scene caches and the benchmark's stage counts read them).
     using CacheStats = ss::CacheStats;
     CacheStats cacheStats() const;
 
     // What the cached shadow maps may hold between renders (least recently used go first);
-    // default Frame::kDefaultShadowMapBudget.
+    // default SceneCache::kDefaultShadowMapBudget.
     void setShadowMapBudget(size_t bytes);
 
 private:
-    // One method as it is (settings keys checked), with the shared frame and GL thread; not refined.
+    // One method as it is (settings keys checked), with the scene cache and GL thread; not refined.
     Layers renderMethod(const Scene& scene, int lightIndex, const std::string& name,
                         const RenderSettings& settings);
     // The sparse exact check of the light; false where it cannot be made (no pixel, no ray

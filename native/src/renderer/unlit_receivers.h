@@ -3,7 +3,7 @@
 #pragma once
 #include "core/image.h"
 #include "core/scene.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 

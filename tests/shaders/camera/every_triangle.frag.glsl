@@ -1,7 +1,7 @@
 // The camera pass as drawn from every triangle of each mesh (one indexed draw per mesh, the
 // triangle from gl_PrimitiveID): the reference the listed-triangle pass must equal bit for bit.
 // Same outputs and arithmetic as shaders/camera/gbuffer.frag.glsl; with SEE_THROUGH, the same
-// alpha test (drawn by Frame::drawSeeThroughWhere, unindexed: gl_PrimitiveID is still the triangle).
+// alpha test (drawn by SceneCache::drawSeeThroughWhere, unindexed: gl_PrimitiveID is still the triangle).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "common/mesh_placement.glsl"
 #ifdef SEE_THROUGH

@@ -33,7 +33,7 @@ struct DbufferGeometry {
 // from the last build for the same light, disk and extrusion length (meshesReused).
 // Throws ss::Error(SS_ERROR_CANCELLED) between meshes once `cancel` is set.
 // `fit`: the box the volumes must reach across and a sun's disk is placed from (the scene's
-// bounds, or Frame::shadowFitBounds: never a far outlier's extent); part of the key.
+// bounds, or SceneCache::shadowFitBounds: never a far outlier's extent); part of the key.
 std::shared_ptr<const DbufferGeometry> dbufferGeometry(const Scene& scene, int lightIndex, const Bounds& fit,
                                                        const std::atomic<bool>* cancel = nullptr);
 

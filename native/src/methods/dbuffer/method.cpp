@@ -17,7 +17,7 @@
 #include "gl/scratch_targets.h"
 #include "methods/dbuffer/geometry.h"
 #include "methods/method.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 
@@ -190,16 +190,16 @@ public:
                  {kShadowMapSizeSetting, kUmbraRule, kSmallOccluders, kProfile, kBiasTexels, kFormula, kRawLayers,
                   kFinishStages}) {}
 
-    void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+    void prepare(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
         settings.report(0.0f, "silhouettes and volumes");
-        geometry_ = dbufferGeometry(frame.scene(), lightIndex, frame.shadowFitBounds(lightIndex), settings.cancel);
+        geometry_ = dbufferGeometry(sceneCache.scene(), lightIndex, sceneCache.shadowFitBounds(lightIndex), settings.cancel);
     }
 
-    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+    Layers render(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
         // A cache hit when prepare() ran for this light (the cache keys on scene and light).
-        geometry_ = dbufferGeometry(frame.scene(), lightIndex, frame.shadowFitBounds(lightIndex), settings.cancel);
+        geometry_ = dbufferGeometry(sceneCache.scene(), lightIndex, sceneCache.shadowFitBounds(lightIndex), settings.cancel);
         const DbufferGeometry& geo = *geometry_;
-        const gl::Functions& g = frame.gl();
+        const gl::Functions& g = sceneCache.gl();
         const bool finishStages = settings.flag(kFinishStages);
         auto finishStage = [&] {
             if (finishStages) g.Finish();
@@ -207,20 +207,20 @@ public:
         finishStage();
         const bool paper = settings.choice(kFormula) == "paper";
         const bool raw = settings.flag(kRawLayers);
-        const CameraPass& cam = frame.cameraPass();
+        const CameraPass& cam = sceneCache.cameraPass();
         finishStage();
-        const ShadowMap& map = frame.shadowMap(lightIndex, shadowMapSizeSetting(settings));
+        const ShadowMap& map = sceneCache.shadowMap(lightIndex, shadowMapSizeSetting(settings));
         finishStage();
 
         // D-buffer: the shared map's view, so its texels are the shadow map's texels.
         settings.report(0.3f, "D-buffer pass");
         const bool firstExit = settings.choice(kUmbraRule) == "first_exit";
-        const DbufferKey key{frame.scene().lightGeometryKey(lightIndex), map.size, firstExit, paper, map.worldToClip()};
+        const DbufferKey key{sceneCache.scene().lightGeometryKey(lightIndex), map.size, firstExit, paper, map.worldToClip()};
         if (dbufferKey_ && *dbufferKey_ == key) {
             ++stats_.lightWorkKept;
         } else {
             dbufferKey_.reset();  // until it is drawn
-            drawDbuffer(frame, map, geo, firstExit, paper);
+            drawDbuffer(sceneCache, map, geo, firstExit, paper);
             dbufferKey_ = key;
             ++stats_.lightWorkMade;
         }
@@ -235,17 +235,17 @@ public:
         gl::apply(gl::states::overwrite);  // writes every pixel: no clear needed
         const gl::Program& shade = gl::program("common/fullscreen.vert.glsl", "dbuffer/camera.frag.glsl");
         shade.use();
-        int unit = frame.bindCameraPass(shade, 0);
-        unit = frame.bindShadowMap(shade, map, unit);
+        int unit = sceneCache.bindCameraPass(shade, 0);
+        unit = sceneCache.bindShadowMap(shade, map, unit);
         shade.setTexture("uDBuffer", unit++, dbuffer_.id());
-        frame.setLightUniforms(shade, lightIndex);
+        sceneCache.setLightUniforms(shade, lightIndex);
         shade.set("uCentre", geo.disk.centre);
         shade.set("uSmallOccluders", settings.flag(kSmallOccluders) ? 1 : 0);
         std::string profile = settings.choice(kProfile);
         shade.set("uSegmentProfile", profile == "segment" ? 1 : 0);
         shade.set("uBiasTexels", settings.number(kBiasTexels));
         shade.set("uPaperFormula", paper ? 1 : 0);
-        frame.drawFullscreen();
+        sceneCache.drawFullscreen();
         g.BindFramebuffer(GL_FRAMEBUFFER, 0);
         g.check("drawing the dbuffer camera pass");
         finishStage();
@@ -288,8 +288,8 @@ private:
     };
 
     // Draws the volumes into dbuffer_ (made at the map's size), with the map's matrix.
-    void drawDbuffer(Frame& frame, const ShadowMap& map, const DbufferGeometry& geo, bool firstExit, bool paper) {
-        const gl::Functions& g = frame.gl();
+    void drawDbuffer(SceneCache& sceneCache, const ShadowMap& map, const DbufferGeometry& geo, bool firstExit, bool paper) {
+        const gl::Functions& g = sceneCache.gl();
         if (dbuffer_.width() != map.size) dbuffer_ = gl::Texture(map.size, map.size, GL_RGBA32F, GL_NEAREST);
         // The depth is needed only while drawing: a scratch target's, shared with other renders.
         gl::Framebuffer target(map.size, map.size, {});
@@ -302,7 +302,7 @@ private:
         target.clearColor(0, glm::vec4(0.0f));
         const gl::Program& vol = gl::program("dbuffer/volume.vert.glsl", "dbuffer/volume.frag.glsl");
         vol.use();
-        frame.bindShadowMap(vol, map, 0);  // the first-exit rule reads the casters' distances
+        sceneCache.bindShadowMap(vol, map, 0);  // the first-exit rule reads the casters' distances
         vol.set("uWorldToClip", map.worldToClip());
         vol.set("uCentre", geo.disk.centre);
         vol.set("uNormal", geo.disk.normal);
@@ -318,7 +318,7 @@ private:
         vol.set("uExitEpsilon", kExitEpsilon);
         const std::vector<PartLayer> layers = firstExit ? partLayers(geo, map, false) : std::vector<PartLayer>{};
         if (layers.size() > 1) {
-            drawLayers(frame, map, umbra, layers, target, vol, far, false);
+            drawLayers(sceneCache, map, umbra, layers, target, vol, far, false);
             target.bind();
             vol.use();
         } else {
@@ -331,7 +331,7 @@ private:
         vol.set("uBeyondOccluder", -1);  // in front of the first caster only (volume.frag.glsl)
         const std::vector<PartLayer> penumbraLayers = firstExit ? partLayers(geo, map, true) : std::vector<PartLayer>{};
         if (penumbraLayers.size() > 1) {
-            drawLayers(frame, map, penumbra, penumbraLayers, target, vol, far, true);
+            drawLayers(sceneCache, map, penumbra, penumbraLayers, target, vol, far, true);
         } else {
             gl::RenderState penumbraState = kFarthest;
             penumbraState.channels = kPenumbraChannels;
@@ -354,9 +354,9 @@ private:
     // and read almost lit. Parts whose footprints overlap go to different layers: each layer is
     // drawn with the rule within a part into its own target, then merged into the D-buffer by the
     // rule across parts.
-    void drawLayers(Frame& frame, const ShadowMap& map, const GpuSoup& soup, const std::vector<PartLayer>& layers,
+    void drawLayers(SceneCache& sceneCache, const ShadowMap& map, const GpuSoup& soup, const std::vector<PartLayer>& layers,
                     gl::Framebuffer& target, const gl::Program& vol, float far, bool penumbra) {
-        const gl::Functions& g = frame.gl();
+        const gl::Functions& g = sceneCache.gl();
         gl::Framebuffer& layerTarget =
             gl::scratchFramebuffer("dbuffer.part_layer", map.size, map.size, {GL_RG32F}, GL_DEPTH_COMPONENT32F);
         const gl::Program& merge = gl::program("common/fullscreen.vert.glsl", "dbuffer/merge_layer.frag.glsl");
@@ -391,7 +391,7 @@ private:
             merge.use();
             merge.setTexture("uLayer", 1, layerTarget.colorId(0));
             merge.set("uFar", far);
-            frame.drawFullscreen();
+            sceneCache.drawFullscreen();
         }
         g.Disable(GL_SCISSOR_TEST);
         g.check("drawing the D-buffer's part layers");

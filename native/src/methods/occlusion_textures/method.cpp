@@ -10,8 +10,8 @@
 #include "core/error.h"
 #include "methods/method.h"
 #include "methods/occlusion_textures/passes.h"
-#include "frame/frame.h"
-#include "frame/moved_region.h"
+#include "scene_cache/scene_cache.h"
+#include "scene_cache/moved_region.h"
 
 namespace ss {
 
@@ -38,7 +38,7 @@ public:
         : Method("occlusion_textures", MethodDevice::Gl,
                  {kSlices, kResolution, kFilter, kThinFix, kFade, kSlicing, kSkipEmptySlices, kFinishStages}) {}
 
-    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
+    Layers render(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
         int sliceCount = settings.integer(kSlices);
         int resolution = settings.integer(kResolution);
         occlusion::Filter filter = occlusion::parseFilter(settings.choice(kFilter));
@@ -50,17 +50,17 @@ public:
         bool skipEmptySlices = settings.flag(kSkipEmptySlices);
         bool finishStages = settings.flag(kFinishStages);
         auto stage = [&](float fraction, const char* name) {
-            if (finishStages) frame.gl().Finish();
+            if (finishStages) sceneCache.gl().Finish();
             settings.report(fraction, name);
         };
 
         stage(0.1f, "slicing");
         const occlusion::SliceSetup& setup =
-            slicesFor(frame, lightIndex, SlicesKey{sliceCount, resolution, filter, thinFixAll, projection});
+            slicesFor(sceneCache, lightIndex, SlicesKey{sliceCount, resolution, filter, thinFixAll, projection});
         stage(0.4f, "pre-filtering");
         occlusion::FilteredSlices filtered = occlusion::prefilter(filter, kept_.at(lightIndex)->slices);
         stage(0.6f, "shading");
-        occlusion::ShadeOutput out = occlusion::shade(frame, lightIndex, setup, filtered, fade, settings.extraLayers,
+        occlusion::ShadeOutput out = occlusion::shade(sceneCache, lightIndex, setup, filtered, fade, settings.extraLayers,
                                                       skipEmptySlices);
         stage(1.0f, "done");
 
@@ -93,8 +93,8 @@ private:
     // another light's edit keeps them, and moves that leave their fit as it was redraw them only
     // where the moved meshes were and are. The pre-filter runs on every render: the SAT tables
     // live in a scratch texture other renders share.
-    const occlusion::SliceSetup& slicesFor(Frame& frame, int lightIndex, const SlicesKey& key) {
-        const Scene& scene = frame.scene();
+    const occlusion::SliceSetup& slicesFor(SceneCache& sceneCache, int lightIndex, const SlicesKey& key) {
+        const Scene& scene = sceneCache.scene();
         const Scene::LightGeometryKey geometry = scene.lightGeometryKey(lightIndex);
         // Lights removed since (indices past the last) go with their textures.
         kept_.erase(kept_.lower_bound(int(scene.lights().size())), kept_.end());
@@ -103,16 +103,16 @@ private:
             ++stats_.lightWorkKept;
             return kept->setup;
         }
-        occlusion::KernelLight kernel = occlusion::kernelLight(frame.light(lightIndex), scene.bounds());
+        occlusion::KernelLight kernel = occlusion::kernelLight(sceneCache.light(lightIndex), scene.bounds());
         occlusion::SliceSetup setup =
             occlusion::fitSlices(scene, kernel, key.sliceCount, key.resolution, key.projection, lightIndex);
-        std::vector<MeshPlacement> now = frame.placements();
+        std::vector<MeshPlacement> now = sceneCache.placements();
         Scene::LightGeometryKey earlier = kept ? kept->geometry : Scene::LightGeometryKey{};
         earlier.geometryVersion = geometry.geometryVersion;  // everything but the meshes the same?
         if (kept && kept->key == key && earlier == geometry && kept->setup == setup) {
             if (std::optional<std::vector<Bounds>> boxes = movedBoxes(kept->drawn, now)) {
                 if (std::optional<PixelRect> rect = boxesOnScreen(*boxes, setup.worldToClip, setup.width, setup.height)) {
-                    if (!rect->empty()) occlusion::patchSlices(frame, setup, kept->slices, key.thinFixAll, *rect);
+                    if (!rect->empty()) occlusion::patchSlices(sceneCache, setup, kept->slices, key.thinFixAll, *rect);
                     kept->geometry = geometry;
                     kept->drawn = std::move(now);
                     ++stats_.lightWorkPatched;
@@ -121,14 +121,14 @@ private:
             }
         }
         kept.reset();  // its textures are freed before the new ones are made
-        occlusion::SliceTextures slices = occlusion::renderSlices(frame, setup, key.filter, key.thinFixAll);
+        occlusion::SliceTextures slices = occlusion::renderSlices(sceneCache, setup, key.filter, key.thinFixAll);
         kept = KeptSlices{key, geometry, std::move(now), std::move(setup), std::move(slices)};
         ++stats_.lightWorkMade;
         return kept->setup;
     }
 
     // Each light's last slices, by light index (a few MiB each at the default 8 slices of 512²;
-    // freed with the renderer's frame cache, on the render thread).
+    // freed with the renderer's scene cache, on the render thread).
     std::map<int, std::optional<KeptSlices>> kept_;
 };
 

@@ -3,12 +3,12 @@
 // And shading the camera G-buffer from the pre-filtered slices.
 #pragma once
 #include "core/image.h"
-#include "frame/moved_region.h"
+#include "scene_cache/moved_region.h"
 #include "methods/occlusion_textures/prefilter.h"
 #include "methods/occlusion_textures/slicing.h"
 
 namespace ss {
-class Frame;
+class SceneCache;
 }
 
 namespace ss::occlusion {
@@ -18,11 +18,11 @@ glm::mat4 worldToLocal(const KernelLight& light);
 
 // One draw of every casting mesh from the offset camera; a fragment sets its slice's channel
 // (and the next one for thin meshes, or every mesh when thinFixAll).
-SliceTextures renderSlices(Frame& frame, const SliceSetup& setup, Filter filter, bool thinFixAll);
+SliceTextures renderSlices(SceneCache& sceneCache, const SliceSetup& setup, Filter filter, bool thinFixAll);
 // The same draw into slices drawn before with `setup`, inside `rect` (slice texels, GL
 // orientation) only: after moves, where the moved meshes were and are (movedBoxes,
 // boxesOnScreen). MAX blending makes the result the whole draw's bit for bit.
-void patchSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bool thinFixAll, const PixelRect& rect);
+void patchSlices(SceneCache& sceneCache, const SliceSetup& setup, SliceTextures& slices, bool thinFixAll, const PixelRect& rect);
 
 struct ShadeOutput {
     Image visibility, mask;
@@ -30,7 +30,7 @@ struct ShadeOutput {
 };
 // skipEmptySlices: leave out the pixels and (SAT) the slices whose occupied texels no kernel
 // reaches (exact; off only to show that in a test).
-ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const FilteredSlices& filtered,
+ShadeOutput shade(SceneCache& sceneCache, int lightIndex, const SliceSetup& setup, const FilteredSlices& filtered,
                   Fade fade, bool sliceLayers, bool skipEmptySlices);
 
 }  // namespace ss::occlusion

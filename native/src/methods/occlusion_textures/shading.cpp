@@ -9,7 +9,7 @@
 #include "gl/render_state.h"
 #include "gl/scratch_targets.h"
 #include "methods/occlusion_textures/passes.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss::occlusion {
 
@@ -75,11 +75,11 @@ void setReachUniforms(const gl::Program& program, const SliceSetup& setup, const
     program.set("reachSpread", spread);
 }
 
-void setShadingUniforms(Frame& frame, const gl::Program& program, int lightIndex, const SliceSetup& setup,
+void setShadingUniforms(SceneCache& sceneCache, const gl::Program& program, int lightIndex, const SliceSetup& setup,
                         const FilteredSlices& filtered, Fade fade, bool skipEmptySlices) {
     program.use();
-    int unit = frame.bindCameraPass(program, 0);
-    frame.setLightUniforms(program, lightIndex);
+    int unit = sceneCache.bindCameraPass(program, 0);
+    sceneCache.setLightUniforms(program, lightIndex);
     bindFiltered(program, filtered, unit);
     program.set("worldToLight", worldToLocal(setup.light));
     const glm::vec2 texels(float(setup.width), float(setup.height));
@@ -106,10 +106,10 @@ void setShadingUniforms(Frame& frame, const gl::Program& program, int lightIndex
 
 }  // namespace
 
-ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const FilteredSlices& filtered,
+ShadeOutput shade(SceneCache& sceneCache, int lightIndex, const SliceSetup& setup, const FilteredSlices& filtered,
                   Fade fade, bool sliceLayers, bool skipEmptySlices) {
-    const gl::Functions& gl = frame.gl();
-    const CameraPass& camera = frame.cameraPass();
+    const gl::Functions& gl = sceneCache.gl();
+    const CameraPass& camera = sceneCache.cameraPass();
     int groups = sliceLayers ? (setup.count() + 3) / 4 : 0;
     // V and mask in an RG target (half the bytes to write and read back), the slices in RGBA.
     std::vector<GLenum> formats(size_t(1 + groups), GL_RGBA32F);
@@ -120,13 +120,13 @@ ShadeOutput shade(Frame& frame, int lightIndex, const SliceSetup& setup, const F
     // Every pixel lit, depth 0 where a slice may shadow it (shade.frag.glsl)...
     gl::apply(kMarkSlices);
     const gl::Program& marks = shadingProgram(filtered.filter, setup.count(), sliceLayers, true);
-    setShadingUniforms(frame, marks, lightIndex, setup, filtered, fade, skipEmptySlices);
-    frame.drawFullscreen();
+    setShadingUniforms(sceneCache, marks, lightIndex, setup, filtered, fade, skipEmptySlices);
+    sceneCache.drawFullscreen();
     // ...then the full pass there only: its triangle lies at depth 0.5.
     gl::apply(kWhereMarked);
     const gl::Program& program = shadingProgram(filtered.filter, setup.count(), sliceLayers, false);
-    setShadingUniforms(frame, program, lightIndex, setup, filtered, fade, skipEmptySlices);
-    frame.drawFullscreen();
+    setShadingUniforms(sceneCache, program, lightIndex, setup, filtered, fade, skipEmptySlices);
+    sceneCache.drawFullscreen();
     gl::apply(gl::states::overwrite);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.check("shading occlusion_textures");

@@ -4,7 +4,7 @@
 #include "gl/framebuffer.h"
 #include "gl/render_state.h"
 #include "methods/occlusion_textures/passes.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss::occlusion {
 
@@ -21,9 +21,9 @@ glm::mat4 worldToLocal(const KernelLight& l) {
 
 namespace {
 
-void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bool thinFixAll,
+void drawSlices(SceneCache& sceneCache, const SliceSetup& setup, SliceTextures& slices, bool thinFixAll,
                 const std::optional<PixelRect>& rect) {
-    const gl::Functions& gl = frame.gl();
+    const gl::Functions& gl = sceneCache.gl();
     gl::Framebuffer target(setup.width, setup.height, {});
     for (int g = 0; g < slices.groupCount(); ++g) target.attachColor(g, slices.groups[size_t(g)].id());
     target.bind();
@@ -45,7 +45,7 @@ void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bo
     gl::apply(gl::states::maximum);
     std::optional<PatchRegion> region;
     if (rect) region = PatchRegion{*rect, setup.worldToClip, setup.width, setup.height};
-    frame.drawMeshesWhere(program, SS_MESH_CAST, region, [&](const GpuMesh& mesh) {
+    sceneCache.drawMeshesWhere(program, SS_MESH_CAST, region, [&](const GpuMesh& mesh) {
         program.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
         program.set("unsliced", setup.sliced(mesh.meshIndex) ? 0 : 1);
     }, setup.lightIndex, true);
@@ -59,7 +59,7 @@ void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bo
     seeThrough.set("firstPlane", setup.planes.front());
     seeThrough.set("thickness", (setup.planes.back() - setup.planes.front()) / float(setup.count()));
     seeThrough.set("sliceCount", setup.count());
-    frame.drawSeeThroughWhere(seeThrough, SS_MESH_CAST, [&](const GpuMesh& mesh) {
+    sceneCache.drawSeeThroughWhere(seeThrough, SS_MESH_CAST, [&](const GpuMesh& mesh) {
         seeThrough.set("thinFix", (thinFixAll || (mesh.flags & SS_MESH_THIN)) ? 1 : 0);
         seeThrough.set("unsliced", setup.sliced(mesh.meshIndex) ? 0 : 1);
     }, setup.lightIndex);
@@ -70,14 +70,14 @@ void drawSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bo
 
 }  // namespace
 
-SliceTextures renderSlices(Frame& frame, const SliceSetup& setup, Filter filter, bool thinFixAll) {
+SliceTextures renderSlices(SceneCache& sceneCache, const SliceSetup& setup, Filter filter, bool thinFixAll) {
     SliceTextures slices = makeSliceTextures(setup.width, setup.height, setup.count(), filter == Filter::Mipmap);
-    drawSlices(frame, setup, slices, thinFixAll, std::nullopt);
+    drawSlices(sceneCache, setup, slices, thinFixAll, std::nullopt);
     return slices;
 }
 
-void patchSlices(Frame& frame, const SliceSetup& setup, SliceTextures& slices, bool thinFixAll, const PixelRect& rect) {
-    drawSlices(frame, setup, slices, thinFixAll, rect);
+void patchSlices(SceneCache& sceneCache, const SliceSetup& setup, SliceTextures& slices, bool thinFixAll, const PixelRect& rect) {
+    drawSlices(sceneCache, setup, slices, thinFixAll, rect);
 }
 
 }  // namespace ss::occlusion

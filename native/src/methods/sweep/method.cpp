@@ -14,7 +14,7 @@
 #include "methods/sweep/lookup.h"
 #include "methods/sweep/raster.h"
 #include "methods/sweep/shadow.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 #include "core/visibility_contract.h"
 
 namespace ss {
@@ -58,16 +58,16 @@ public:
     // GL for the shared camera pass and for drawing the shadow mesh; the mesh is CPU geometry.
     SweepMethod() : Method("sweep", MethodDevice::Gl, sweepSettings()) {}
 
-    void prepare(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        shadowFor(frame.scene(), lightIndex, settings);
+    void prepare(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
+        shadowFor(sceneCache.scene(), lightIndex, settings);
     }
 
-    Layers render(Frame& frame, int lightIndex, const RenderSettings& settings) override {
-        const SweepShadow& shadow = shadowFor(frame.scene(), lightIndex, settings);
+    Layers render(SceneCache& sceneCache, int lightIndex, const RenderSettings& settings) override {
+        const SweepShadow& shadow = shadowFor(sceneCache.scene(), lightIndex, settings);
         std::string raster = settings.choice(kSweepRaster);
         settings.report(0.5f, "sweep: camera pass");
-        Layers layers = raster == "gl" ? drawSweepShadow(frame, shadow, lightIndex)
-                                       : lookUpSweepShadow(frame.cameraImages(), frame.light(lightIndex), shadow);
+        Layers layers = raster == "gl" ? drawSweepShadow(sceneCache, shadow, lightIndex)
+                                       : lookUpSweepShadow(sceneCache.cameraImages(), sceneCache.light(lightIndex), shadow);
         settings.report(1.0f, "sweep: done");
         return layers;
     }

@@ -32,9 +32,9 @@ constexpr gl::RenderState kShadowMeshClusters{"sweep_shadow_mesh_clusters", fals
 
 }  // namespace
 
-Layers drawSweepShadow(Frame& frame, const SweepShadow& shadow, int lightIndex) {
-    const gl::Functions& g = frame.gl();
-    const CameraPass& cam = frame.cameraPass();
+Layers drawSweepShadow(SceneCache& sceneCache, const SweepShadow& shadow, int lightIndex) {
+    const gl::Functions& g = sceneCache.gl();
+    const CameraPass& cam = sceneCache.cameraPass();
     gl::Framebuffer& drawn = gl::scratchFramebuffer("sweep.intensity", cam.width, cam.height, {GL_R32F});
     drawn.bind();
     gl::apply(shadow.parts.empty() ? kShadowMesh : kShadowMeshClusters);
@@ -59,7 +59,7 @@ Layers drawSweepShadow(Frame& frame, const SweepShadow& shadow, int lightIndex) 
         }
         const gl::Program& prog = gl::program("sweep/shadow_mesh.vert.glsl", "sweep/shadow_mesh.frag.glsl");
         prog.use();
-        prog.set("uWorldToClip", frame.camera().worldToClip());
+        prog.set("uWorldToClip", sceneCache.camera().worldToClip());
         g.BindVertexArray(vao);
         g.DrawArrays(GL_TRIANGLES, 0, GLsizei(verts.size()));
         g.BindVertexArray(0);
@@ -71,11 +71,11 @@ Layers drawSweepShadow(Frame& frame, const SweepShadow& shadow, int lightIndex) 
     gl::apply(gl::states::overwrite);
     const gl::Program& resolve = gl::program("common/fullscreen.vert.glsl", "sweep/resolve.frag.glsl");
     resolve.use();
-    int unit = frame.bindCameraPass(resolve);
+    int unit = sceneCache.bindCameraPass(resolve);
     resolve.setTexture("uShadowIntensity", unit, drawn.colorId(0));
-    frame.setLightUniforms(resolve, lightIndex);
+    sceneCache.setLightUniforms(resolve, lightIndex);
     resolve.set("uReceiverMesh", shadow.plane.mesh);
-    frame.drawFullscreen();
+    sceneCache.drawFullscreen();
     g.BindFramebuffer(GL_FRAMEBUFFER, 0);
     g.check("resolving the sweep shadow");
     std::vector<Image> channels = out.readChannels(0, 2);

@@ -4,7 +4,7 @@
 #pragma once
 #include "methods/method.h"
 #include "methods/sweep/shadow.h"
-#include "frame/frame.h"
+#include "scene_cache/scene_cache.h"
 
 namespace ss {
 
@@ -12,6 +12,6 @@ namespace ss {
 // plane's mesh and the light reaches it (the visibility contract), V = 1 - the shadow intensity
 // there. Only these two channels are read back: the camera pass stays on the GPU. Must run on
 // the render thread.
-Layers drawSweepShadow(Frame& frame, const SweepShadow& shadow, int lightIndex);
+Layers drawSweepShadow(SceneCache& sceneCache, const SweepShadow& shadow, int lightIndex);
 
 }  // namespace ss

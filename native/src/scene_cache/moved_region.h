@@ -32,6 +32,8 @@ struct PatchRegion {
     int width = 0, height = 0;
 };
 
+// Where each of the scene's meshes is now (what a pass drawn now shows).
+std::vector<MeshPlacement> placementsOf(const Scene& scene);
 // The world boxes the moves from `drawn` to `now` touched (old and new place of each moved
 // mesh), or nothing when more than moves happened (a mesh added, removed or reshaped).
 std::optional<std::vector<Bounds>> movedBoxes(const std::vector<MeshPlacement>& drawn,

@@ -1,6 +1,6 @@
 // How a see-through mesh's UVs, material indices and alpha textures are uploaded.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "frame/see_through.h"
+#include "scene_cache/see_through.h"
 
 #include "gl/gl_functions.h"
 

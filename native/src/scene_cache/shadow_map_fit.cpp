@@ -5,7 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "frame/frame.h"
+#include "scene_cache/shadow_map.h"
 
 namespace ss {
 

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "frame/frame.h"
+#include "scene_cache/camera_pass.h"
 
 namespace ss {
 
-const Bounds& Frame::receiversInView() {
-    const CameraPass& pass = cameraPass();
+const Bounds& CameraPassCache::receiversInView(const MeshDraws& draws) {
+    const CameraPass& pass = get(draws);
     if (receiversInView_) return *receiversInView_;
     // A band of rows at a time (about 16 MiB for each of the two attachments), so an 8192² pass
     // is never held twice on the CPU.
@@ -25,11 +25,6 @@ const Bounds& Frame::receiversInView() {
     }
     receiversInView_ = b;
     return *receiversInView_;
-}
-
-Bounds Frame::shadowFitBounds(int lightIndex) {
-    dropStalePasses();
-    return ss::shadowFitBounds(light(lightIndex), shadowMapBounds_, receiversInView());
 }
 
 }  // namespace ss

@@ -1,11 +1,23 @@
 // Which part of a pass a move touched: the boxes moved meshes left and entered, on screen.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "frame/moved_region.h"
+#include "scene_cache/moved_region.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace ss {
+
+std::vector<MeshPlacement> placementsOf(const Scene& scene) {
+    std::vector<MeshPlacement> out;
+    for (const Mesh& m : scene.meshes()) {
+        MeshPlacement p;
+        p.shapeVersion = m.shapeVersion;
+        p.objectToWorld = m.objectToWorld;
+        for (const glm::vec3& v : m.positions) p.bounds.extend(v);
+        out.push_back(p);
+    }
+    return out;
+}
 
 std::optional<std::vector<Bounds>> movedBoxes(const std::vector<MeshPlacement>& drawn,
                                               const std::vector<MeshPlacement>& now) {

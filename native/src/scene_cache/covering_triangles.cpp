@@ -1,7 +1,7 @@
 // How a mesh's triangles are tested for covering a pixel centre of a pass (rules in
 // covering_triangles.h).
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "frame/covering_triangles.h"
+#include "scene_cache/covering_triangles.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "frame/moved_region.h"
+#include "scene_cache/moved_region.h"
 
 namespace ss {
 
