@@ -114,7 +114,8 @@ def render_setting(scene, key, out_dir):
     scene.eevee.taa_render_samples = 1
     diffuse_direct(scene, tmp)
     # Unshadowed, the area light is analytic (LTC) and the 0-width filter leaves nothing to
-    # jitter: one sample is the converged unshadowed pass, as for 3.4's EEVEE.
+    # jitter: one sample is the converged unshadowed pass, as for 3.4's EEVEE (measured against
+    # 16 samples in 5.2 on the stepped scene: 0.012 % of its maximum at worst, 0.00005 % on average).
     set_shadows(scene, False)
     _, unshadowed = diffuse_direct(scene, tmp)
     set_shadows(scene, True)
