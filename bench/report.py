@@ -139,6 +139,12 @@ def cli_auto(path):
     return None, None, None
 
 
+# EEVEE Next's settings (bench/eevee_next.py SETTINGS): an artist's defaults, and 64 samples with
+# jittered soft shadows and 4 rays x 16 steps.
+NEXT_KEYS = ("eevee_next_default", "eevee_next_64j")
+NEXT = "eevee-next-default"
+
+
 def collect(work, out):
     ours = {}
     for b in bench_rows(os.path.join(out, "scene_files.json")):
@@ -181,12 +187,17 @@ def collect(work, out):
                                key=lambda kv: (kv[0].split("_")[0], int(kv[0].split("_")[1]))):
             rows.append({"key": key.replace("_", "-"), "kind": key.split("_")[0], "ms": sec * 1000.0,
                          "stages": None, "err": error_of(work, name, key)})
+        nxt = load(os.path.join(d, "blender_next.json"), {}) or {}
+        for key in NEXT_KEYS:
+            if key in nxt.get("renders", {}):
+                rows.append({"key": key.replace("_", "-"), "kind": "eevee-next", "ms": nxt["renders"][key] * 1000.0,
+                             "stages": None, "err": error_of(work, name, key)})
         for r in rows:
-            r["err_recv"] = error_of(work, name, r["key"].replace("-", "_") if r["kind"] in ("eevee", "cycles")
-                                     else r["key"], "receivers")
+            r["err_recv"] = error_of(work, name, r["key"].replace("-", "_")
+                                     if r["kind"] in ("eevee", "eevee-next", "cycles") else r["key"], "receivers")
         scenes.append({"name": name, "triangles": info.get("triangles"), "rows": rows,
                        "size": "%sx%s" % (info.get("width"), info.get("height")),
-                       "receiver_pixels": info.get("receiver_pixels")})
+                       "receiver_pixels": info.get("receiver_pixels"), "next": nxt})
     return scenes
 
 
@@ -228,8 +239,12 @@ def best_of(rows, key):
     return min(gl, key=lambda r: r["err"]["rmse"]) if gl else None
 
 
+NEXT_LABELS = {"eevee-next-default": "EEVEE Next defaults", "eevee-next-64j": "EEVEE Next 64 jittered 4×16"}
+
+
 def headline(scene, key):
-    """One auto path against EEVEE-64 and Cycles-16/64, on receivers and all surfaces."""
+    """One auto path against EEVEE Next's defaults, EEVEE-64 and Cycles-16/64, on receivers and
+    all surfaces."""
     rows = scene["rows"]
     by = {r["key"]: r for r in rows}
     auto, ee = by.get(key), by.get("eevee-64")
@@ -240,15 +255,21 @@ def headline(scene, key):
     parts.append("**auto** took %s in %.0f ms (CLI, fresh process%s)" % (
         took, auto["ms"], ", %.1f× the %.0f ms of %s alone" % (auto["ms"] / auto["picked_ms"], auto["picked_ms"], took)
         if auto.get("picked_ms") else ""))
+    nx = by.get(NEXT)
+    if nx:
+        parts.append("receivers %s, all surfaces %s against EEVEE Next at its defaults" % (
+            verdict(rmse(auto, "receivers"), rmse(nx, "receivers")), verdict(rmse(auto, "all"), rmse(nx, "all"))))
     parts.append("receivers %s, all surfaces %s against EEVEE-64" % (
         verdict(rmse(auto, "receivers"), rmse(ee, "receivers")), verdict(rmse(auto, "all"), rmse(ee, "all"))))
     parts.append("estimate %s beside measured %.4f (all surfaces)%s" % (
         fmt(auto.get("estimate")), rmse(auto, "all"), "" if estimate_holds(auto) else " (**outside ±30 %**)"))
     cyc = ["Cycles-%s %s / %s" % (k.split("-")[1], fmt(rmse(by[k], "receivers")), fmt(rmse(by[k], "all")))
            for k in ("cycles-16", "cycles-64") if k in by]
-    if cyc:
+    nxt = ["%s %s / %s in %.0f ms" % (NEXT_LABELS[k], fmt(rmse(by[k], "receivers")), fmt(rmse(by[k], "all")),
+                                      by[k]["ms"]) for k in NEXT_LABELS if k in by]
+    if cyc or nxt:
         parts.append("receivers / all: " + ", ".join(["EEVEE-64 %s / %s in %s ms" % (
-            fmt(rmse(ee, "receivers")), fmt(rmse(ee, "all")), fmt(ee["ms"] if ee else None, "%.0f"))] + cyc))
+            fmt(rmse(ee, "receivers")), fmt(rmse(ee, "all")), fmt(ee["ms"] if ee else None, "%.0f"))] + nxt + cyc))
     best = best_of(rows, key)
     if best:
         ratio = rmse(auto, "all") / best["err"]["rmse"] if best["err"]["rmse"] > 0 else float("inf")
@@ -283,14 +304,18 @@ def headline_exact(scene):
 def summary(scenes, key):
     """How many scenes meet issue 17's targets for one auto path, said plainly."""
     n = len(scenes)
-    names = ["receivers", "all", "best", "time", "estimate"]
+    names = ["next_receivers", "next_all", "receivers", "all", "best", "time", "estimate"]
     counts = {k: 0 for k in names}
     missed = {k: [] for k in names}
     for sc in scenes:
         by = {r["key"]: r for r in sc["rows"]}
-        auto, ee = by.get(key), by.get("eevee-64")
+        auto, ee, nx = by.get(key), by.get("eevee-64"), by.get(NEXT)
         best = best_of(sc["rows"], key)
         checks = {
+            "next_receivers": rmse(auto, "receivers") is not None and rmse(nx, "receivers") is not None
+            and rmse(auto, "receivers") <= rmse(nx, "receivers"),
+            "next_all": rmse(auto, "all") is not None and rmse(nx, "all") is not None
+            and rmse(auto, "all") <= rmse(nx, "all"),
             "receivers": rmse(auto, "receivers") is not None and rmse(ee, "receivers") is not None
             and rmse(auto, "receivers") <= rmse(ee, "receivers"),
             "all": rmse(auto, "all") is not None and rmse(ee, "all") is not None
@@ -303,14 +328,18 @@ def summary(scenes, key):
             counts[k] += checks[k]
             if not checks[k]:
                 missed[k].append(sc["name"])
-    text = {"receivers": "at or below EEVEE-64 on receivers", "all": "at or below EEVEE-64 on all surfaces",
+    text = {"next_receivers": "at or below EEVEE Next at its defaults (Blender 5.x) on receivers",
+            "next_all": "at or below EEVEE Next at its defaults on all surfaces",
+            "receivers": "at or below EEVEE-64 (Blender 3.4, the aim) on receivers",
+            "all": "at or below EEVEE-64 on all surfaces",
             "time": "in at most twice the time of the method it took (the same way, alone)",
             "estimate": "estimating its own RMSE within ±30 % (or ±0.005)",
             "best": "within 1.25× of " + ("our best GL method at its defaults" if key == "auto"
                                           else "the adaptive reference") + " (all surfaces)"}
+    measured = any(NEXT in {r["key"] for r in sc["rows"]} for sc in scenes)
     return ["- `auto` is %s on **%d of %d** scenes%s." % (text[k], counts[k], n,
                                                           "; not on " + ", ".join(missed[k]) if missed[k] else "")
-            for k in names]
+            for k in names if measured or not k.startswith("next_")]
 
 
 # ---------------------------------------------------------------- foundation.md
@@ -389,6 +418,58 @@ def reading_notes(work, scenes):
     return md + [""]
 
 
+def next_notes(work, scenes):
+    """How EEVEE Next ran (version, GPU, settings, CPU seconds), or why it did not."""
+    done = [s for s in scenes if s["next"].get("renders")]
+    if not done:
+        why = "see the run's eevee_next.log"
+        try:
+            lines = [ln.strip() for ln in open(os.path.join(work, "eevee_next.log")) if ln.strip()]
+            said = [ln for ln in lines if "not measured" in ln or "Error" in ln]
+            why = (said or lines or [why])[-1]
+        except OSError:
+            pass
+        return ["- **EEVEE Next was not measured in this run**: %s." % why]
+    first = done[0]["next"]
+    md = ["- EEVEE Next: Blender %s (engine `%s`) in the version matrix's Debian sid root file system "
+          "(bench/eevee_next.sh), `--background`, GPU %s, on the `.blend` each scene was saved as in 3.4 (same "
+          "geometry, light, camera, resolution, no pixel filter). V as for EEVEE (bench/visibility_pass.py): "
+          "Diffuse Direct with the light's shadows / without (one sample, the unshadowed area light being analytic). "
+          "Its renders ran in the background beside steps 3-4d of the run (our methods, auto, memory, warm path), "
+          "so its times and ours share the load given at the top."
+          % (first.get("blender"), first.get("engine"), first.get("gpu"))]
+    for key in NEXT_KEYS:
+        used = [s["next"]["settings"][key] for s in done if key in s["next"].get("settings", {})]
+        skipped = [s["name"] for s in scenes if key in s["next"].get("skipped", [])]
+        if used:
+            u = used[0]
+            md.append("  - `%s`: %s samples, shadow rays %s × steps %s, jitter %s (overblur %s), filter radius %s, "
+                      "resolution scale %s, ray tracing %s; shadowed render seconds (wall / process CPU): %s%s" % (
+                          key.replace("_", "-"), u["taa_render_samples"], u["shadow_ray_count"], u["shadow_step_count"],
+                          "on" if u["use_shadow_jitter"] else "off", u["shadow_jitter_overblur"],
+                          u["shadow_filter_radius"], u["shadow_resolution_scale"],
+                          "on" if u["use_raytracing"] else "off",
+                          ", ".join("%s %.0f / %.0f" % (s["name"], s["next"]["renders"][key],
+                                                        s["next"]["settings"][key]["cpu_seconds"])
+                                    for s in done if key in s["next"].get("renders", {})),
+                          "; **not rendered** (past BENCH_NEXT_BUDGET_S) on " + ", ".join(skipped) if skipped else ""))
+        elif skipped:
+            md.append("  - `%s`: **not rendered** (past BENCH_NEXT_BUDGET_S) on %s"
+                      % (key.replace("_", "-"), ", ".join(skipped)))
+    return md
+
+
+def load_line(work):
+    """The load average at the run's start and end (`uptime`): the times are from a shared machine."""
+    try:
+        ups = [ln.strip() for ln in open(os.path.join(work, "load.txt")) if ln.strip()]
+    except OSError:
+        return "load not recorded"
+    loads = [u.split("load average:")[-1].strip() for u in ups]
+    return "load average (1, 5, 15 min) %s at the start of the run, %s at its end" % (
+        loads[0], loads[-1] if len(loads) > 1 else "—")
+
+
 def machine():
     cpu = "unknown CPU"
     try:
@@ -413,14 +494,17 @@ def main():
     scenes = collect(work, out)
     frows = foundation(out)
 
-    md = ["# softshadow benchmark: our methods against EEVEE, Cycles and the converged reference", ""]
-    md.append("Machine: %s. **All figures below come from one run of `make bench`** (bench/run.sh)%s." %
-              (machine(), " in BENCH_QUICK mode (a tiny subset)" if quick == "1" else ""))
+    md = ["# softshadow benchmark: our methods against EEVEE, EEVEE Next, Cycles and the converged reference",
+          ""]
+    md.append("Machine: %s; %s (every time below is wall time on that machine). **All figures below come from "
+              "one run of `make bench`** (bench/run.sh)%s." %
+              (machine(), load_line(work), " in BENCH_QUICK mode (a tiny subset)" if quick == "1" else ""))
     md.append("")
-    md.append("## Headline: `auto` (what users get) against EEVEE-64, per scene")
+    md.append("## Headline: `auto` (what users get) against EEVEE Next's defaults and EEVEE-64, per scene")
     md.append("")
-    md.append("Issue 17's targets, RMSE against the truth on the receivers and over all surfaces, for the two "
-              "ways users get `auto`.")
+    md.append("Issues 17 and 28's targets, RMSE against the truth on the receivers and over all surfaces, for the "
+              "two ways users get `auto`: against EEVEE Next (Blender 5.x, what artists use today) as an artist has "
+              "it, and against EEVEE-64 (Blender 3.4, soft shadows, 64 samples) as the aim.")
     for key, label, how in AUTO_PATHS:
         md += ["", "### `auto` in %s (%s)" % (label, how), ""]
         if key == "auto-refine":
@@ -465,8 +549,9 @@ def main():
            "shadows off (Cycles: same samples and seed; EEVEE: one sample, its unshadowed area light being analytic), "
            "mask where the unshadowed pass > 0. Time = the shadowed render "
            "inside Blender (`bpy.ops.render.render`, Blender start-up and scene build excluded); the unshadowed "
-           "render is not counted.",
-           "- Ours (GL methods): per-frame time of a cold frame (meshes uploaded, camera pass and shadow map drawn, "
+           "render is not counted."]
+    md += next_notes(work, scenes)
+    md += ["- Ours (GL methods): per-frame time of a cold frame (meshes uploaded, camera pass and shadow map drawn, "
            "prepare, render incl. read-back) with the GL context and shaders warm (softshadow_bench, "
            "BM_SceneFile, mean of 2 frames). `reference`: the CLI's render time at its default samples.",
            ""]

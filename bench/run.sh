@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# What `make bench` runs: per-stage native timings, the Blender scenes with EEVEE and Cycles, our
-# methods on the same scene files, errors against a converged reference, and bench/results/.
+# What `make bench` runs: per-stage native timings, the Blender scenes with EEVEE, EEVEE Next and
+# Cycles, our methods on the same scene files, errors against a converged reference, and
+# bench/results/.
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Usage: bench/run.sh BUILD_DIR    BENCH_QUICK=1: a tiny subset (smoke test, a minute or two).
 # Every figure in bench/results/ comes from this one run. Big intermediates (EXR) stay in
@@ -28,6 +29,8 @@ done
 rm -rf "$WORK" && mkdir -p "$WORK" "$OUT"
 rm -f "$OUT"/*.png "$OUT"/*.svg "$OUT"/*.json "$OUT"/*.md
 t_start=$(date +%s)
+# The machine's load beside the times: the report prints it (start and end of the run).
+uptime > "$WORK/load.txt"
 log() { echo "[bench $(( $(date +%s) - t_start ))s] $*"; }
 
 # 1. Native per-stage timings (example scene and a 100k torus at 512² and 1024²), plus the
@@ -44,8 +47,17 @@ log "Blender: scenes, EEVEE, Cycles at ${WIDTH}x${HEIGHT}"
 grep -q BENCH-SCENES-OK "$WORK/blender.log" || { tail -n 40 "$WORK/blender.log"; exit 1; }
 grep '^BENCH ' "$WORK/blender.log" || true
 
+# 2a. EEVEE Next (Blender 5.x in the version matrix's Debian sid root file system) on the scene
+#     files 3.4 saved, in the background: it takes longer than steps 3-4d and needs only the
+#     scenes, so its renders overlap ours (both are on the load line the report prints). Step 5
+#     waits for it.
+if [ "$QUICK" = 1 ]; then NEXT_SETTINGS=default; else NEXT_SETTINGS=${BENCH_NEXT_SETTINGS:-default,64j}; fi
+log "EEVEE Next in Blender 5.x ($NEXT_SETTINGS), in the background"
+BENCH_NEXT_SETTINGS="$NEXT_SETTINGS" bash "$HERE/eevee_next.sh" "$WORK/scenes" > "$WORK/eevee_next.log" 2>&1 &
+next_pid=$!
+
 # 3. Per scene: the converged truth, `reference` at its default samples (timed by the CLI),
-#    EEVEE/Cycles EXRs renamed so `softshadow compare` pairs them with the truth's passes.
+#    the receiver mask.
 SCENE_LIST=""
 for dir in "$WORK"/scenes/*/; do
   name=$(basename "$dir")
@@ -58,13 +70,6 @@ for dir in "$WORK"/scenes/*/; do
   oiiotool "$dir/truth.exr" --ch "ViewLayer.${light}_reference_mask.V" "$dir/receivers.exr" --ch R --mul \
     --chnames "ViewLayer.receivers.V" -d float -o "$dir/receiver_mask.exr"
   oiiotool "$dir/truth.exr" "$dir/receiver_mask.exr" --chappend -o "$dir/truth_receivers.exr"
-  for f in "$dir"/eevee_*.exr "$dir"/cycles_*.exr; do
-    [ -e "$f" ] || continue
-    case "$f" in *.named.exr) continue ;; esac
-    # A Blender file's passes carry the truth's names: compare pairs passes by name.
-    oiiotool "$f" --ch R,G --chnames "ViewLayer.${light}_reference.V,ViewLayer.${light}_reference_mask.V" \
-      -d float -o "${f%.exr}.named.exr"
-  done
   SCENE_LIST+="${SCENE_LIST:+;}$name=$dir/scene.json"
 done
 
@@ -150,10 +155,23 @@ cat "$OUT/warm_render_passes.md"
 [ "$QUICK" = 1 ] || { log "exact penumbrae against Cycles-64"; bash "$HERE/exact_penumbrae.sh" "$BUILD_DIR"; }
 
 # 5. Errors against the truth, and image strips (method | truth | 4 x |error|).
+log "waiting for EEVEE Next"
+next_rc=0
+wait "$next_pid" || next_rc=$?
+grep '^BENCH \|EEVEE Next not measured' "$WORK/eevee_next.log" || true
+[ "$next_rc" = 0 ] || { tail -n 20 "$WORK/eevee_next.log"; echo "EEVEE Next failed (exit $next_rc): the report says so"; }
+echo "$next_rc" > "$WORK/eevee_next.rc"
 log "errors and image strips"
 for dir in "$WORK"/scenes/*/; do
   name=$(basename "$dir")
   light=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['lights'][0]['name'].replace('.', '_').replace(' ', '_'))" "$dir/scene.json")
+  for f in "$dir"/eevee_*.exr "$dir"/cycles_*.exr; do
+    [ -e "$f" ] || continue
+    case "$f" in *.named.exr) continue ;; esac
+    # A Blender file's passes carry the truth's names: compare pairs passes by name.
+    oiiotool "$f" --ch R,G --chnames "ViewLayer.${light}_reference.V,ViewLayer.${light}_reference_mask.V" \
+      -d float -o "${f%.exr}.named.exr"
+  done
   mkdir -p "$WORK/errors/$name"
   candidates=("$dir/reference.exr")
   for f in "$WORK/ours/$name"/*.exr "$dir"/eevee_*.named.exr "$dir"/cycles_*.named.exr; do
@@ -175,5 +193,6 @@ python3 "$HERE/strips.py" "$WORK" "$OUT" || echo "image strips failed (see above
 
 # 6. The report.
 log "report"
+uptime >> "$WORK/load.txt"
 python3 "$HERE/report.py" "$WORK" "$OUT" "$WIDTH" "$HEIGHT" "$TRUTH_SAMPLES" "$QUICK"
 log "done: $OUT/report.md, $OUT/foundation.md"

@@ -4,21 +4,23 @@
 # For each scene: OUT_DIR/<scene>/scene.json (the add-on's exporter), and for each engine setting
 # OUT_DIR/<scene>/<engine>.exr (R = visibility V, G = mask; run.sh renames the channels),
 # OUT_DIR/<scene>/receivers.exr (R = 1 where a receiver object is seen) and
-# OUT_DIR/<scene>/blender.json with the render times. Needs SOFTSHADOW_LIB.
+# OUT_DIR/<scene>/blender.json with the render times, OUT_DIR/<scene>/scene.blend (the scene as
+# rendered, for bench/eevee_next.py). Needs SOFTSHADOW_LIB.
 import json
 import math
 import os
 import random
 import sys
-import time
 
 import bpy
 import numpy as np
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
-sys.path.insert(0, os.path.join(ROOT, "blender_addon"))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "blender_addon"))
+sys.path.insert(0, HERE)
 import softshadow  # noqa: E402
 from softshadow import api  # noqa: E402
+from visibility_pass import diffuse_direct, save_rg, visibility  # noqa: E402
 
 # At 512² on llvmpipe EEVEE takes about 1.4 s per sample: EEVEE-64 (the headline) alone.
 EEVEE_SAMPLES = (64,)
@@ -239,28 +241,6 @@ def setup_compositor(scene):
     tree.links.new(rl.outputs["DiffDir"], comp.inputs[0])
 
 
-def diffuse_direct(scene, tmp_path):
-    """Renders, returns (seconds, float32 HxW Diffuse Direct luminance, row 0 = top). The pass
-    goes Render Layers -> Composite -> Render Result -> EXR -> pixels (the Viewer image is not
-    refreshed in --background)."""
-    t0 = time.perf_counter()
-    bpy.ops.render.render(write_still=False)
-    seconds = time.perf_counter() - t0
-    settings = scene.render.image_settings
-    settings.file_format = "OPEN_EXR"
-    settings.color_depth = "32"
-    settings.exr_codec = "ZIP"
-    bpy.data.images["Render Result"].save_render(tmp_path, scene=scene)
-    img = bpy.data.images.load(tmp_path)
-    w, h = img.size
-    px = np.empty(w * h * img.channels, dtype=np.float32)
-    img.pixels.foreach_get(px)
-    px = px.reshape(h, w, img.channels)[::-1]  # Blender's rows start at the bottom
-    bpy.data.images.remove(img)
-    os.remove(tmp_path)
-    return seconds, px[:, :, :3].mean(axis=2)
-
-
 def receiver_pass(scene, out_dir):
     """R = G = 1 where the pixel centre sees a receiver object (RECEIVERS), else 0: Cycles' object
     index at one sample with a 0.01 px filter, so each pixel is its centre's object."""
@@ -292,33 +272,6 @@ def set_shadows(scene, on):
         if obj.type == "LIGHT":
             obj.data.use_shadow = on  # EEVEE
             obj.data.cycles.cast_shadow = on  # Cycles
-
-
-def visibility(shadowed, unshadowed):
-    """The contract: V = E(shadows) / E(no shadows), 1 and mask 0 where the light does not reach."""
-    reach = unshadowed > 1e-6 * max(float(unshadowed.max()), 1e-30)
-    v = np.ones_like(shadowed)
-    v[reach] = np.clip(shadowed[reach] / unshadowed[reach], 0.0, 1.0)
-    return v, reach.astype(np.float32)
-
-
-def save_rg(path, v, mask):
-    """R = V, G = mask as a float EXR (Blender's own image saving; row 0 = top in `v`)."""
-    h, w = v.shape
-    img = bpy.data.images.new("bench_out", w, h, alpha=True, float_buffer=True)
-    px = np.zeros((h, w, 4), dtype=np.float32)
-    px[:, :, 0] = v
-    px[:, :, 1] = mask
-    px[:, :, 3] = 1.0
-    img.pixels.foreach_set(px[::-1].ravel())
-    img.filepath_raw = path
-    img.file_format = "OPEN_EXR"
-    settings = bpy.context.scene.render.image_settings
-    settings.file_format = "OPEN_EXR"
-    settings.color_depth = "32"
-    settings.exr_codec = "ZIP"
-    img.save_render(path, scene=bpy.context.scene)
-    bpy.data.images.remove(img)
 
 
 def render_engine(scene, engine, samples, out_dir, name):
@@ -389,6 +342,8 @@ def main():
         problems = api.export_scene_file(scene, os.path.join(out_dir, "scene.json"))
         scene.softshadow.enabled = False  # the add-on's own passes must not ride on Blender's timings
         setup_compositor(scene)
+        # The same scene for EEVEE Next in Blender 5.x (bench/eevee_next.py): geometry, light, camera.
+        bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out_dir, "scene.blend"), copy=True)
         info = {"scene": name, "triangles": triangle_count(scene), "width": size[0], "height": size[1],
                 "problems": problems, "renders": {}, "receiver_pixels": receiver_pass(scene, out_dir)}
         for s in eevee:
