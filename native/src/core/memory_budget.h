@@ -19,8 +19,8 @@ inline constexpr double kBudgetFixedBytes = 280e6;
 // depth: 44 bytes), the method's targets and the result's float layers. Measured (4096² to
 // 8192²): shadow_map 78, pcss and penumbra_map about 80, dbuffer 116, occlusion_textures 133.
 inline constexpr double kBudgetBytesPerPixelGl = 140.0;
-// auto (its candidates one at a time, only results that can still win kept) and refine=on (its
-// per-pixel images beside the method's). Measured: auto with refine=on 146 (4096² to 8192²).
+// auto (its candidates one at a time, only results that can still win kept) and refinement (its
+// per-pixel images beside the method's). Measured: auto refined 146 (4096² to 8192²).
 inline constexpr double kBudgetBytesPerPixelAuto = 150.0;
 // The reference: its float images, no GL. Measured: 17 at 1024².
 inline constexpr double kBudgetBytesPerPixelCpu = 24.0;

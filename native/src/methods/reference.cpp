@@ -10,7 +10,7 @@ namespace ss {
 namespace {
 
 // CPU only: needs no GL, reads nothing from the scene cache but its scene and its Embree BVH
-// (kept per scene id and geometry version, shared with refine=on and the sparse check), so
+// (kept per scene id and geometry version, shared with refinement and the sparse check), so
 // rendering every light of an unchanged scene builds the BVH once.
 class ReferenceMethod final : public Method {
 public:

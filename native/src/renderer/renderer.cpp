@@ -121,7 +121,7 @@ struct Renderer::Impl {
         return *it->second;
     }
 
-    // refine=on of `layers`, method `name`'s result; each round but the last goes to `rounds`
+    // Refinement of `layers`, method `name`'s result; each round but the last goes to `rounds`
     // (when set) with its class layers and, where `check` is given, its estimate.
     Refinement refine(const Scene& scene, int lightIndex, const std::string& name, const RenderSettings& settings,
                       Layers& layers, const SparseCheck* check, const RoundFn& rounds) {

@@ -34,7 +34,7 @@
 // Counted by the renderer itself (scene caches made, their ray-tracing scenes, GL method runs).
 #define SS_RENDERER_COUNTERS(X)                                                                       \
     X(int, sceneCaches, "frames", Sum, "scene caches made (one per scene)")                                  \
-    X(int, traceSceneBuilds, "trace_scene_builds", Sum, "Embree scenes built (one per scene and geometry edit, shared by reference, refine=on and auto's check)") \
+    X(int, traceSceneBuilds, "trace_scene_builds", Sum, "Embree scenes built (one per scene and geometry edit, shared by reference, refinement and auto's check)") \
     X(int, meshBvhBuilds, "mesh_bvh_builds", Sum, "mesh BVHs those scenes built (one per mesh shape: a moved mesh keeps its BVH)") \
     X(double, methodMs, "method_ms", Sum, "milliseconds running GL methods (prepare + render, the shared passes they drew included)")
 

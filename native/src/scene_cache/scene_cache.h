@@ -73,7 +73,7 @@ public:
     void trimCameraImages(size_t keepBytes) { camera_.trimImages(keepBytes); }
 
     // ---- the ray tracer's scene (no GL; any thread) ----
-    // The one Embree BVH of this scene's geometry: the reference, refine=on and the sparse check
+    // The one Embree BVH of this scene's geometry: the reference, refinement and the sparse check
     // all trace it. Built on first use, rebuilt after a mesh edit (not a light or camera edit);
     // builds() counts the builds.
     TraceSceneCache& traceScenes() { return traceScenes_; }
