@@ -282,6 +282,7 @@ def test_a_scene_rebuilt_with_the_same_names_is_read_again():
     sstest.check(set(read) == {"Ground", "Occluder", "Other"}, "every mesh read: %s" % dict(read))
     _matches_a_fresh_export(scene, arrays, "the rebuilt scene")
 
+
 def test_an_object_the_library_refuses_does_not_rebuild_the_scene_at_each_sync():
     scene = _scene()
     sstest.add_light("evil\u202etxt", location=(1, 1, 6)).data.softshadow.method = "shadow_map"
